@@ -1,0 +1,82 @@
+//! The state of one contact patch: what every creep-force model takes as input.
+
+use crate::invalid_input::InvalidInput;
+
+/// One contact patch, in SI units.
+///
+/// Axes follow Kalker: x in the rolling direction, y lateral, z normal into the wheel.
+/// Creepages are rigid-slip velocities divided by the rolling speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactInput {
+    /// Longitudinal creepage ξ (s_x in Polach) [1].
+    pub creepage_longitudinal: f64,
+    /// Lateral creepage η (s_y in Polach) [1].
+    pub creepage_lateral: f64,
+    /// Spin creepage φ (Φ in Polach) [1/m].
+    pub spin_creepage: f64,
+    /// Normal force Q [N]. Q ≤ 0 means the wheel has lifted off: every model returns zero force.
+    pub normal_force: f64,
+    /// Contact-ellipse semi-axis a in the rolling direction [m].
+    pub semi_axis_a: f64,
+    /// Contact-ellipse semi-axis b in the lateral direction [m].
+    pub semi_axis_b: f64,
+    /// Coulomb friction coefficient μ (f in Polach) [1]. μ = 0 gives zero force.
+    pub friction_coefficient: f64,
+    /// Combined shear modulus G of wheel and rail [Pa].
+    pub shear_modulus: f64,
+    /// Combined Poisson's ratio ν [1], in [0, 0.5].
+    pub poisson_ratio: f64,
+}
+
+impl ContactInput {
+    /// Checks every value; the error names the first offending variable and its value.
+    ///
+    /// Not errors: Q ≤ 0 (lift-off) and μ = 0 (no friction); both give zero force.
+    pub fn validate(&self) -> Result<(), InvalidInput> {
+        let finite = [
+            ("creepage_longitudinal", self.creepage_longitudinal),
+            ("creepage_lateral", self.creepage_lateral),
+            ("spin_creepage", self.spin_creepage),
+            ("normal_force", self.normal_force),
+        ];
+        for (variable, value) in finite {
+            if !value.is_finite() {
+                return Err(InvalidInput::new(variable, value, "must be finite"));
+            }
+        }
+        for (variable, value) in [
+            ("semi_axis_a", self.semi_axis_a),
+            ("semi_axis_b", self.semi_axis_b),
+            ("shear_modulus", self.shear_modulus),
+        ] {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(InvalidInput::new(variable, value, "must be finite and > 0"));
+            }
+        }
+        if !(self.friction_coefficient >= 0.0 && self.friction_coefficient.is_finite()) {
+            return Err(InvalidInput::new(
+                "friction_coefficient",
+                self.friction_coefficient,
+                "must be finite and >= 0",
+            ));
+        }
+        if !(0.0..=0.5).contains(&self.poisson_ratio) {
+            return Err(InvalidInput::new("poisson_ratio", self.poisson_ratio, "must lie in [0, 0.5]"));
+        }
+        Ok(())
+    }
+
+    /// True when no tangential force can be transmitted: lift-off (Q ≤ 0) or μ = 0.
+    pub fn transmits_no_force(&self) -> bool {
+        self.normal_force <= 0.0 || self.friction_coefficient == 0.0
+    }
+
+    /// The Coulomb limit μQ [N] (0 after lift-off).
+    pub fn friction_limit(&self) -> f64 {
+        if self.transmits_no_force() {
+            0.0
+        } else {
+            self.friction_coefficient * self.normal_force
+        }
+    }
+}

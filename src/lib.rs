@@ -1,0 +1,38 @@
+//! # wheel-rail-contact
+//!
+//! Tangential wheel–rail contact forces (creep forces) of one contact patch, from its
+//! creepages, spin, normal load, contact ellipse and friction: a pure, safe physics core in SI
+//! units, under an FMI 2.0 Co-Simulation adapter.
+//!
+//! The core method is Polach's fast analytical solution ([`Polach`]); every model implements
+//! [`CreepForceModel`].
+//!
+//! **Sign convention** (Kalker, CONTACT): forces act on the wheel and oppose the creepages; in
+//! the linear range F_x = −G·ab·C11·ξ and F_y = −G·ab·C22·η − G·(ab)^{3/2}·C23·φ.
+//!
+//! ```
+//! use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+//! let input = ContactInput {
+//!     creepage_longitudinal: 1e-3, creepage_lateral: 0.0, spin_creepage: 0.0,
+//!     normal_force: 100e3, semi_axis_a: 6e-3, semi_axis_b: 4e-3,
+//!     friction_coefficient: 0.3, shear_modulus: 8e10, poisson_ratio: 0.28,
+//! };
+//! let forces = Polach::default().creep_forces(&input).unwrap();
+//! assert!(forces.force_longitudinal < 0.0 && forces.adhesion_utilisation < 1.0);
+//! ```
+
+mod contact_input;
+mod creep_force_model;
+mod creep_forces;
+mod invalid_input;
+mod kalker_coefficients;
+mod measured_curve;
+mod polach;
+
+pub use contact_input::ContactInput;
+pub use creep_force_model::CreepForceModel;
+pub use creep_forces::CreepForces;
+pub use invalid_input::InvalidInput;
+pub use kalker_coefficients::KalkerCoefficients;
+pub use measured_curve::{MeasuredCurve, MeasuredCurveError};
+pub use polach::{spin_moment_factor, Polach, StiffnessSource};
