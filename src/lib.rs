@@ -26,13 +26,12 @@ mod creep_force_model;
 mod creep_forces;
 mod invalid_input;
 mod kalker_coefficients;
-mod measured_curve;
-mod polach;
+pub mod models;
 
 pub use contact_input::ContactInput;
 pub use creep_force_model::CreepForceModel;
 pub use creep_forces::CreepForces;
 pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;
-pub use measured_curve::{MeasuredCurve, MeasuredCurveError};
-pub use polach::{spin_moment_factor, Polach, StiffnessSource};
+pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};
+pub use models::polach::{spin_moment_factor, Polach, StiffnessSource};
