@@ -33,37 +33,21 @@ impl ContactInput {
     ///
     /// Not errors: Q ≤ 0 (lift-off) and μ = 0 (no friction); both give zero force.
     pub fn validate(&self) -> Result<(), InvalidInput> {
-        let finite = [
-            ("creepage_longitudinal", self.creepage_longitudinal),
-            ("creepage_lateral", self.creepage_lateral),
-            ("spin_creepage", self.spin_creepage),
-            ("normal_force", self.normal_force),
-        ];
-        for (variable, value) in finite {
-            if !value.is_finite() {
-                return Err(InvalidInput::new(variable, value, "must be finite"));
-            }
-        }
-        for (variable, value) in [
-            ("semi_axis_a", self.semi_axis_a),
-            ("semi_axis_b", self.semi_axis_b),
-            ("shear_modulus", self.shear_modulus),
-        ] {
-            if !(value > 0.0 && value.is_finite()) {
-                return Err(InvalidInput::new(variable, value, "must be finite and > 0"));
-            }
-        }
-        if !(self.friction_coefficient >= 0.0 && self.friction_coefficient.is_finite()) {
-            return Err(InvalidInput::new(
-                "friction_coefficient",
-                self.friction_coefficient,
-                "must be finite and >= 0",
-            ));
-        }
-        if !(0.0..=0.5).contains(&self.poisson_ratio) {
-            return Err(InvalidInput::new("poisson_ratio", self.poisson_ratio, "must lie in [0, 0.5]"));
-        }
-        Ok(())
+        // Straight-line checks: this runs on every evaluation, the error is built off the hot path.
+        finite("creepage_longitudinal", self.creepage_longitudinal)?;
+        finite("creepage_lateral", self.creepage_lateral)?;
+        finite("spin_creepage", self.spin_creepage)?;
+        finite("normal_force", self.normal_force)?;
+        positive("semi_axis_a", self.semi_axis_a)?;
+        positive("semi_axis_b", self.semi_axis_b)?;
+        positive("shear_modulus", self.shear_modulus)?;
+        check(
+            "friction_coefficient",
+            self.friction_coefficient,
+            (0.0..=f64::MAX).contains(&self.friction_coefficient),
+            "must be finite and >= 0",
+        )?;
+        check("poisson_ratio", self.poisson_ratio, (0.0..=0.5).contains(&self.poisson_ratio), "must lie in [0, 0.5]")
     }
 
     /// True when no tangential force can be transmitted: lift-off (Q ≤ 0) or μ = 0.
@@ -78,5 +62,23 @@ impl ContactInput {
         } else {
             self.friction_coefficient * self.normal_force
         }
+    }
+}
+
+fn finite(variable: &'static str, value: f64) -> Result<(), InvalidInput> {
+    check(variable, value, value.is_finite(), "must be finite")
+}
+
+fn positive(variable: &'static str, value: f64) -> Result<(), InvalidInput> {
+    // Two float comparisons (NaN fails both), cheaper than `> 0.0 && is_finite()`.
+    check(variable, value, value > 0.0 && value <= f64::MAX, "must be finite and > 0")
+}
+
+#[inline(always)]
+fn check(variable: &'static str, value: f64, valid: bool, requirement: &'static str) -> Result<(), InvalidInput> {
+    if valid {
+        Ok(())
+    } else {
+        Err(InvalidInput::new(variable, value, requirement))
     }
 }

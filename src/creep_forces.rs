@@ -1,5 +1,7 @@
 //! What every creep-force model returns.
 
+use crate::numerics::magnitude;
+
 /// Tangential contact forces on the wheel, in SI units.
 ///
 /// Sign convention (Kalker, CONTACT; ERRATA E4): forces act on the wheel and oppose the
@@ -21,7 +23,7 @@ impl CreepForces {
     /// Forces with their utilisation of the Coulomb limit `friction_limit` = μQ.
     pub fn new(force_longitudinal: f64, force_lateral: f64, spin_moment: Option<f64>, friction_limit: f64) -> Self {
         let adhesion_utilisation =
-            if friction_limit > 0.0 { force_longitudinal.hypot(force_lateral) / friction_limit } else { 0.0 };
+            if friction_limit > 0.0 { magnitude(force_longitudinal, force_lateral) / friction_limit } else { 0.0 };
         Self { force_longitudinal, force_lateral, spin_moment, adhesion_utilisation }
     }
 }

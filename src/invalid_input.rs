@@ -14,6 +14,7 @@ pub struct InvalidInput {
 }
 
 impl InvalidInput {
+    #[cold]
     pub(crate) fn new(variable: &'static str, value: f64, requirement: &'static str) -> Self {
         Self { variable, value, requirement }
     }

@@ -11,7 +11,9 @@
 //! Below g = 0.1 the asymptotes differ from the table's g = 0.1 row by a few per cent, so a hard
 //! switch would make the forces jump. We blend multiplicatively:
 //!
-//!     C(g) = C_asym(g) · [1 + (C_table(0.1)/C_asym(0.1) − 1) · g/0.1],   g < 0.1,
+//! ```text
+//! C(g) = C_asym(g) · [1 + (C_table(0.1)/C_asym(0.1) − 1) · g/0.1],   g < 0.1,
+//! ```
 //!
 //! which equals the table at g = 0.1 and tends to the asymptote (relative correction → 0) as
 //! g → 0: continuous in a/b over the whole range, with both published limits honoured.

@@ -4,7 +4,9 @@
 //! and the kinetic friction f_k reached at large creepage. With different static and kinetic
 //! friction, k = f_s/f_k (eq. 33), the force law becomes eq. (34):
 //!
-//!     F = (2 Q f_k / π) · ( k ε/(k² + ε²) + arctan ε ),
+//! ```text
+//! F = (2 Q f_k / π) · ( k ε/(k² + ε²) + arctan ε ),
+//! ```
 //!
 //! which peaks at ε_max(k) of eq. (35). Solving F(ε_max(k)) = F_max for k gives the curve's
 //! shape; eq. (36) then gives the stiffness C that puts the peak at s_max.

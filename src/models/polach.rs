@@ -10,13 +10,14 @@
 
 use std::f64::consts::PI;
 
+use crate::numerics::magnitude;
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, MeasuredCurve};
 
 /// Largest gradient ε used. Beyond it the force is saturated to within 1e-150 relative, and
 /// ε² stays finite, so `ε/(1+ε²)` and `(1+ε²)²` can neither overflow nor become NaN.
 const GRADIENT_MAX: f64 = 1e150;
-/// Creepage magnitudes (and |φ|·a) are clamped here: beyond it every model is in full slip and
-/// clamping keeps squares of creepages finite.
+/// Largest creepage magnitude used (ξ, η and aΦ are scaled down together beyond it): every model
+/// is in full slip long before, and squares of creepages stay finite.
 const CREEPAGE_MAX: f64 = 1e150;
 
 /// Where the contact stiffness (the gradient ε of the tangential stress) comes from.
@@ -44,11 +45,13 @@ impl CreepForceModel for Polach {
         }
         let a = input.semi_axis_a;
         let b = input.semi_axis_b;
-        let q = input.normal_force;
-        let mu = input.friction_coefficient;
-        let xi = clamp_creepage(input.creepage_longitudinal);
-        let eta = clamp_creepage(input.creepage_lateral);
-        let spin_shift = clamp_creepage(input.spin_creepage * a);
+        // μQ formed once: every force below is μQ times a dimensionless factor, so |F| ≤ μQ holds
+        // to rounding even where μQ is subnormal.
+        let friction_limit = input.normal_force * input.friction_coefficient;
+        // Spin as a creepage, aΦ (eq. 21); its product can overflow, so it is clamped first.
+        let spin_shift = (input.spin_creepage * a).clamp(-CREEPAGE_MAX, CREEPAGE_MAX);
+        let [xi, eta, spin_shift] =
+            bounded_creepages([input.creepage_longitudinal, input.creepage_lateral, spin_shift]);
 
         // Eq. (21): spin counts towards the lateral creepage only where it enlarges it.
         let eta_with_spin = eta + spin_shift;
@@ -65,15 +68,15 @@ impl CreepForceModel for Polach {
         let (kappa, kappa_spin, friction_ratio) = match &self.stiffness {
             StiffnessSource::Kalker => {
                 let c = KalkerCoefficients::new(a / b, input.poisson_ratio);
-                let qf = q * mu;
                 // E3: ε = π G a b c_jj s_C / (4 Q f), from eq. (7) with C of eq. (28).
-                let kappa = PI * input.shear_modulus * a * b * direction_weighted_c(xi, eta, c.c11, c.c22) / (4.0 * qf);
+                let kappa = PI * input.shear_modulus * a * b * direction_weighted_c(xi, eta, c.c11, c.c22)
+                    / (4.0 * friction_limit);
                 // E2: ε_s = (8/3) G b √(ab) c23 |s_yC| / (Q f K_S), eq. (25) with C_s of eq. (32).
-                let kappa_spin = 8.0 / 3.0 * input.shear_modulus * b * (a * b).sqrt() * c.c23 / (qf * k_s);
+                let kappa_spin = 8.0 / 3.0 * input.shear_modulus * b * (a * b).sqrt() * c.c23 / (friction_limit * k_s);
                 (kappa, kappa_spin, 1.0)
             }
             StiffnessSource::MeasuredCurve(curve) => {
-                let kappa = curve.gradient_per_creepage(mu);
+                let kappa = curve.gradient_per_creepage(input.friction_coefficient);
                 (kappa, kappa / k_s, curve.friction_ratio())
             }
         };
@@ -83,15 +86,19 @@ impl CreepForceModel for Polach {
 
         // Eq. (14), generalised to eq. (34) by k (k = 1 reproduces eq. 14 bit for bit).
         let k = friction_ratio;
-        let force = 2.0 * q * mu / PI * (k * epsilon / (k * k + epsilon * epsilon) + epsilon.atan());
+        // For k = 1 the factor rises monotonically to 1; for a measured curve (k > 1) it peaks at
+        // F_max/(Q f_k) ≤ 1 + 1/π and then falls back to 1.
+        let saturation = 2.0 / PI * (k * epsilon / (k * k + epsilon * epsilon) + epsilon.atan());
+        let force = friction_limit * saturation;
         // Eq. (3) with the sign convention E4: forces oppose the creepages.
         let force_longitudinal = -force * (xi / s_c);
         let force_lateral_creep = -force * (eta / s_c);
         // Eqs. (23), (24): spin's lateral force, with K_M of eq. (20) in closed form. The factor
         // a·Φ/s_C is `spin_shift / s_c`, and |a·Φ| ≤ 2·s_C by eq. (21), so it is bounded.
-        let force_lateral_spin = 9.0 / 16.0 * q * mu * spin_moment_factor(epsilon_spin) * k_s * (spin_shift / s_c);
+        let force_lateral_spin =
+            9.0 / 16.0 * friction_limit * spin_moment_factor(epsilon_spin) * k_s * (spin_shift / s_c);
         let force_lateral = force_lateral_creep + force_lateral_spin;
-        Ok(CreepForces::new(force_longitudinal, force_lateral, None, q * mu))
+        Ok(CreepForces::new(force_longitudinal, force_lateral, None, friction_limit))
     }
 }
 
@@ -100,7 +107,9 @@ impl CreepForceModel for Polach {
 /// With δ = (ε²−1)/(ε²+1) (eq. 12): 1 − δ = 2/(1+ε²), 1 + 2δ = (3ε²−1)/(1+ε²),
 /// δ³/3 − δ²/2 + 1/6 = (1−δ)²(1+2δ)/6 and √(1−δ²) = 2ε/(1+ε²), so eq. (20) becomes
 ///
-///     K_M = −(2/3) · ε / (1 + ε²)²
+/// ```text
+/// K_M = −(2/3) · ε / (1 + ε²)²
+/// ```
 ///
 /// exactly: no cancellation at any ε (the concern of E5), and |K_M| ≤ √3/8 (at ε = 1/√3).
 pub fn spin_moment_factor(epsilon: f64) -> f64 {
@@ -120,19 +129,13 @@ fn direction_weighted_c(xi: f64, eta: f64, c11: f64, c22: f64) -> f64 {
     ((c11 * c11 * x * x + c22 * c22 * y * y) / (x * x + y * y)).sqrt()
 }
 
-/// √(x² + y²) for |x|, |y| ≤ CREEPAGE_MAX, exact to rounding also when the squares underflow.
-fn magnitude(x: f64, y: f64) -> f64 {
-    let largest = x.abs().max(y.abs());
-    if largest > 1e-150 {
-        (x * x + y * y).sqrt()
-    } else if largest == 0.0 {
-        0.0
+/// Scales the creepages (ξ, η, aΦ) by one common factor so that none exceeds CREEPAGE_MAX: their
+/// direction, and so eq. (21), is kept; at that size the force is saturated either way.
+fn bounded_creepages(creepages: [f64; 3]) -> [f64; 3] {
+    let largest = creepages.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    if largest <= CREEPAGE_MAX {
+        creepages
     } else {
-        let (xs, ys) = (x / largest, y / largest);
-        largest * (xs * xs + ys * ys).sqrt()
+        creepages.map(|c| c * (CREEPAGE_MAX / largest))
     }
-}
-
-fn clamp_creepage(creepage: f64) -> f64 {
-    creepage.clamp(-CREEPAGE_MAX, CREEPAGE_MAX)
 }

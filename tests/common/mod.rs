@@ -1,0 +1,46 @@
+//! Shared fixtures for the integration tests.
+#![allow(dead_code)] // each test crate uses its own subset
+
+use wheel_rail_contact::ContactInput;
+
+/// The published CONTACT case 2 contact (a = 8 mm, b = 4 mm, N = 82 kN, G = 82 GPa, ν = 0.28,
+/// μ = 0.3) with no creepage; tests set the creepages they need.
+pub fn contact_case() -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: 0.0,
+        creepage_lateral: 0.0,
+        spin_creepage: 0.0,
+        normal_force: 82e3,
+        semi_axis_a: 8e-3,
+        semi_axis_b: 4e-3,
+        friction_coefficient: 0.3,
+        shear_modulus: 82e9,
+        poisson_ratio: 0.28,
+    }
+}
+
+/// `contact_case()` with semi-axes for ratio a/b around a fixed area ab = 32 mm², Poisson ratio ν
+/// and creepages (ξ, η, φ).
+pub fn contact(a_over_b: f64, nu: f64, xi: f64, eta: f64, phi: f64) -> ContactInput {
+    let area = 32e-6;
+    let b = (area / a_over_b).sqrt();
+    ContactInput {
+        creepage_longitudinal: xi,
+        creepage_lateral: eta,
+        spin_creepage: phi,
+        semi_axis_a: a_over_b * b,
+        semi_axis_b: b,
+        poisson_ratio: nu,
+        ..contact_case()
+    }
+}
+
+/// Relative difference |x − y| / max(|x|, |y|) (0 when both are 0).
+pub fn relative_difference(x: f64, y: f64) -> f64 {
+    let scale = x.abs().max(y.abs());
+    if scale == 0.0 {
+        0.0
+    } else {
+        (x - y).abs() / scale
+    }
+}
