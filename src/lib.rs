@@ -36,3 +36,4 @@ pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;
 pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};
 pub use models::polach::{spin_moment_factor, Polach, StiffnessSource};
+pub use models::polach2005::{LargeCreepage, Polach2005};

@@ -12,7 +12,7 @@ fn normalised_law(k: f64, epsilon: f64) -> f64 {
 }
 
 fn longitudinal_force(curve: MeasuredCurve, input: &ContactInput, xi: f64) -> f64 {
-    let model = Polach { stiffness: StiffnessSource::MeasuredCurve(curve) };
+    let model = Polach { stiffness: StiffnessSource::MeasuredCurve(curve), ..Polach::default() };
     model.creep_forces(&ContactInput { creepage_longitudinal: xi, ..*input }).unwrap().force_longitudinal
 }
 

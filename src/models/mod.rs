@@ -3,3 +3,4 @@
 
 pub mod measured_curve;
 pub mod polach;
+pub mod polach2005;

@@ -10,6 +10,7 @@
 
 use std::f64::consts::PI;
 
+use crate::models::polach2005::LargeCreepage;
 use crate::numerics::magnitude;
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, MeasuredCurve};
 
@@ -30,11 +31,14 @@ pub enum StiffnessSource {
     MeasuredCurve(MeasuredCurve),
 }
 
-/// Polach's method with a choice of stiffness source.
+/// Polach's method with a choice of stiffness source and, optionally, his 2005 extension.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Polach {
     /// Where the contact stiffness comes from.
     pub stiffness: StiffnessSource,
+    /// Polach's 2005 extension (friction falling with slip velocity, reduced stiffness); `None`
+    /// is the original method and costs one branch.
+    pub large_creepage: Option<LargeCreepage>,
 }
 
 impl CreepForceModel for Polach {
@@ -45,9 +49,6 @@ impl CreepForceModel for Polach {
         }
         let a = input.semi_axis_a;
         let b = input.semi_axis_b;
-        // μQ formed once: every force below is μQ times a dimensionless factor, so |F| ≤ μQ holds
-        // to rounding even where μQ is subnormal.
-        let friction_limit = input.normal_force * input.friction_coefficient;
         // Spin as a creepage, aΦ (eq. 21); its product can overflow, so it is clamped first.
         let spin_shift = (input.spin_creepage * a).clamp(-CREEPAGE_MAX, CREEPAGE_MAX);
         let [xi, eta, spin_shift] =
@@ -61,11 +62,19 @@ impl CreepForceModel for Polach {
         if s_c == 0.0 {
             return Ok(CreepForces::default()); // E6: no creepage, no force.
         }
+        // Polach 2005: friction falls with the slip velocity w = s_C·|V|; k_A, k_S scale ε.
+        let (friction, adhesion_reduction, slip_reduction) = match &self.large_creepage {
+            None => (input.friction_coefficient, 1.0, 1.0),
+            Some(large_creepage) => large_creepage.law(input.friction_coefficient, s_c),
+        };
+        // μQ formed once: every force below is μQ times a dimensionless factor, so |F| ≤ μQ holds
+        // to rounding even where μQ is subnormal.
+        let friction_limit = input.normal_force * friction;
         // Eq. (24): finite-a/b correction of the spin force.
         let k_s = 1.0 + 6.3 * (1.0 - (-a / b).exp());
 
-        // ε = κ·s_C (eq. 7) and ε_s = κ_s·|s_yC| (eq. 25); `friction_ratio` is k of eq. (34).
-        let (kappa, kappa_spin, friction_ratio) = match &self.stiffness {
+        // ε = κ·s_C (eq. 7) and ε_s = κ_s·|s_yC| (eq. 25); `law_adhesion` is 1/k of eq. (34).
+        let (kappa, kappa_spin, law_adhesion) = match &self.stiffness {
             StiffnessSource::Kalker => {
                 let c = KalkerCoefficients::new(a / b, input.poisson_ratio);
                 // E3: ε = π G a b c_jj s_C / (4 Q f), from eq. (7) with C of eq. (28).
@@ -76,19 +85,22 @@ impl CreepForceModel for Polach {
                 (kappa, kappa_spin, 1.0)
             }
             StiffnessSource::MeasuredCurve(curve) => {
-                let kappa = curve.gradient_per_creepage(input.friction_coefficient);
-                (kappa, kappa / k_s, curve.friction_ratio())
+                let kappa = curve.gradient_per_creepage(friction);
+                (kappa, kappa / k_s, 1.0 / curve.friction_ratio())
             }
         };
         // `min` also maps a NaN (0/0 from underflowing products) to the saturated end.
         let epsilon = (kappa * s_c).min(GRADIENT_MAX);
         let epsilon_spin = (kappa_spin * s_yc.abs()).min(GRADIENT_MAX);
 
-        // Eq. (14), generalised to eq. (34) by k (k = 1 reproduces eq. 14 bit for bit).
-        let k = friction_ratio;
-        // For k = 1 the factor rises monotonically to 1; for a measured curve (k > 1) it peaks at
-        // F_max/(Q f_k) ≤ 1 + 1/π and then falls back to 1.
-        let saturation = 2.0 / PI * (k * epsilon / (k * k + epsilon * epsilon) + epsilon.atan());
+        // One law covers eq. (14) (k_A = k_S = 1, bit for bit), eq. (34) (k_A = 1/k, since
+        // kε/(k²+ε²) = (ε/k)/(1+(ε/k)²)) and Polach 2005 eq. (9) (its k_A, k_S):
+        //     F = μQ · (2/π) · ( k_A ε/(1 + (k_A ε)²) + arctan(k_S ε) ).
+        // The factor rises monotonically to 1 for k_A = k_S = 1; otherwise it may peak above 1
+        // (at most 1 + 1/π) and falls back towards 1 at large ε.
+        let adhesion_gradient = law_adhesion * adhesion_reduction * epsilon;
+        let saturation = 2.0 / PI
+            * (adhesion_gradient / (1.0 + adhesion_gradient * adhesion_gradient) + (slip_reduction * epsilon).atan());
         let force = friction_limit * saturation;
         // Eq. (3) with the sign convention E4: forces oppose the creepages.
         let force_longitudinal = -force * (xi / s_c);
@@ -137,5 +149,46 @@ fn bounded_creepages(creepages: [f64; 3]) -> [f64; 3] {
         creepages
     } else {
         creepages.map(|c| c * (CREEPAGE_MAX / largest))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::spin_moment_factor;
+
+    /// Eq. (20) as printed, with δ of eq. (12).
+    fn printed_eq_20(epsilon: f64) -> f64 {
+        let delta = (epsilon * epsilon - 1.0) / (epsilon * epsilon + 1.0);
+        epsilon * (delta.powi(3) / 3.0 - delta * delta / 2.0 + 1.0 / 6.0) - (1.0 - delta * delta).powf(1.5) / 3.0
+    }
+
+    /// ERRATA E5's cancellation-free form with h = 1 − δ = 2/(ε² + 1).
+    fn errata_e5(epsilon: f64) -> f64 {
+        let h = 2.0 / (epsilon * epsilon + 1.0);
+        epsilon * h * h * (0.5 - h / 3.0) - (h * (2.0 - h)).powf(1.5) / 3.0
+    }
+
+    #[test]
+    fn closed_form_equals_eq_20_and_e5() {
+        for epsilon in [1e-3, 0.1, 0.5, 1.0 / 3f64.sqrt(), 1.0, 2.0, 5.0, 20.0] {
+            let closed = spin_moment_factor(epsilon);
+            assert!((closed - printed_eq_20(epsilon)).abs() < 1e-13, "eq. 20 at {epsilon}");
+            assert!((closed - errata_e5(epsilon)).abs() < 1e-15, "E5 at {epsilon}");
+        }
+        // Hand values: ε = 1 → δ = 0 → K_M = 1/6 − 1/3; ε = 2 → δ = 0.6 → −0.053333….
+        assert_eq!(spin_moment_factor(1.0), -1.0 / 6.0);
+        assert!((spin_moment_factor(2.0) + 0.16 / 3.0).abs() < 1e-16);
+    }
+
+    #[test]
+    fn large_gradients_keep_full_precision() {
+        // K_M → −(2/3) ε⁻³; eq. (20) as printed has lost every digit here (E5).
+        for epsilon in [1e3_f64, 1e6, 1e20, 1e100] {
+            let asymptote = -2.0 / 3.0 / epsilon.powi(3);
+            let relative = (spin_moment_factor(epsilon) / asymptote - 1.0).abs();
+            assert!(relative < 3.0 / (epsilon * epsilon) + 1e-15, "ε = {epsilon}: {relative}");
+        }
+        assert_eq!(spin_moment_factor(1e150), 0.0);
+        assert!(spin_moment_factor(1e150).is_sign_negative());
     }
 }

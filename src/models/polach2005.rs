@@ -1,0 +1,106 @@
+//! Polach's extension for large creepages (Polach 2005, "Creep forces in simulations of traction
+//! vehicles running on adhesion limit", Wear 258, 992–1000; ERRATA E8).
+//!
+//! Measured creep curves of locomotives fall beyond their peak and rise less steeply than
+//! Kalker's theory predicts. Polach models both:
+//!
+//! ```text
+//! μ(w) = μ0 · ((1 − A) e^{−B w} + A),        w = s_C · |V|   (slip velocity)   (Polach 2005, eq. 10)
+//! F = (2 Q μ / π) · ( k_A ε / (1 + (k_A ε)²) + arctan(k_S ε) ),  ε with μ(w)   (Polach 2005, eq. 9)
+//! ```
+//!
+//! with k_A the stiffness reduction in the adhesion area and k_S in the slip area,
+//! 0 < k_S ≤ k_A ≤ 1. The initial slope is reduced by (k_A + k_S)/2.
+
+use crate::InvalidInput;
+
+/// The parameters of Polach's 2005 extension, validated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Polach2005 {
+    adhesion_reduction: f64,
+    slip_reduction: f64,
+    friction_limit_ratio: f64,
+    friction_decay: f64,
+}
+
+impl Polach2005 {
+    /// Polach's recommended set for dry rails (Polach 2005, Table 1), to be used with μ0 = 0.55.
+    pub const DRY: Self =
+        Self { adhesion_reduction: 1.0, slip_reduction: 0.4, friction_limit_ratio: 0.4, friction_decay: 0.6 };
+    /// μ0 of Polach's dry set.
+    pub const DRY_MAXIMUM_FRICTION: f64 = 0.55;
+    /// Polach's recommended set for wet rails (Polach 2005, Table 1), to be used with μ0 = 0.30.
+    pub const WET: Self =
+        Self { adhesion_reduction: 0.3, slip_reduction: 0.1, friction_limit_ratio: 0.4, friction_decay: 0.2 };
+    /// μ0 of Polach's wet set.
+    pub const WET_MAXIMUM_FRICTION: f64 = 0.30;
+
+    /// k_A, k_S with 0 < k_S ≤ k_A ≤ 1; A = μ∞/μ0 in [0, 1]; B ≥ 0 [s/m].
+    pub fn new(
+        adhesion_reduction: f64,
+        slip_reduction: f64,
+        friction_limit_ratio: f64,
+        friction_decay: f64,
+    ) -> Result<Self, InvalidInput> {
+        let in_range = |variable, value: f64, low: f64, high: f64, rule| {
+            if value >= low && value <= high {
+                Ok(())
+            } else {
+                Err(InvalidInput::new(variable, value, rule))
+            }
+        };
+        in_range("adhesion_reduction_factor", adhesion_reduction, f64::MIN_POSITIVE, 1.0, "k_A must lie in (0, 1]")?;
+        in_range(
+            "slip_reduction_factor",
+            slip_reduction,
+            f64::MIN_POSITIVE,
+            adhesion_reduction,
+            "k_S must lie in (0, k_A]",
+        )?;
+        in_range("friction_limit_ratio", friction_limit_ratio, 0.0, 1.0, "A = mu_inf/mu_0 must lie in [0, 1]")?;
+        in_range("friction_decay_rate", friction_decay, 0.0, f64::MAX, "B must be finite and >= 0 [s/m]")?;
+        Ok(Self { adhesion_reduction, slip_reduction, friction_limit_ratio, friction_decay })
+    }
+
+    /// k_A: stiffness reduction in the adhesion area [1].
+    pub fn adhesion_reduction(&self) -> f64 {
+        self.adhesion_reduction
+    }
+
+    /// k_S: stiffness reduction in the slip area [1].
+    pub fn slip_reduction(&self) -> f64 {
+        self.slip_reduction
+    }
+
+    /// μ(w) = μ0((1 − A) e^{−B w} + A) for the maximum friction μ0 at zero slip velocity and slip
+    /// velocity w ≥ 0 [m/s] (Polach 2005, eq. 10).
+    pub fn friction(&self, maximum_friction: f64, slip_velocity: f64) -> f64 {
+        let a = self.friction_limit_ratio;
+        maximum_friction * ((1.0 - a) * (-self.friction_decay * slip_velocity).exp() + a)
+    }
+}
+
+/// Polach 2005 applied at a rolling speed: the speed turns creepage into slip velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LargeCreepage {
+    extension: Polach2005,
+    rolling_speed: f64,
+}
+
+impl LargeCreepage {
+    /// The extension at rolling speed V [m/s] (either sign; the slip velocity is w = s_C·|V|).
+    pub fn new(extension: Polach2005, rolling_speed: f64) -> Result<Self, InvalidInput> {
+        if rolling_speed.is_finite() {
+            Ok(Self { extension, rolling_speed })
+        } else {
+            Err(InvalidInput::new("rolling_speed", rolling_speed, "must be finite"))
+        }
+    }
+
+    /// Friction μ(w) and the reduction factors (k_A, k_S) for maximum friction μ0 and
+    /// resulting creepage s_C.
+    pub(crate) fn law(&self, maximum_friction: f64, creepage: f64) -> (f64, f64, f64) {
+        let friction = self.extension.friction(maximum_friction, creepage * self.rolling_speed.abs());
+        (friction, self.extension.adhesion_reduction, self.extension.slip_reduction)
+    }
+}
