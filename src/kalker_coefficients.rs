@@ -3,7 +3,7 @@
 //!
 //! Sources: Kalker (1990), *Three-dimensional elastic bodies in rolling contact*, Table E.3
 //! (`data/kalker_coefficients.csv`, turned into a constant by `build.rs`), and Kalker's
-//! asymptotic formulas for thin ellipses (g < 0.1).
+//! asymptotic formulas for thin ellipses (g < 0.1, docs/reference/kalker-asymptotes.md).
 //!
 //! Interpolation (Kalker's CONTACT rule): at each table row, 1/C is quadratic (Lagrange) in ν
 //! through ν = 0, 0.25, 0.5; between rows C is linear in g = smaller/larger semi-axis.

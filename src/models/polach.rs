@@ -1,6 +1,6 @@
 //! Polach's fast analytical creep-force law (Polách, "Solution of wheel-rail contact forces
 //! suitable for calculation of rail vehicle dynamics"; equation numbers below are the paper's,
-//! E-numbers are `ERRATA.md`'s corrections, kept with the project's docs).
+//! E-numbers are the corrections in docs/reference/polach-errata.md).
 //!
 //! The creep force is Freibauer's closed-form integral of a Hertzian traction bound over an
 //! elliptic contact with a linear adhesion zone (eq. 14). Spin adds a lateral force from the

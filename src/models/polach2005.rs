@@ -1,5 +1,5 @@
 //! Polach's extension for large creepages (Polach 2005, "Creep forces in simulations of traction
-//! vehicles running on adhesion limit", Wear 258, 992–1000; ERRATA E8).
+//! vehicles running on adhesion limit", Wear 258, 992–1000; docs/reference/polach-errata.md E8).
 //!
 //! Measured creep curves of locomotives fall beyond their peak and rise less steeply than
 //! Kalker's theory predicts. Polach models both:
