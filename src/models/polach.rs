@@ -94,7 +94,7 @@ impl CreepForceModel for Polach {
         let epsilon_spin = (kappa_spin * s_yc.abs()).min(GRADIENT_MAX);
 
         // One law covers eq. (14) (k_A = k_S = 1, bit for bit), eq. (34) (k_A = 1/k, since
-        // kε/(k²+ε²) = (ε/k)/(1+(ε/k)²)) and Polach 2005 eq. (9) (its k_A, k_S):
+        // kε/(k²+ε²) = (ε/k)/(1+(ε/k)²)) and Polach 2005 (its k_A, k_S; errata E8):
         //     F = μQ · (2/π) · ( k_A ε/(1 + (k_A ε)²) + arctan(k_S ε) ).
         // The factor rises monotonically to 1 for k_A = k_S = 1; otherwise it may peak above 1
         // (at most 1 + 1/π) and falls back towards 1 at large ε.

@@ -5,8 +5,8 @@
 //! Kalker's theory predicts. Polach models both:
 //!
 //! ```text
-//! μ(w) = μ0 · ((1 − A) e^{−B w} + A),        w = s_C · |V|   (slip velocity)   (Polach 2005, eq. 10)
-//! F = (2 Q μ / π) · ( k_A ε / (1 + (k_A ε)²) + arctan(k_S ε) ),  ε with μ(w)   (Polach 2005, eq. 9)
+//! μ(w) = μ0 · ((1 − A) e^{−B w} + A),        w = s_C · |V|   (slip velocity)
+//! F = (2 Q μ / π) · ( k_A ε / (1 + (k_A ε)²) + arctan(k_S ε) ),  ε with μ(w)
 //! ```
 //!
 //! with k_A the stiffness reduction in the adhesion area and k_S in the slip area,
@@ -24,12 +24,12 @@ pub struct Polach2005 {
 }
 
 impl Polach2005 {
-    /// Polach's recommended set for dry rails (Polach 2005, Table 1), to be used with μ0 = 0.55.
+    /// Polach's recommended set for dry rails (Polach 2005; errata E8), to be used with μ0 = 0.55.
     pub const DRY: Self =
         Self { adhesion_reduction: 1.0, slip_reduction: 0.4, friction_limit_ratio: 0.4, friction_decay: 0.6 };
     /// μ0 of Polach's dry set.
     pub const DRY_MAXIMUM_FRICTION: f64 = 0.55;
-    /// Polach's recommended set for wet rails (Polach 2005, Table 1), to be used with μ0 = 0.30.
+    /// Polach's recommended set for wet rails (Polach 2005; errata E8), to be used with μ0 = 0.30.
     pub const WET: Self =
         Self { adhesion_reduction: 0.3, slip_reduction: 0.1, friction_limit_ratio: 0.4, friction_decay: 0.2 };
     /// μ0 of Polach's wet set.
@@ -73,7 +73,7 @@ impl Polach2005 {
     }
 
     /// μ(w) = μ0((1 − A) e^{−B w} + A) for the maximum friction μ0 at zero slip velocity and slip
-    /// velocity w ≥ 0 [m/s] (Polach 2005, eq. 10).
+    /// velocity w ≥ 0 [m/s].
     pub fn friction(&self, maximum_friction: f64, slip_velocity: f64) -> f64 {
         let a = self.friction_limit_ratio;
         maximum_friction * ((1.0 - a) * (-self.friction_decay * slip_velocity).exp() + a)
