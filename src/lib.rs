@@ -27,6 +27,7 @@ mod creep_forces;
 mod invalid_input;
 mod kalker_coefficients;
 pub mod models;
+pub mod scene;
 
 pub use contact_input::ContactInput;
 pub use creep_force_model::CreepForceModel;
