@@ -5,3 +5,4 @@
 //! option off never calls it.
 
 pub mod hertz;
+pub mod kinematics;
