@@ -6,3 +6,4 @@
 
 pub mod hertz;
 pub mod kinematics;
+pub mod relaxation;
