@@ -6,8 +6,10 @@
 //! no eccentricity and lose no digits for slender ellipses. For the pressure
 //! p = p0·√(1 − x²/a² − y²/b²) on an ellipse with semi-axis a along x and b along y,
 //!
-//!     A = Q·R_D(0, b², a²) / (2π E*),   B = Q·R_D(0, a², b²) / (2π E*),
-//!     p0 = 3Q / (2π a b),               δ = 3Q·R_F(0, a², b²) / (2π E*),
+//! ```text
+//! A = Q·R_D(0, b², a²) / (2π E*),   B = Q·R_D(0, a², b²) / (2π E*),
+//! p0 = 3Q / (2π a b),               δ = 3Q·R_F(0, a², b²) / (2π E*),
+//! ```
 //!
 //! where A, B are the relative curvatures along x and y (the gap is A x² + B y²) and δ the
 //! approach of distant points. They are Johnson's M/(πE*), N/(πE*), L/(πE*) with
@@ -15,7 +17,9 @@
 //! k = b/a (Carlson), and they hold for either ordering of a and b. Dividing the first two,
 //! the shape k = b/a is the root of
 //!
-//!     R_D(0, 1, k²) / R_D(0, k², 1) = B / A,
+//! ```text
+//! R_D(0, 1, k²) / R_D(0, k², 1) = B / A,
+//! ```
 //!
 //! strictly decreasing in k, so the semi-axis is longer along the flatter direction. By
 //! homogeneity (R_D is of degree −3/2) a³ = Q·R_D(0, k², 1)/(2π E* A).
@@ -32,7 +36,7 @@ use std::f64::consts::PI;
 
 use crate::InvalidInput;
 
-/// Largest ratio of the two relative curvatures accepted (b/a ≈ 3·10⁻⁶ there). Hertz's
+/// Largest ratio of the two relative curvatures accepted (b/a ≈ 2.5·10⁻⁷ there). Hertz's
 /// half-space theory has long lost its meaning before that; the bound keeps k² far from underflow.
 const CURVATURE_RATIO_MAX: f64 = 1e12;
 /// Root-finder tolerance on ln(b/a): a relative accuracy of the semi-axes near f64 resolution.
@@ -242,7 +246,7 @@ fn slender_shape_ratio(ratio: f64) -> f64 {
     (0.5 * (u_low + u_high)).exp()
 }
 
-/// Carlson's R_D. The arguments used here (two of them > 0, k² ≥ 1e-13) are always inside its
+/// Carlson's R_D. The arguments used here (two of them > 0, k² > 1e-14) are always inside its
 /// domain; a NaN would be caught by the finiteness check of [`HertzContact::solve`].
 fn carlson_rd(x: f64, y: f64, z: f64) -> f64 {
     ellip::elliprd(x, y, z).unwrap_or(f64::NAN)

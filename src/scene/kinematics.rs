@@ -6,7 +6,9 @@
 //! direction (Kalker 1990, §1.4). Rolling backwards turns those axes by 180° about z; the models
 //! are odd in (ξ, η, φ) jointly, so the forces in track axes follow from track-axis creepages
 //!
-//!     ξ = (V − ωr)/|V|,   η = v_y/|V|,   φ = ω_z/V   (signed V: the spin term reverses).
+//! ```text
+//! ξ = (V − ωr)/|V|,   η = v_y/|V|,   φ = ω_z/V   (signed V: the spin term reverses).
+//! ```
 //!
 //! **Regularisation.** |V| is replaced by the smooth D = √(V² + v_c²) ≥ v_c, and 1/V in φ by the
 //! odd V/D², the usual smooth-max remedy for the 1/V singularity of slip definitions (compare

@@ -1,6 +1,8 @@
 //! Creep-force relaxation: the force builds up over a rolling distance instead of instantly,
 //!
-//!     dF/dt = (|V|/L)·(F_ss − F),
+//! ```text
+//! dF/dt = (|V|/L)·(F_ss − F),
+//! ```
 //!
 //! with F_ss the steady-state force of a creep-force model and L the relaxation length (the
 //! first-order "relaxation length" model of rolling contact; Pacejka, *Tire and Vehicle
@@ -20,11 +22,14 @@
 //! and, for two bodies of one material, Mindlin's k = 4Gc/(2 − ν) of a circle of radius
 //! c = √(ab) (Johnson, *Contact Mechanics*, eq. 7.43). G cancels:
 //!
-//!     L_x = √(ab)·C11·(2 − ν)/4,   L_y = √(ab)·C22·(2 − ν)/4.
+//! ```text
+//! L_x = √(ab)·C11·(2 − ν)/4,   L_y = √(ab)·C22·(2 − ν)/4.
+//! ```
 //!
-//! For a circle and ν = 0.28 that is L_x ≈ 1.8a and L_y ≈ 1.6a, about the contact length 2a over which
-//! Kalker's transient theory builds up the force. The equivalent circle is an approximation for
-//! slender ellipses; a measured or preferred length can be set with [`RelaxationLengths::uniform`].
+//! For a circle and ν = 0.28 that is L_x ≈ 1.8a and L_y ≈ 1.6a, comparable to the contact
+//! length 2a, the rolling distance over which the material in the contact is renewed. The
+//! equivalent circle is an approximation for slender ellipses; a measured or preferred length
+//! can be set with [`RelaxationLengths::uniform`].
 
 use crate::{InvalidInput, KalkerCoefficients};
 
