@@ -1,10 +1,11 @@
 //! Hertz normal contact: the contact ellipse, maximum pressure and approach from the normal load,
 //! the relative curvatures of the undeformed surfaces and the elastic constants.
 //!
-//! Exact elliptic-integral solution (Hertz 1882; Johnson, *Contact Mechanics*, §4.2, eqs. 3.61
-//! and 4.36–4.41), written with Carlson's symmetric integrals (DLMF §19.16, 19.25.1), which need
-//! no eccentricity and lose no digits for slender ellipses. For the pressure
-//! p = p0·√(1 − x²/a² − y²/b²) on an ellipse with semi-axis a along x and b along y,
+//! Exact elliptic-integral solution (Hertz 1882; Johnson, *Contact Mechanics*, 1985, ch. 3 on
+//! the Hertz pressure over an ellipse and §4.2), written with Carlson's symmetric integrals
+//! (DLMF §19.16, 19.25.1), which need no eccentricity and lose no digits for slender ellipses.
+//! For the pressure p = p0·√(1 − x²/a² − y²/b²) on an ellipse with semi-axis a along x and b
+//! along y,
 //!
 //! ```text
 //! A = Q·R_D(0, b², a²) / (2π E*),   B = Q·R_D(0, a², b²) / (2π E*),
@@ -55,7 +56,7 @@ pub struct RelativeCurvature {
 
 impl RelativeCurvature {
     /// From the curvature sums A (`rolling`) and B (`lateral`) [1/m], i.e. half the sum of the
-    /// two bodies' principal curvatures in each direction (Johnson eq. 4.21, with A + B the
+    /// two bodies' principal curvatures in each direction (Johnson §4.1, with A + B the
     /// half-sum of all four).
     pub fn new(rolling: f64, lateral: f64) -> Result<Self, InvalidInput> {
         for (variable, value) in [("curvature_rolling", rolling), ("curvature_lateral", lateral)] {
@@ -341,7 +342,7 @@ mod tests {
         assert_relative_eq!(c.max_pressure, 3.0 * q / (2.0 * PI * a * a), max_relative = 1e-14);
     }
 
-    /// Johnson eq. (4.39): the shape from Legendre's K(e), E(e) with e² = 1 − (b/a)², a ≥ b,
+    /// Johnson §4.2: the shape from Legendre's K(e), E(e) with e² = 1 − (b/a)², a ≥ b,
     /// B/A = ((a/b)² E − K)/(K − E): an independent check of the Carlson form. (Beyond 1e6 the
     /// Legendre form itself loses digits to 1 − e² and is not a reference any more.)
     #[test]

@@ -3,8 +3,9 @@
 //! Axes are the track's: x forward along the track, y lateral, z along the contact normal (as in
 //! [`crate::ContactInput`]). Kalker defines creepages as rigid slip velocities (wheel minus rail
 //! at the contact point) over the rolling speed, in axes whose x points in the rolling
-//! direction (Kalker 1990, §1.4). Rolling backwards turns those axes by 180° about z; the models
-//! are odd in (ξ, η, φ) jointly, so the forces in track axes follow from track-axis creepages
+//! direction (Kalker, *Three-dimensional elastic bodies in rolling contact*, 1990, ch. 1).
+//! Rolling backwards turns those axes by 180° about z; the models are odd in (ξ, η, φ)
+//! jointly, so the forces in track axes follow from track-axis creepages
 //!
 //! ```text
 //! ξ = (V − ωr)/|V|,   η = v_y/|V|,   φ = ω_z/V   (signed V: the spin term reverses).
@@ -12,7 +13,7 @@
 //!
 //! **Regularisation.** |V| is replaced by the smooth D = √(V² + v_c²) ≥ v_c, and 1/V in φ by the
 //! odd V/D², the usual smooth-max remedy for the 1/V singularity of slip definitions (compare
-//! Pacejka, *Tire and Vehicle Dynamics*, §7.2, |V_cx| + ε in the slip denominator). So:
+//! Pacejka, *Tire and Vehicle Dynamics*, on slip at low speed: |V_cx| + ε in the denominator). So:
 //! - nothing divides by zero: at V = 0 the creepages are (−ωr, v_y)/v_c and φ = 0;
 //! - the creepages, and hence the forces of any continuous model, are continuous and smooth in
 //!   V through 0, and bounded by μQ because the models are;

@@ -6,7 +6,7 @@
 //!
 //! with F_ss the steady-state force of a creep-force model and L the relaxation length (the
 //! first-order "relaxation length" model of rolling contact; Pacejka, *Tire and Vehicle
-//! Dynamics*, §7.2; for wheel and rail Knothe & Gross-Thebing, VSD 15, 1986).
+//! Dynamics*, transient slip; for wheel and rail Knothe & Gross-Thebing, VSD 15, 1986).
 //!
 //! **Exact update.** With V and F_ss held over a step h (the co-simulation's zero-order hold),
 //! the solution is F(t + h) = F_ss + (F − F_ss)·e^{−|V|h/L}. It is evaluated as the convex
@@ -20,7 +20,7 @@
 //! at V = 0, a spring of stiffness C/L. Setting C/L to the tangential stiffness k of the stuck
 //! contact gives Pacejka's relaxation length L = C/k, with C = G·ab·C_jj Kalker's creep stiffness
 //! and, for two bodies of one material, Mindlin's k = 4Gc/(2 − ν) of a circle of radius
-//! c = √(ab) (Johnson, *Contact Mechanics*, eq. 7.43). G cancels:
+//! c = √(ab) (Mindlin 1949; Johnson, *Contact Mechanics*, ch. 7). G cancels:
 //!
 //! ```text
 //! L_x = √(ab)·C11·(2 − ν)/4,   L_y = √(ab)·C22·(2 − ν)/4.
