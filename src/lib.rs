@@ -28,6 +28,7 @@ mod invalid_input;
 mod kalker_coefficients;
 pub mod models;
 mod numerics;
+pub mod scene;
 
 pub use contact_input::ContactInput;
 pub use creep_force_model::CreepForceModel;
