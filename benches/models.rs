@@ -7,17 +7,18 @@ use wheel_rail_contact::{
     ContactInput, CreepForceModel, Fastsim, Flexibility, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
 };
 
+/// A worn-wheel tread contact in partial slip with all three creepages (utilisation ≈ 0.6).
 fn input() -> ContactInput {
     ContactInput {
-        creepage_longitudinal: 1.5e-3,
-        creepage_lateral: -0.8e-3,
-        spin_creepage: 0.4,
-        normal_force: 80e3,
-        semi_axis_a: 6.3e-3,
-        semi_axis_b: 4.1e-3,
-        friction_coefficient: 0.35,
-        shear_modulus: 8.2e10,
-        poisson_ratio: 0.28,
+        creepage_longitudinal: -1.0e-3,
+        creepage_lateral: 1.2e-3,
+        spin_creepage: -0.8,
+        normal_force: 60e3,
+        semi_axis_a: 5.5e-3,
+        semi_axis_b: 3.4e-3,
+        friction_coefficient: 0.4,
+        shear_modulus: 8.0e10,
+        poisson_ratio: 0.27,
     }
 }
 
