@@ -1,9 +1,9 @@
-//! Kalker's linear-theory creepage coefficients C11, C22, C23 as continuous functions of the
-//! semi-axis ratio a/b and Poisson's ratio ν.
+//! Kalker's linear-theory creepage coefficients C11, C22, C23 and the spin-moment coefficient C33
+//! as continuous functions of the semi-axis ratio a/b and Poisson's ratio ν.
 //!
 //! Sources: Kalker (1990), *Three-dimensional elastic bodies in rolling contact*, Table E.3
-//! (`data/kalker_coefficients.csv`, turned into a constant by `build.rs`), and Kalker's
-//! asymptotic formulas for thin ellipses (g < 0.1, docs/reference/kalker-asymptotes.md).
+//! (`data/kalker_coefficients.csv` and `data/kalker_c33.csv`, turned into constants by `build.rs`),
+//! and Kalker's asymptotic formulas for thin ellipses (g < 0.1, docs/reference/kalker-asymptotes.md).
 //!
 //! Interpolation (Kalker's CONTACT rule): at each table row, 1/C is quadratic (Lagrange) in ν
 //! through ν = 0, 0.25, 0.5; between rows C is linear in g = smaller/larger semi-axis.
@@ -17,20 +17,29 @@
 //!
 //! which equals the table at g = 0.1 and tends to the asymptote (relative correction → 0) as
 //! g → 0: continuous in a/b over the whole range, with both published limits honoured.
+//!
+//! C33 is computed separately ([`KalkerCoefficients::spin_moment_c33`]) so that models without a
+//! spin moment (Polach) do not pay for it. Its thin-ellipse limits:
+//! - a ≪ b: every lateral slice y of the contact rolls like a 2-D contact of half-length
+//!   a(y) = a√(1 − y²/b²), whose force per unit width is π G a(y) ξ_y / (2(1 − ν)) (the 2-D
+//!   result behind the C11 asymptote π²/(4(1 − ν))). Pure spin gives each slice the creepage
+//!   ξ_y = −φ y, so M_z = −∫ y F'_x dy = −π² G a b³ φ / (16(1 − ν)), i.e.
+//!   C33 = π² / (16 (1 − ν) g). It matches the table's a/b = 0.1 row to 4 % (6.17 vs 6.42 at ν = 0).
+//! - b ≪ a: we found no asymptote we could verify against the table, so C33 is held at its
+//!   tabulated b/a = 0.1 value below it (continuous and bounded; such slender contacts are rare in
+//!   wheel–rail contact).
 
 use std::f64::consts::PI;
 
-/// One table row: the reciprocals 1/C at ν = 0, 0.25, 0.5.
-pub(crate) struct KalkerRow {
-    inv_c11: [f64; 3],
-    inv_c22: [f64; 3],
-    inv_c23: [f64; 3],
-}
+/// One tabulated coefficient: per table row, the reciprocals 1/C at ν = 0, 0.25, 0.5.
+pub(crate) type Column = [[f64; 3]; 19];
 
 include!(concat!(env!("OUT_DIR"), "/kalker_table.rs"));
 
 /// Index of the table row with a/b = 1 (rows before it are a/b = 0.1 … 0.9, after it b/a = 0.9 … 0.1).
 const ROW_ROUND: usize = 9;
+/// Index of the last table row (b/a = 0.1).
+const ROW_LAST: usize = 18;
 /// Smallest tabulated ratio g; below it the asymptotes apply.
 const G_TABLE_MIN: f64 = 0.1;
 /// Numerical floor of g: keeps g^{3/2} and 1/g far from underflow/overflow for absurd ratios.
@@ -53,49 +62,110 @@ impl KalkerCoefficients {
     /// Poisson's ratio `poisson_ratio` in [0, 0.5]. `a_over_b` must be > 0 (not checked here:
     /// callers validate their inputs first).
     pub fn new(a_over_b: f64, poisson_ratio: f64) -> Self {
-        let weights = lagrange_weights(poisson_ratio);
-        let (g, a_is_shorter) = if a_over_b <= 1.0 { (a_over_b, true) } else { (1.0 / a_over_b, false) };
-        if g >= G_TABLE_MIN {
-            return interpolate_table(g, a_is_shorter, &weights);
-        }
-        let edge_row = if a_is_shorter { 0 } else { KALKER_TABLE.len() - 1 };
-        let table_edge = row_coefficients(&KALKER_TABLE[edge_row], &weights);
-        let asymptote_edge = asymptotes(G_TABLE_MIN, a_is_shorter, poisson_ratio);
-        let asymptote = asymptotes(g.max(G_FLOOR), a_is_shorter, poisson_ratio);
-        let weight = g / G_TABLE_MIN;
-        let blend = |asym: f64, table: f64, asym_edge: f64| asym * (1.0 + (table / asym_edge - 1.0) * weight);
-        Self {
-            c11: blend(asymptote.c11, table_edge.c11, asymptote_edge.c11),
-            c22: blend(asymptote.c22, table_edge.c22, asymptote_edge.c22),
-            c23: blend(asymptote.c23, table_edge.c23, asymptote_edge.c23),
+        let point = TablePoint::new(a_over_b, poisson_ratio);
+        match point.lookup() {
+            Lookup::BetweenRows { lower, fraction } => Self {
+                c11: point.interpolate(&INV_C11, lower, fraction),
+                c22: point.interpolate(&INV_C22, lower, fraction),
+                c23: point.interpolate(&INV_C23, lower, fraction),
+            },
+            Lookup::BelowTable { edge_row, weight } => {
+                let asymptote_edge = asymptotes(G_TABLE_MIN, point.a_is_shorter, poisson_ratio);
+                let asymptote = asymptotes(point.g.max(G_FLOOR), point.a_is_shorter, poisson_ratio);
+                let blend = |column: &Column, asym: f64, asym_edge: f64| {
+                    blend(asym, point.at_row(column, edge_row), asym_edge, weight)
+                };
+                Self {
+                    c11: blend(&INV_C11, asymptote.c11, asymptote_edge.c11),
+                    c22: blend(&INV_C22, asymptote.c22, asymptote_edge.c22),
+                    c23: blend(&INV_C23, asymptote.c23, asymptote_edge.c23),
+                }
+            }
         }
     }
+
+    /// Kalker's spin-moment coefficient C33 [1] for the same arguments as [`Self::new`], with
+    /// M_z = G c³ C23 η − G c⁴ C33 φ, c = √(ab) (moment on the wheel, Kalker's convention).
+    pub fn spin_moment_c33(a_over_b: f64, poisson_ratio: f64) -> f64 {
+        let point = TablePoint::new(a_over_b, poisson_ratio);
+        match point.lookup() {
+            Lookup::BetweenRows { lower, fraction } => point.interpolate(&INV_C33, lower, fraction),
+            Lookup::BelowTable { edge_row, weight } if point.a_is_shorter => {
+                let thin_strip = |g: f64| PI * PI / (16.0 * (1.0 - poisson_ratio) * g);
+                blend(
+                    thin_strip(point.g.max(G_FLOOR)),
+                    point.at_row(&INV_C33, edge_row),
+                    thin_strip(G_TABLE_MIN),
+                    weight,
+                )
+            }
+            Lookup::BelowTable { edge_row, .. } => point.at_row(&INV_C33, edge_row),
+        }
+    }
+}
+
+/// Where one ellipse shape and material sit in Kalker's table; shared by every coefficient.
+struct TablePoint {
+    /// Lagrange weights of the nodes ν = 0, 0.25, 0.5.
+    weights: [f64; 3],
+    /// g = smaller/larger semi-axis.
+    g: f64,
+    /// a ≤ b (the a/b branch of the table).
+    a_is_shorter: bool,
+}
+
+/// How a coefficient is found for one [`TablePoint`].
+enum Lookup {
+    /// Linear interpolation between rows `lower` and `lower + 1`.
+    BetweenRows { lower: usize, fraction: f64 },
+    /// g < 0.1: the asymptote, blended with the edge row by `weight` = g/0.1.
+    BelowTable { edge_row: usize, weight: f64 },
+}
+
+impl TablePoint {
+    fn new(a_over_b: f64, nu: f64) -> Self {
+        let (g, a_is_shorter) = if a_over_b <= 1.0 { (a_over_b, true) } else { (1.0 / a_over_b, false) };
+        Self { weights: lagrange_weights(nu), g, a_is_shorter }
+    }
+
+    fn lookup(&self) -> Lookup {
+        if self.g < G_TABLE_MIN {
+            let edge_row = if self.a_is_shorter { 0 } else { ROW_LAST };
+            return Lookup::BelowTable { edge_row, weight: self.g / G_TABLE_MIN };
+        }
+        // Position in rows: a/b branch row i at g = 0.1(i+1); b/a branch row 9+j at g = 1 − 0.1 j.
+        let position = if self.a_is_shorter { self.g * 10.0 - 1.0 } else { ROW_ROUND as f64 + (1.0 - self.g) * 10.0 };
+        let lower = (position as usize).min(ROW_LAST - 1);
+        Lookup::BetweenRows { lower, fraction: position - lower as f64 }
+    }
+
+    /// The coefficient at the tabulated row `row`, at this ν: 1/C is quadratic in ν.
+    fn at_row(&self, column: &Column, row: usize) -> f64 {
+        let [w0, w1, w2] = self.weights;
+        let inv = &column[row];
+        1.0 / (w0 * inv[0] + w1 * inv[1] + w2 * inv[2])
+    }
+
+    /// Linear interpolation in g between rows `lower` and `lower + 1`.
+    fn interpolate(&self, column: &Column, lower: usize, fraction: f64) -> f64 {
+        let low = self.at_row(column, lower);
+        if fraction == 0.0 {
+            return low;
+        }
+        let high = self.at_row(column, lower + 1);
+        low + (high - low) * fraction
+    }
+}
+
+/// The multiplicative blend of the module documentation.
+fn blend(asymptote: f64, table_edge: f64, asymptote_edge: f64, weight: f64) -> f64 {
+    asymptote * (1.0 + (table_edge / asymptote_edge - 1.0) * weight)
 }
 
 /// Lagrange weights of the nodes ν = 0, 0.25, 0.5 (CSV header):
 /// 1/C(ν) = 8(ν−¼)(ν−½)/C(0) − 16(ν−½)ν/C(¼) + 8ν(ν−¼)/C(½).
 fn lagrange_weights(nu: f64) -> [f64; 3] {
     [8.0 * (nu - 0.25) * (nu - 0.5), -16.0 * (nu - 0.5) * nu, 8.0 * nu * (nu - 0.25)]
-}
-
-fn row_coefficients(row: &KalkerRow, weights: &[f64; 3]) -> KalkerCoefficients {
-    let at_nu = |inv: &[f64; 3]| 1.0 / (weights[0] * inv[0] + weights[1] * inv[1] + weights[2] * inv[2]);
-    KalkerCoefficients { c11: at_nu(&row.inv_c11), c22: at_nu(&row.inv_c22), c23: at_nu(&row.inv_c23) }
-}
-
-/// Linear interpolation in g between the two rows that bracket it (g in [0.1, 1]).
-fn interpolate_table(g: f64, a_is_shorter: bool, weights: &[f64; 3]) -> KalkerCoefficients {
-    // Position in rows: a/b branch row i at g = 0.1(i+1); b/a branch row 9+j at g = 1 − 0.1 j.
-    let position = if a_is_shorter { g * 10.0 - 1.0 } else { ROW_ROUND as f64 + (1.0 - g) * 10.0 };
-    let lower = (position as usize).min(KALKER_TABLE.len() - 2);
-    let fraction = position - lower as f64;
-    let low = row_coefficients(&KALKER_TABLE[lower], weights);
-    if fraction == 0.0 {
-        return low;
-    }
-    let high = row_coefficients(&KALKER_TABLE[lower + 1], weights);
-    let mix = |l: f64, h: f64| l + (h - l) * fraction;
-    KalkerCoefficients { c11: mix(low.c11, high.c11), c22: mix(low.c22, high.c22), c23: mix(low.c23, high.c23) }
 }
 
 /// Kalker's asymptotic coefficients for a thin ellipse, g = smaller/larger semi-axis → 0.

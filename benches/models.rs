@@ -1,0 +1,43 @@
+//! One evaluation of every model of the ladder (with spin, in partial slip, including validation
+//! and the Kalker coefficient lookup); FASTSIM at several grids (ns per element = time / n²).
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use wheel_rail_contact::{
+    ContactInput, CreepForceModel, Fastsim, Flexibility, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
+};
+
+/// A worn-wheel tread contact in partial slip with all three creepages (utilisation ≈ 0.6).
+fn input() -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: -1.0e-3,
+        creepage_lateral: 1.2e-3,
+        spin_creepage: -0.8,
+        normal_force: 60e3,
+        semi_axis_a: 5.5e-3,
+        semi_axis_b: 3.4e-3,
+        friction_coefficient: 0.4,
+        shear_modulus: 8.0e10,
+        poisson_ratio: 0.27,
+    }
+}
+
+fn bench_model(c: &mut Criterion, name: &str, model: &dyn CreepForceModel) {
+    let input = input();
+    c.bench_function(name, |bencher| bencher.iter(|| model.creep_forces(black_box(&input))));
+}
+
+fn models(c: &mut Criterion) {
+    bench_model(c, "polach", &Polach::default());
+    bench_model(c, "kalker_linear", &KalkerLinear);
+    bench_model(c, "shen_hedrick_elkins", &ShenHedrickElkins);
+    for n in [5, 10, 20, 40, 100] {
+        let model = Fastsim::new(n, n, TractionBound::Parabolic, Flexibility::Three).unwrap();
+        bench_model(c, &format!("fastsim_parabolic_{n}x{n}"), &model);
+    }
+    let elliptic = Fastsim::new(20, 20, TractionBound::Elliptic, Flexibility::Three).unwrap();
+    bench_model(c, "fastsim_elliptic_20x20", &elliptic);
+}
+
+criterion_group!(benches, models);
+criterion_main!(benches);

@@ -1,0 +1,404 @@
+//! The speed–accuracy trade, measured: evaluates every model of the ladder over the fixed case
+//! set of docs/trade.md against the reference (FASTSIM on a converged fine grid) and CONTACT's
+//! published exact-theory values, and writes tables and SVG plots under docs/trade/.
+//!
+//! Run: `cargo run --release --example trade_report` (or `-- --quick` for the reduced CI set).
+
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::time::Instant;
+use wheel_rail_contact::{
+    ContactInput, CreepForceModel, CreepForces, Fastsim, Flexibility, KalkerCoefficients, KalkerLinear, ModelChoice,
+    Polach, ShenHedrickElkins, TractionBound,
+};
+
+const NORMAL_FORCE: f64 = 80e3;
+const FRICTION: f64 = 0.3;
+const SHEAR_MODULUS: f64 = 82e9;
+const POISSON: f64 = 0.28;
+/// c = √(ab) of every case [m]; a/b varies around it.
+const MEAN_SEMI_AXIS: f64 = 5e-3;
+
+struct Settings {
+    quick: bool,
+    ratios: &'static [f64],
+    levels: &'static [f64],
+    reference_grid: usize,
+    repetitions: usize,
+    out_dir: &'static str,
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let settings = if quick {
+        Settings {
+            quick,
+            ratios: &[0.5, 2.0],
+            levels: &[0.1, 1.0, 5.0],
+            reference_grid: 60,
+            repetitions: 3,
+            out_dir: "target/trade-quick",
+        }
+    } else {
+        Settings {
+            quick,
+            ratios: &[0.2, 0.5, 1.0, 2.0, 5.0],
+            levels: &[0.02, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 5.0, 20.0],
+            reference_grid: 200,
+            repetitions: 15,
+            out_dir: "docs/trade",
+        }
+    };
+    std::fs::create_dir_all(settings.out_dir)?;
+    let cases = case_set(&settings);
+    let reference_model = fastsim(settings.reference_grid, TractionBound::Elliptic);
+    let reference: Vec<CreepForces> = cases.iter().map(|c| reference_model.creep_forces(c).unwrap()).collect();
+
+    let grids: &[usize] = if settings.quick { &[5, 10, 20] } else { &[5, 10, 20, 40, 70, 100] };
+    let mut rows = Vec::new();
+    for model in ladder(grids) {
+        rows.push(measure(&model, &cases, &reference, settings.repetitions));
+    }
+    let polach_time = rows[0].nanoseconds;
+    let mut report = String::new();
+    write_header(&mut report, &settings, cases.len());
+    write_trade_table(&mut report, &rows, polach_time);
+    write_convergence(&mut report, &rows);
+    write_contact_comparison(&mut report, grids)?;
+    std::fs::write(format!("{}/README.md", settings.out_dir), report)?;
+    plot_pareto(&format!("{}/pareto.svg", settings.out_dir), &rows)?;
+    for (file, title, direction) in [
+        ("curve_xi.svg", "pure longitudinal creepage, a/b = 1: F_x/(μQ)", Direction::Xi),
+        ("curve_eta.svg", "pure lateral creepage, a/b = 1: F_y/(μQ)", Direction::Eta),
+        ("curve_spin.svg", "pure spin, a/b = 1: F_y/(μQ)", Direction::Spin),
+    ] {
+        plot_curves(&format!("{}/{file}", settings.out_dir), title, direction, grids)?;
+    }
+    println!("wrote {}/README.md and plots", settings.out_dir);
+    Ok(())
+}
+
+fn fastsim(n: usize, bound: TractionBound) -> Fastsim {
+    Fastsim::new(n, n, bound, Flexibility::Three).expect("valid grid")
+}
+
+/// Every model measured: Polach first (the speed ratios refer to it).
+fn ladder(grids: &[usize]) -> Vec<(String, ModelChoice)> {
+    let mut models = vec![
+        ("polach".to_owned(), ModelChoice::Polach(Polach::default())),
+        ("kalker_linear".to_owned(), ModelChoice::KalkerLinear(KalkerLinear)),
+        ("shen_hedrick_elkins".to_owned(), ModelChoice::ShenHedrickElkins(ShenHedrickElkins)),
+    ];
+    for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
+        for &n in grids {
+            let name =
+                format!("fastsim_{}_{n}x{n}", if bound == TractionBound::Parabolic { "parabolic" } else { "elliptic" });
+            models.push((name, ModelChoice::Fastsim(fastsim(n, bound))));
+        }
+    }
+    models
+}
+
+#[derive(Clone, Copy)]
+enum Direction {
+    Xi,
+    Eta,
+    Spin,
+}
+
+fn contact(a_over_b: f64, xi: f64, eta: f64, phi: f64) -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: xi,
+        creepage_lateral: eta,
+        spin_creepage: phi,
+        normal_force: NORMAL_FORCE,
+        semi_axis_a: MEAN_SEMI_AXIS * a_over_b.sqrt(),
+        semi_axis_b: MEAN_SEMI_AXIS / a_over_b.sqrt(),
+        friction_coefficient: FRICTION,
+        shear_modulus: SHEAR_MODULUS,
+        poisson_ratio: POISSON,
+    }
+}
+
+/// Characteristic creepages (CONTACT's `simpflex`): the linear force reaches μQ at ξ*, η*, φ*.
+fn characteristic(a_over_b: f64) -> (f64, f64, f64) {
+    let k = KalkerCoefficients::new(a_over_b, POISSON);
+    let c = MEAN_SEMI_AXIS;
+    let load = FRICTION * NORMAL_FORCE / SHEAR_MODULUS;
+    (load / (c * c * k.c11), load / (c * c * k.c22), load / (c * c * c * k.c23))
+}
+
+/// a/b × level × direction: pure ξ, η, φ; (ξ, η) at 45°; (η, φ); (ξ, η, φ).
+fn case_set(settings: &Settings) -> Vec<ContactInput> {
+    let mut cases = Vec::new();
+    for &ratio in settings.ratios {
+        let (xs, es, ps) = characteristic(ratio);
+        for &level in settings.levels {
+            let d = std::f64::consts::FRAC_1_SQRT_2;
+            let s3 = 1.0 / 3.0_f64.sqrt();
+            for (x, e, p) in
+                [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (d, d, 0.0), (0.0, d, d), (s3, -s3, s3)]
+            {
+                cases.push(contact(ratio, level * x * xs, level * e * es, level * p * ps));
+            }
+        }
+    }
+    cases
+}
+
+struct Row {
+    name: String,
+    /// Median and max over the cases of |ΔF_x|/(μQ), |ΔF_y|/(μQ), |ΔM_z|/(μQ c) (None: no M_z).
+    fx: (f64, f64),
+    fy: (f64, f64),
+    mz: Option<(f64, f64)>,
+    nanoseconds: f64,
+}
+
+fn measure(model: &(String, ModelChoice), cases: &[ContactInput], reference: &[CreepForces], reps: usize) -> Row {
+    let (name, model) = model;
+    let results: Vec<CreepForces> = cases.iter().map(|c| model.creep_forces(c).unwrap()).collect();
+    let limit = FRICTION * NORMAL_FORCE;
+    let err = |f: &dyn Fn(&CreepForces) -> Option<f64>, scale: f64| -> Option<(f64, f64)> {
+        let mut e: Vec<f64> = results
+            .iter()
+            .zip(reference)
+            .map(|(r, re)| Some((f(r)? - f(re)?).abs() / scale))
+            .collect::<Option<Vec<f64>>>()?;
+        e.sort_by(f64::total_cmp);
+        Some((e[e.len() / 2], e[e.len() - 1]))
+    };
+    let fx = err(&|f| Some(f.force_longitudinal), limit).unwrap();
+    let fy = err(&|f| Some(f.force_lateral), limit).unwrap();
+    let mz = err(&|f| f.spin_moment, limit * MEAN_SEMI_AXIS);
+    // Median over repetitions of the time per evaluation of one pass over all cases.
+    let mut times: Vec<f64> = (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            for case in cases {
+                let _ = black_box(model.creep_forces(black_box(case)));
+            }
+            start.elapsed().as_secs_f64() * 1e9 / cases.len() as f64
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    Row { name: name.clone(), fx, fy, mz, nanoseconds: times[times.len() / 2] }
+}
+
+fn write_header(report: &mut String, settings: &Settings, case_count: usize) {
+    let mode = if settings.quick { " (quick mode: reduced set, not the committed report)" } else { "" };
+    writeln!(report, "# The speed–accuracy trade, measured{mode}\n").unwrap();
+    writeln!(
+        report,
+        "Generated by `cargo run --release --example trade_report` (see [../trade.md](../trade.md) for the \
+         case set and the method). {case_count} cases: a/b ∈ {:?}, ν = {POISSON}, Q = {} kN, μ = {FRICTION}, \
+         G = {} GPa, c = √(ab) = {} mm; creepage levels {:?} × the characteristic creepage (linear force = μQ) \
+         along pure ξ, pure η, pure φ, (ξ, η), (η, φ) and (ξ, −η, φ).\n",
+        settings.ratios,
+        NORMAL_FORCE / 1e3,
+        SHEAR_MODULUS / 1e9,
+        MEAN_SEMI_AXIS * 1e3,
+        settings.levels
+    )
+    .unwrap();
+    writeln!(
+        report,
+        "Reference: FASTSIM, three flexibilities, elliptic (Hertz) traction bound, {0} × {0} grid. Errors are \
+         |Δ F|/(μQ) for forces and |Δ M_z|/(μQ·c) for the spin moment (\"—\": the model has no M_z). Time: median \
+         over {1} passes through all cases in one process, per evaluation; ratio = time / Polach's time.\n",
+        settings.reference_grid, settings.repetitions
+    )
+    .unwrap();
+}
+
+fn write_trade_table(report: &mut String, rows: &[Row], polach_time: f64) {
+    report.push_str("## Trade table\n\n| model | F_x median | F_x max | F_y median | F_y max | M_z median | M_z max | ns / evaluation | time / Polach |\n|---|---|---|---|---|---|---|---|---|\n");
+    for row in rows {
+        let mz = row.mz.map_or(("—".to_owned(), "—".to_owned()), |(m, x)| (format!("{m:.4}"), format!("{x:.4}")));
+        writeln!(
+            report,
+            "| {} | {:.4} | {:.4} | {:.4} | {:.4} | {} | {} | {:.0} | {:.2} |",
+            row.name,
+            row.fx.0,
+            row.fx.1,
+            row.fy.0,
+            row.fy.1,
+            mz.0,
+            mz.1,
+            row.nanoseconds,
+            row.nanoseconds / polach_time
+        )
+        .unwrap();
+    }
+    report.push_str("\nThe linear theory is not friction-limited, so its error grows without bound beyond the linear range (its max is the largest level of the set).\n\n![error vs time](pareto.svg)\n\n");
+}
+
+fn write_convergence(report: &mut String, rows: &[Row]) {
+    report.push_str("## FASTSIM grid convergence (elliptic bound, against the reference grid)\n\n| grid | max(F_x, F_y) median error | max(F_x, F_y) max error | M_z max error | ns / evaluation | ns / element |\n|---|---|---|---|---|---|\n");
+    for row in rows.iter().filter(|r| r.name.starts_with("fastsim_elliptic")) {
+        let n: f64 = row.name.rsplit('x').next().unwrap().parse().unwrap();
+        writeln!(
+            report,
+            "| {} | {:.5} | {:.5} | {:.5} | {:.0} | {:.1} |",
+            row.name.trim_start_matches("fastsim_elliptic_"),
+            row.fx.0.max(row.fy.0),
+            row.fx.1.max(row.fy.1),
+            row.mz.map_or(f64::NAN, |m| m.1),
+            row.nanoseconds,
+            row.nanoseconds / (n * n)
+        )
+        .unwrap();
+    }
+    report.push('\n');
+}
+
+/// CONTACT's published exact-theory values (tests/data/contact_published_cases.md).
+fn write_contact_comparison(report: &mut String, grids: &[usize]) -> std::io::Result<()> {
+    // Case 1, `examples/tractcurv`: a = 6.304 mm, b = 12.61 mm, N = 106.7 kN, μ = 0.33, pure ξ.
+    const TRACTCURV: [(f64, f64); 12] = [
+        (0.001, -0.0070),
+        (0.04, -0.2588),
+        (0.08, -0.4743),
+        (0.12, -0.6481),
+        (0.16, -0.7830),
+        (0.2, -0.8815),
+        (0.24, -0.9466),
+        (0.28, -0.9832),
+        (0.32, -0.9977),
+        (0.4, -0.9991),
+        (1.0, -1.0000),
+        (5.0, -1.0000),
+    ];
+    let tractcurv = |xi_percent: f64| ContactInput {
+        creepage_longitudinal: xi_percent / 100.0,
+        creepage_lateral: 0.0,
+        spin_creepage: 0.0,
+        normal_force: 106.7e3,
+        semi_axis_a: 6.304e-3,
+        semi_axis_b: 12.61e-3,
+        friction_coefficient: 0.33,
+        shear_modulus: 82e9,
+        poisson_ratio: 0.28,
+    };
+    // Case 2, `examples/fastsim`: exact F_y/(μN) = −0.6074, M_z = −48.21 N·m.
+    let fastsim_case = ContactInput {
+        creepage_longitudinal: 0.0,
+        creepage_lateral: -6.25e-4,
+        spin_creepage: 0.625,
+        normal_force: 82e3,
+        semi_axis_a: 8e-3,
+        semi_axis_b: 4e-3,
+        friction_coefficient: 0.3,
+        shear_modulus: 82e9,
+        poisson_ratio: 0.28,
+    };
+    report.push_str("## Against CONTACT's exact theory (published examples)\n\n`tractcurv`: a/b = 0.5, pure ξ, 12 points from 0.001 % to 5 % (tests/data/contact_published_cases.md, case 1). `fastsim`: a = 8 mm, b = 4 mm, η = −6.25e-4, φ = 0.625 /m (case 2): exact F_y/(μN) = −0.6074, M_z = −48.21 N·m.\n\n| model | tractcurv max abs ΔF_x/(μN) | fastsim F_y/(μN) | fastsim M_z [N·m] |\n|---|---|---|---|\n");
+    let mut models = ladder(grids);
+    models.retain(|(name, _)| {
+        !name.starts_with("fastsim")
+            || name.ends_with("_20x20")
+            || name.ends_with(&format!("_{0}x{0}", grids[grids.len() - 1]))
+    });
+    for (name, model) in models {
+        let max_error = TRACTCURV
+            .iter()
+            .map(|&(xi, exact)| {
+                let input = tractcurv(xi);
+                (model.creep_forces(&input).unwrap().force_longitudinal / input.friction_limit() - exact).abs()
+            })
+            .fold(0.0, f64::max);
+        let f = model.creep_forces(&fastsim_case).unwrap();
+        let mz = f.spin_moment.map_or("—".to_owned(), |m| format!("{m:.2}"));
+        writeln!(report, "| {name} | {max_error:.4} | {:.4} | {mz} |", f.force_lateral / fastsim_case.friction_limit())
+            .unwrap();
+    }
+    report.push_str("| CONTACT exact theory | 0 | −0.6074 | −48.21 |\n\n![pure ξ](curve_xi.svg)\n![pure η](curve_eta.svg)\n![pure spin](curve_spin.svg)\n");
+    Ok(())
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(23, 190, 207),
+];
+
+fn plot_pareto(path: &str, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let error = |r: &Row| r.fx.0.max(r.fy.0).max(1e-6);
+    let (t_min, t_max) =
+        rows.iter().fold((f64::MAX, 0.0_f64), |(lo, hi), r| (lo.min(r.nanoseconds), hi.max(r.nanoseconds)));
+    let (e_min, e_max) = rows.iter().fold((f64::MAX, 0.0_f64), |(lo, hi), r| (lo.min(error(r)), hi.max(error(r))));
+    let mut chart = ChartBuilder::on(&root)
+        .caption("median error max(F_x, F_y)/(μQ) vs time per evaluation", ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((t_min * 0.5..t_max * 2.0).log_scale(), (e_min * 0.5..e_max * 2.0).log_scale())?;
+    chart.configure_mesh().x_desc("ns per evaluation").y_desc("median error / (μQ)").draw()?;
+    for (i, row) in rows.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let point = (row.nanoseconds, error(row));
+        chart
+            .draw_series(std::iter::once(Circle::new(point, 5, color.filled())))?
+            .label(row.name.clone())
+            .legend(move |(x, y)| Circle::new((x, y), 4, color.filled()));
+    }
+    for family in ["fastsim_parabolic", "fastsim_elliptic"] {
+        let line: Vec<(f64, f64)> =
+            rows.iter().filter(|r| r.name.starts_with(family)).map(|r| (r.nanoseconds, error(r))).collect();
+        chart.draw_series(LineSeries::new(line, BLACK.mix(0.3)))?;
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    root.present()?;
+    Ok(())
+}
+
+fn plot_curves(
+    path: &str,
+    title: &str,
+    direction: Direction,
+    grids: &[usize],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (xs, es, ps) = characteristic(1.0);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..4.0, -1.3..0.05)?;
+    chart.configure_mesh().x_desc("creepage / characteristic creepage").y_desc("force / (μQ)").draw()?;
+    let mut models = ladder(grids);
+    models.retain(|(name, _)| !name.starts_with("fastsim") || name.ends_with("_5x5") || name.ends_with("_20x20"));
+    for (i, (name, model)) in models.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let curve: Vec<(f64, f64)> = (0..=200)
+            .map(|k| {
+                let level = 4.0 * k as f64 / 200.0;
+                let input = match direction {
+                    Direction::Xi => contact(1.0, level * xs, 0.0, 0.0),
+                    Direction::Eta => contact(1.0, 0.0, level * es, 0.0),
+                    Direction::Spin => contact(1.0, 0.0, 0.0, level * ps),
+                };
+                let f = model.creep_forces(&input).unwrap();
+                let force = if matches!(direction, Direction::Xi) { f.force_longitudinal } else { f.force_lateral };
+                (level, (force / input.friction_limit()).max(-1.3))
+            })
+            .collect();
+        chart
+            .draw_series(LineSeries::new(curve, color.stroke_width(2)))?
+            .label(name.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    root.present()?;
+    Ok(())
+}

@@ -1,0 +1,296 @@
+//! Kalker's FASTSIM: the simplified theory of rolling contact solved strip by strip
+//! (J.J. Kalker, "A fast algorithm for the simplified theory of rolling contact", Vehicle System
+//! Dynamics 11 (1982) 1–13; flexibilities as in CONTACT's `simpflex`, Vollebregt & Kalker).
+//!
+//! Simplified theory: the surface displacement is u = L p (traction p on the wheel), so in
+//! adhesion the traction grows linearly along the rolling path with the rigid slip
+//! w = (ξ − φ y, η + φ x) [Kalker's eq.]:
+//!
+//! ```text
+//! p(x − dx, y) = p(x, y) − (w / L) dx,      |p| ≤ μ p_z, else p = μ p_z p/|p| (slip).
+//! ```
+//!
+//! Flexibilities (three, one per creepage; CONTACT's `simpflex`):
+//!
+//! ```text
+//! L1 = 8a / (3 G C11),  L2 = 8a / (3 G C22),  L3 = π a √(a/b) / (4 G C23),
+//! ```
+//!
+//! chosen so that the adhesion limit gives Kalker's linear F_x, F_y exactly; or Kalker's single
+//! weighted flexibility L = (|ξ| L1 + |η| L2 + c |φ| L3) / √(ξ² + η² + c² φ²), c = √(ab).
+//! Traction bound μ p_z: parabolic, p_z = 2Q/(πab) (1 − x²/a² − y²/b²) (Kalker's choice for
+//! FASTSIM), or elliptic (Hertz), p_z = 3Q/(2πab) √(1 − x²/a² − y²/b²).
+//!
+//! Discretisation (ours, not CONTACT's rectangular grid): `strips` strips of equal width across
+//! the ellipse, each with its own half-length a(y) = a√(1 − y²/b²) divided into `elements` equal
+//! elements, tractions at element centres. The first step from the leading edge is half an
+//! element and the slip is taken at mid-step, so in adhesion the traction is exact at the
+//! centres and the linear limit is met to O(1/strips²). The bound is normalised so that the
+//! discrete pressure carries exactly Q (full slip gives exactly μQ on every grid).
+//!
+//! Work is done in units of a, b and μQ/(ab), so the tractions stay O(1) whatever the inputs;
+//! the hot loop marches along each strip carrying the traction and allocates nothing.
+
+use std::f64::consts::PI;
+
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients};
+
+/// Largest number of strips or elements per strip (10⁸ elements: far beyond convergence).
+pub const MAX_DIVISIONS: usize = 10_000;
+/// Dimensionless traction rates (flexibility⁻¹ × creepage, in units of μQ/(ab) per a) are held
+/// here: beyond it every element slips, and the tractions' squares stay finite.
+const RATE_MAX: f64 = 1e150;
+
+/// The traction bound μ p_z.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TractionBound {
+    /// Parabolic pressure, Kalker's choice for FASTSIM.
+    #[default]
+    Parabolic,
+    /// Hertz's elliptic (semi-ellipsoidal) pressure.
+    Elliptic,
+}
+
+/// How the flexibility L of the simplified theory is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Flexibility {
+    /// L1, L2, L3 for ξ, η, φ separately.
+    #[default]
+    Three,
+    /// Kalker's single L weighted by the creepages.
+    SingleWeighted,
+}
+
+/// FASTSIM with a grid of `strips × elements` and the chosen bound and flexibility.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fastsim {
+    strips: usize,
+    elements: usize,
+    bound: TractionBound,
+    flexibility: Flexibility,
+    /// 1 / (discrete ∫∫ bound dX dY): makes the discrete pressure carry exactly Q.
+    load_normalisation: f64,
+}
+
+/// FASTSIM's output: the forces and moment, and the share of the contact area in adhesion.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FastsimResult {
+    /// F_x, F_y and M_z (always `Some`).
+    pub forces: CreepForces,
+    /// Adhesion area / contact area [1], 1 in the linear limit, 0 in full slip.
+    pub adhesion_area_fraction: f64,
+}
+
+impl Fastsim {
+    /// FASTSIM on `strips` strips of `elements` elements each (both in 1..=[`MAX_DIVISIONS`]).
+    pub fn new(
+        strips: usize,
+        elements: usize,
+        bound: TractionBound,
+        flexibility: Flexibility,
+    ) -> Result<Self, InvalidInput> {
+        for (variable, value) in [("fastsim_strips", strips), ("fastsim_elements", elements)] {
+            if !(1..=MAX_DIVISIONS).contains(&value) {
+                return Err(InvalidInput::new(variable, value as f64, "must be an integer in 1..=10000"));
+            }
+        }
+        let mut model = Self { strips, elements, bound, flexibility, load_normalisation: 1.0 };
+        model.load_normalisation = 1.0 / model.discrete_load();
+        Ok(model)
+    }
+
+    /// Number of strips across the contact.
+    pub fn strips(&self) -> usize {
+        self.strips
+    }
+
+    /// Number of elements along each strip.
+    pub fn elements(&self) -> usize {
+        self.elements
+    }
+
+    /// Forces, moment and adhesion-area fraction for one contact.
+    pub fn evaluate(&self, input: &ContactInput) -> Result<FastsimResult, InvalidInput> {
+        input.validate()?;
+        if input.transmits_no_force() {
+            return Ok(FastsimResult { forces: CreepForces::default(), adhesion_area_fraction: 0.0 });
+        }
+        let (a, b) = (input.semi_axis_a, input.semi_axis_b);
+        let limit = input.friction_limit();
+        let rates = self.rates(input);
+        let sums = self.march(&rates);
+        let forces = CreepForces::new(
+            limit * sums.force_x,
+            limit * sums.force_y,
+            // M_z = ∫∫ (x p_y − y p_x) dA in units of μQ: a X P_y − b Y P_x.
+            Some(limit * (a * sums.moment_x_py - b * sums.moment_y_px)),
+            limit,
+        );
+        Ok(FastsimResult { forces, adhesion_area_fraction: sums.adhesion_area / sums.area })
+    }
+
+    /// The slip rates per unit X, in units of μQ/(ab): dP/dX = −(rx, ry0 + ry1 X).
+    fn rates(&self, input: &ContactInput) -> Rates {
+        let (a, b) = (input.semi_axis_a, input.semi_axis_b);
+        let c = KalkerCoefficients::new(a / b, input.poisson_ratio);
+        let g_area_per_load = input.shear_modulus * a * b / input.friction_limit();
+        // a / (L_i μ p_scale) with p_scale = Q/(ab): k1 = 3 G C11 ab/(8 μQ), k2 likewise,
+        // k3 = 4 G C23 ab √(b/a) / (π μQ). `min` also maps NaN (0/0 after underflow) to the cap.
+        let k1 = (3.0 / 8.0 * c.c11 * g_area_per_load).min(RATE_MAX);
+        let k2 = (3.0 / 8.0 * c.c22 * g_area_per_load).min(RATE_MAX);
+        let k3 = (4.0 / PI * c.c23 * (b / a).sqrt() * g_area_per_load).min(RATE_MAX);
+        let xi = clamp_rate(input.creepage_longitudinal);
+        let eta = clamp_rate(input.creepage_lateral);
+        let spin_a = clamp_rate(input.spin_creepage * a);
+        let spin_b = clamp_rate(input.spin_creepage * b);
+        let (k1, k2, k3) = match self.flexibility {
+            Flexibility::Three => (k1, k2, k3),
+            Flexibility::SingleWeighted => {
+                // 1/k = (|ξ|/k1 + |η|/k2 + c|φ|/k3) / √(ξ² + η² + c²φ²), c|φ| = √(spin_a spin_b),
+                // with every creepage divided by the largest so that no square over/underflows.
+                let spin_c = clamp_rate(input.spin_creepage.abs() * (a * b).sqrt());
+                let largest = xi.abs().max(eta.abs()).max(spin_c);
+                if largest == 0.0 {
+                    (k1, k2, k3) // no creepage: any flexibility gives zero force
+                } else {
+                    let (x, y, s) = (xi.abs() / largest, eta.abs() / largest, spin_c / largest);
+                    let k = ((x * x + y * y + s * s).sqrt() / (x / k1 + y / k2 + s / k3)).min(RATE_MAX);
+                    (k, k, k)
+                }
+            }
+        };
+        Rates {
+            along_strip: clamp_rate(k1 * xi),
+            spin_across: clamp_rate(k3 * spin_b),
+            lateral: clamp_rate(k2 * eta),
+            spin_along: clamp_rate(k3 * spin_a),
+        }
+    }
+
+    /// The march over all strips: sums of the normalised tractions times element areas.
+    fn march(&self, rates: &Rates) -> Sums {
+        let mut sums = Sums::default();
+        let strip_width = 2.0 / self.strips as f64;
+        let bound_scale = self.bound_scale();
+        for strip in 0..self.strips {
+            let y = -1.0 + (strip as f64 + 0.5) * strip_width;
+            let half_length_sq = 1.0 - y * y;
+            let half_length = half_length_sq.sqrt();
+            let step = 2.0 * half_length / self.elements as f64;
+            // Longitudinal rate is constant along the strip: w_x = ξ − φ y.
+            let rate_x = rates.along_strip - rates.spin_across * y;
+            // Half a step from the leading edge X = A to the first centre, slip at mid-step.
+            let mut x = half_length - 0.5 * step;
+            let mut px = -rate_x * 0.5 * step;
+            let mut py = -(rates.lateral + rates.spin_along * (half_length - 0.25 * step)) * 0.5 * step;
+            let mut strip_sums = StripSums::default();
+            for element in 0..self.elements {
+                if element > 0 {
+                    // Full step from the previous centre, with w_y at the mid-step X + step/2.
+                    px -= rate_x * step;
+                    py -= (rates.lateral + rates.spin_along * (x + 0.5 * step)) * step;
+                }
+                let bound = self.bound_at(half_length_sq - x * x, bound_scale);
+                let magnitude_sq = px * px + py * py;
+                if magnitude_sq > bound * bound {
+                    let scale = bound / magnitude_sq.sqrt();
+                    px *= scale;
+                    py *= scale;
+                } else {
+                    strip_sums.adhesion_elements += 1;
+                }
+                strip_sums.px += px;
+                strip_sums.py += py;
+                strip_sums.x_py += x * py;
+                x -= step;
+            }
+            let element_area = step * strip_width;
+            sums.force_x += strip_sums.px * element_area;
+            sums.force_y += strip_sums.py * element_area;
+            sums.moment_x_py += strip_sums.x_py * element_area;
+            sums.moment_y_px += y * strip_sums.px * element_area;
+            sums.adhesion_area += strip_sums.adhesion_elements as f64 * element_area;
+            sums.area += self.elements as f64 * element_area;
+        }
+        sums
+    }
+
+    /// Factor of the dimensionless bound: 2/π (parabolic) or 3/(2π) (elliptic), times the
+    /// discrete-load normalisation.
+    fn bound_scale(&self) -> f64 {
+        let continuous = match self.bound {
+            TractionBound::Parabolic => 2.0 / PI,
+            TractionBound::Elliptic => 1.5 / PI,
+        };
+        continuous * self.load_normalisation
+    }
+
+    /// μ p_z / (μQ/(ab)) at a point with 1 − X² − Y² = `depth`.
+    fn bound_at(&self, depth: f64, scale: f64) -> f64 {
+        match self.bound {
+            TractionBound::Parabolic => scale * depth,
+            TractionBound::Elliptic => scale * depth.sqrt(),
+        }
+    }
+
+    /// ∑ bound · dX dY over the grid's element centres with the continuous scale: 1 + O(h²).
+    fn discrete_load(&self) -> f64 {
+        let strip_width = 2.0 / self.strips as f64;
+        let scale = self.bound_scale();
+        let mut load = 0.0;
+        for strip in 0..self.strips {
+            let y = -1.0 + (strip as f64 + 0.5) * strip_width;
+            let half_length_sq = 1.0 - y * y;
+            let step = 2.0 * half_length_sq.sqrt() / self.elements as f64;
+            let mut strip_load = 0.0;
+            for element in 0..self.elements {
+                let x = half_length_sq.sqrt() - (element as f64 + 0.5) * step;
+                strip_load += self.bound_at(half_length_sq - x * x, scale);
+            }
+            load += strip_load * step * strip_width;
+        }
+        load
+    }
+}
+
+impl CreepForceModel for Fastsim {
+    fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
+        self.evaluate(input).map(|result| result.forces)
+    }
+}
+
+/// Slip rates of one contact, in units of μQ/(ab) per unit X.
+struct Rates {
+    /// a ξ / (L1 μ p_scale).
+    along_strip: f64,
+    /// The φ y term of w_x per unit Y: a φ b / (L3 μ p_scale).
+    spin_across: f64,
+    /// a η / (L2 μ p_scale).
+    lateral: f64,
+    /// The φ x term of w_y per unit X: a φ a / (L3 μ p_scale).
+    spin_along: f64,
+}
+
+/// Sums over one strip's elements (before multiplying by the element area).
+#[derive(Default)]
+struct StripSums {
+    px: f64,
+    py: f64,
+    x_py: f64,
+    adhesion_elements: usize,
+}
+
+/// Sums over the contact, in units of μQ (forces) and μQ·a or μQ·b (moment parts).
+#[derive(Default)]
+struct Sums {
+    force_x: f64,
+    force_y: f64,
+    moment_x_py: f64,
+    moment_y_px: f64,
+    adhesion_area: f64,
+    area: f64,
+}
+
+fn clamp_rate(value: f64) -> f64 {
+    value.clamp(-RATE_MAX, RATE_MAX)
+}

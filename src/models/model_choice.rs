@@ -1,0 +1,44 @@
+//! One type for "whichever rung of the ladder the user picked": enum dispatch, so a caller (the
+//! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
+
+use crate::models::fastsim::Fastsim;
+use crate::models::kalker_linear::KalkerLinear;
+use crate::models::shen_hedrick_elkins::ShenHedrickElkins;
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, Polach};
+
+/// The selected creep-force model with its options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ModelChoice {
+    /// Polach's method (no spin moment: `spin_moment` is `None`).
+    Polach(Polach),
+    /// Kalker's linear theory (not friction-limited).
+    KalkerLinear(KalkerLinear),
+    /// Shen–Hedrick–Elkins cubic saturation of the linear theory.
+    ShenHedrickElkins(ShenHedrickElkins),
+    /// Kalker's FASTSIM with its grid and options.
+    Fastsim(Fastsim),
+}
+
+impl ModelChoice {
+    /// Short name, as in the FMU's `model` enumeration and the trade report.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Polach(_) => "polach",
+            Self::KalkerLinear(_) => "kalker_linear",
+            Self::ShenHedrickElkins(_) => "shen_hedrick_elkins",
+            Self::Fastsim(_) => "fastsim",
+        }
+    }
+}
+
+impl CreepForceModel for ModelChoice {
+    #[inline]
+    fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
+        match self {
+            Self::Polach(model) => model.creep_forces(input),
+            Self::KalkerLinear(model) => model.creep_forces(input),
+            Self::ShenHedrickElkins(model) => model.creep_forces(input),
+            Self::Fastsim(model) => model.creep_forces(input),
+        }
+    }
+}

@@ -1,0 +1,56 @@
+//! Shen, Hedrick & Elkins' saturation of Kalker's linear theory (Z.Y. Shen, J.K. Hedrick,
+//! J.A. Elkins, "A comparison of alternative creep force models for rail vehicle dynamic
+//! analysis", Proc. 8th IAVSD Symposium, Cambridge MA, 1983, pp. 591–605).
+//!
+//! The linear forces F_x', F_y' (which include the lateral force from spin, −G c³ C23 φ; see
+//! [`KalkerLinear`](crate::models::kalker_linear::KalkerLinear)) are scaled by one common factor
+//! so that their resultant follows Johnson and Vermeulen's cubic:
+//!
+//! ```text
+//! F' = √(F_x'² + F_y'²),  β = F' / (μQ)
+//! F  = μQ (β − β²/3 + β³/27)   for β < 3,   F = μQ   for β ≥ 3
+//! ε  = F / F' = 1 − β/3 + β²/27   (β < 3),   ε = 1/β   (β ≥ 3)
+//! F_x = ε F_x',  F_y = ε F_y'
+//! ```
+//!
+//! Spin therefore enters the saturation only through its lateral force −G c³ C23 φ. The paper
+//! saturates the forces only, so the model has no spin moment (`spin_moment` is `None`): the
+//! linear M_z' scaled by ε is not bounded (for a/b → 0, C33 grows like 1/g while F' stays small).
+//! The curve is continuous with a continuous slope at β = 3.
+
+use crate::models::kalker_linear::LinearTheory;
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+
+/// β at which the cubic reaches μQ with zero slope.
+const FULL_SLIP_RATIO: f64 = 3.0;
+
+/// Shen–Hedrick–Elkins: Kalker's linear forces with a cubic saturation to μQ.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ShenHedrickElkins;
+
+impl CreepForceModel for ShenHedrickElkins {
+    fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
+        input.validate()?;
+        if input.transmits_no_force() {
+            return Ok(CreepForces::default());
+        }
+        let (fx, fy) = LinearTheory::new(input).forces(input);
+        let limit = input.friction_limit();
+        // |F'| scaled by its largest component, so that neither square overflows.
+        let largest = fx.abs().max(fy.abs());
+        if largest == 0.0 {
+            return Ok(CreepForces::default());
+        }
+        let (unit_x, unit_y) = (fx / largest, fy / largest);
+        let unit_norm = unit_x.hypot(unit_y);
+        let beta = largest / limit * unit_norm;
+        let forces = if beta < FULL_SLIP_RATIO {
+            let factor = 1.0 - beta / 3.0 + beta * beta / 27.0;
+            CreepForces::new(fx * factor, fy * factor, None, limit)
+        } else {
+            // Full slip: F = μQ along F'.
+            CreepForces::new(limit * unit_x / unit_norm, limit * unit_y / unit_norm, None, limit)
+        };
+        Ok(forces)
+    }
+}

@@ -1,0 +1,124 @@
+//! Every model's small-creepage limit is Kalker's linear theory; FASTSIM's discretisation error
+//! shrinks at second order in the strip count; C33 follows Kalker's table and asymptote.
+
+mod common;
+
+use common::{fastsim, typical_contact};
+use std::f64::consts::PI;
+use wheel_rail_contact::{
+    CreepForceModel, Fastsim, Flexibility, KalkerCoefficients, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
+};
+
+#[test]
+fn kalker_linear_is_the_published_formula() {
+    let input = typical_contact(1e-3, -2e-3, 0.5);
+    let (a, b, g) = (input.semi_axis_a, input.semi_axis_b, input.shear_modulus);
+    let c = KalkerCoefficients::new(a / b, 0.28);
+    let c33 = KalkerCoefficients::spin_moment_c33(a / b, 0.28);
+    let area = a * b;
+    let forces = KalkerLinear.creep_forces(&input).unwrap();
+    let expected_fx = -g * area * c.c11 * 1e-3;
+    let expected_fy = -g * area * c.c22 * -2e-3 - g * area.powf(1.5) * c.c23 * 0.5;
+    let expected_mz = g * area.powf(1.5) * c.c23 * -2e-3 - g * area * area * c33 * 0.5;
+    assert!((forces.force_longitudinal / expected_fx - 1.0).abs() < 1e-14);
+    assert!((forces.force_lateral / expected_fy - 1.0).abs() < 1e-14);
+    assert!((forces.spin_moment.unwrap() / expected_mz - 1.0).abs() < 1e-14);
+}
+
+#[test]
+fn c33_equals_kalkers_table_at_its_nodes() {
+    // Table E.3 entries at ν = 0, 0.25, 0.5 (data/kalker_c33.csv).
+    for (a_over_b, values) in [(0.1, [6.42, 8.28, 11.7]), (1.0, [1.21, 1.19, 1.16]), (2.0, [0.958, 0.819, 0.650])] {
+        for (nu, expected) in [0.0, 0.25, 0.5].into_iter().zip(values) {
+            let c33 = KalkerCoefficients::spin_moment_c33(a_over_b, nu);
+            assert!((c33 / expected - 1.0).abs() < 1e-12, "a/b {a_over_b} nu {nu}: {c33} vs {expected}");
+        }
+    }
+}
+
+#[test]
+fn c33_is_continuous_and_tends_to_the_thin_strip_asymptote() {
+    for nu in [0.0, 0.28, 0.5] {
+        for g in [0.1, 10.0] {
+            let below = KalkerCoefficients::spin_moment_c33(g * (1.0 - 1e-9), nu);
+            let above = KalkerCoefficients::spin_moment_c33(g * (1.0 + 1e-9), nu);
+            assert!((below / above - 1.0).abs() < 1e-6, "jump at a/b = {g}, nu = {nu}");
+        }
+        let g = 1e-8;
+        let asymptote = PI * PI / (16.0 * (1.0 - nu) * g);
+        assert!((KalkerCoefficients::spin_moment_c33(g, nu) / asymptote - 1.0).abs() < 1e-6);
+    }
+}
+
+/// |model / linear − 1| for F_x (pure ξ) and F_y (pure η, pure φ) at creepages far in adhesion.
+fn linear_limit_errors(model: &dyn CreepForceModel) -> [f64; 3] {
+    let cases = [
+        (typical_contact(1e-9, 0.0, 0.0), 0),
+        (typical_contact(0.0, 1e-9, 0.0), 1),
+        (typical_contact(0.0, 0.0, 1e-7), 1),
+    ];
+    cases.map(|(input, component)| {
+        let got = model.creep_forces(&input).unwrap();
+        let linear = KalkerLinear.creep_forces(&input).unwrap();
+        let pick = |f: &wheel_rail_contact::CreepForces| [f.force_longitudinal, f.force_lateral][component];
+        (pick(&got) / pick(&linear) - 1.0).abs()
+    })
+}
+
+#[test]
+fn shen_hedrick_elkins_and_polach_meet_the_linear_theory() {
+    for error in linear_limit_errors(&ShenHedrickElkins) {
+        assert!(error < 1e-6, "{error}");
+    }
+    // Polach's spin force uses its own K_S-corrected stiffness but the same initial slope (E2).
+    let polach = linear_limit_errors(&Polach::default());
+    assert!(polach[0] < 1e-6 && polach[1] < 1e-6, "{polach:?}");
+}
+
+#[test]
+fn fastsim_meets_the_linear_theory_with_second_order_convergence() {
+    for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
+        let errors: Vec<[f64; 3]> = [10, 20, 40, 80].iter().map(|&n| linear_limit_errors(&fastsim(n, bound))).collect();
+        for component in 0..3 {
+            for pair in errors.windows(2) {
+                let ratio = pair[0][component] / pair[1][component];
+                // Midpoint rule across the strips: error ∝ 1/n², so halving the strips' width
+                // divides it by 4 (the spin force's (1 − y²)^{3/2} profile gives slightly less).
+                assert!(ratio > 3.0, "{bound:?} component {component}: errors {errors:?}");
+            }
+            assert!(errors[3][component] < 2e-4, "{bound:?}: {errors:?}");
+        }
+    }
+    // For ξ and η (tractions linear along the strip) the element count along the strips does not
+    // matter in adhesion: the march and the midpoint sum are exact there.
+    let coarse_along = Fastsim::new(40, 3, TractionBound::Parabolic, Flexibility::Three).unwrap();
+    let fine_along = Fastsim::new(40, 300, TractionBound::Parabolic, Flexibility::Three).unwrap();
+    let input = typical_contact(1e-9, 1e-9, 0.0);
+    let (c, f) = (coarse_along.creep_forces(&input).unwrap(), fine_along.creep_forces(&input).unwrap());
+    assert!((c.force_longitudinal / f.force_longitudinal - 1.0).abs() < 1e-12);
+    assert!((c.force_lateral / f.force_lateral - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn fastsim_single_flexibility_meets_the_linear_theory_for_each_pure_creepage() {
+    // With one creepage the weighted L equals that creepage's own flexibility.
+    let model = Fastsim::new(80, 80, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap();
+    for error in linear_limit_errors(&model) {
+        assert!(error < 2e-4, "{error}");
+    }
+}
+
+#[test]
+fn fastsim_spin_moment_meets_the_simplified_theory_linear_limit() {
+    // Simplified theory in adhesion: M_z = −8 φ a² b³ / (15 L3) − ... ; for pure spin the lateral
+    // part integrates to zero by symmetry, so M_z = −(8/15) a² b³ φ / L3 with
+    // L3 = π a √(a/b) / (4 G C23). (It differs from Kalker's exact −G c⁴ C33 φ: FASTSIM's M_z is
+    // the simplified theory's.)
+    let input = typical_contact(0.0, 0.0, 1e-7);
+    let (a, b) = (input.semi_axis_a, input.semi_axis_b);
+    let c23 = KalkerCoefficients::new(a / b, 0.28).c23;
+    let l3 = PI * a * (a / b).sqrt() / (4.0 * input.shear_modulus * c23);
+    let expected = -8.0 / 15.0 * a * a * b.powi(3) * 1e-7 / l3;
+    let got = fastsim(160, TractionBound::Parabolic).creep_forces(&input).unwrap().spin_moment.unwrap();
+    assert!((got / expected - 1.0).abs() < 1e-3, "{got} vs {expected}");
+}
