@@ -2,8 +2,7 @@
 //!
 //! The CSV rows run a/b = 0.1 … 1.0 (branch `a/b`) and then b/a = 0.9 … 0.1 (branch `b/a`), i.e.
 //! a/b increasing, with the ratio g = smaller/larger semi-axis stepping by 0.1. Each coefficient
-//! becomes one constant holding, per row, the reciprocals 1/C at ν = 0, 0.25, 0.5, because
-//! Kalker's rule interpolates 1/C quadratically in ν.
+//! becomes one constant holding, per row, C at ν = 0, 0.25, 0.5.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -17,8 +16,8 @@ struct Table {
 }
 
 const TABLES: [Table; 2] = [
-    Table { csv_path: "data/kalker_coefficients.csv", coefficients: &[("INV_C11", 1), ("INV_C22", 4), ("INV_C23", 7)] },
-    Table { csv_path: "data/kalker_c33.csv", coefficients: &[("INV_C33", 1)] },
+    Table { csv_path: "data/kalker_coefficients.csv", coefficients: &[("C11", 1), ("C22", 4), ("C23", 7)] },
+    Table { csv_path: "data/kalker_c33.csv", coefficients: &[("C33", 1)] },
 ];
 
 pub fn generate(out_path: &Path) {
@@ -29,8 +28,7 @@ pub fn generate(out_path: &Path) {
             writeln!(source, "pub(crate) const {name}: Column = [").unwrap();
             for (branch, numbers) in &rows {
                 let [c0, c1, c2] = [numbers[start], numbers[start + 1], numbers[start + 2]];
-                writeln!(source, "    [{:?}, {:?}, {:?}], // {branch} = {}", 1.0 / c0, 1.0 / c1, 1.0 / c2, numbers[0])
-                    .unwrap();
+                writeln!(source, "    [{c0:?}, {c1:?}, {c2:?}], // {branch} = {}", numbers[0]).unwrap();
             }
             source.push_str("];\n");
         }

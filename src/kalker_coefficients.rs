@@ -5,8 +5,15 @@
 //! (`data/kalker_coefficients.csv` and `data/kalker_c33.csv`, turned into constants by `build.rs`),
 //! and Kalker's asymptotic formulas for thin ellipses (g < 0.1, docs/reference/kalker-asymptotes.md).
 //!
-//! Interpolation (Kalker's CONTACT rule): at each table row, 1/C is quadratic (Lagrange) in ν
-//! through ν = 0, 0.25, 0.5; between rows C is linear in g = smaller/larger semi-axis.
+//! Interpolation, as in Kalker's CONTACT program (`linrol` in its m_hertz.f90): first, for each
+//! tabulated ν, C is linear in g = smaller/larger semi-axis between the two rows around g; then
+//! 1/C is quadratic (Lagrange) in ν through ν = 0, 0.25, 0.5. Written with one division,
+//!
+//! ```text
+//! C(ν) = 1 / (w0/c0 + w1/c1 + w2/c2) = c0 c1 c2 / (w0 c1 c2 + w1 c0 c2 + w2 c0 c1),
+//! ```
+//!
+//! where c_k are the g-interpolated values at the nodes and w_k the Lagrange weights.
 //!
 //! Below g = 0.1 the asymptotes differ from the table's g = 0.1 row by a few per cent, so a hard
 //! switch would make the forces jump. We blend multiplicatively:
@@ -31,7 +38,7 @@
 
 use std::f64::consts::PI;
 
-/// One tabulated coefficient: per table row, the reciprocals 1/C at ν = 0, 0.25, 0.5.
+/// One tabulated coefficient: per table row, C at ν = 0, 0.25, 0.5.
 pub(crate) type Column = [[f64; 3]; 19];
 
 include!(concat!(env!("OUT_DIR"), "/kalker_table.rs"));
@@ -65,9 +72,9 @@ impl KalkerCoefficients {
         let point = TablePoint::new(a_over_b, poisson_ratio);
         match point.lookup() {
             Lookup::BetweenRows { lower, fraction } => Self {
-                c11: point.interpolate(&INV_C11, lower, fraction),
-                c22: point.interpolate(&INV_C22, lower, fraction),
-                c23: point.interpolate(&INV_C23, lower, fraction),
+                c11: point.interpolate(&C11, lower, fraction),
+                c22: point.interpolate(&C22, lower, fraction),
+                c23: point.interpolate(&C23, lower, fraction),
             },
             Lookup::BelowTable { edge_row, weight } => {
                 let asymptote_edge = asymptotes(G_TABLE_MIN, point.a_is_shorter, poisson_ratio);
@@ -76,9 +83,9 @@ impl KalkerCoefficients {
                     blend(asym, point.at_row(column, edge_row), asym_edge, weight)
                 };
                 Self {
-                    c11: blend(&INV_C11, asymptote.c11, asymptote_edge.c11),
-                    c22: blend(&INV_C22, asymptote.c22, asymptote_edge.c22),
-                    c23: blend(&INV_C23, asymptote.c23, asymptote_edge.c23),
+                    c11: blend(&C11, asymptote.c11, asymptote_edge.c11),
+                    c22: blend(&C22, asymptote.c22, asymptote_edge.c22),
+                    c23: blend(&C23, asymptote.c23, asymptote_edge.c23),
                 }
             }
         }
@@ -89,17 +96,12 @@ impl KalkerCoefficients {
     pub fn spin_moment_c33(a_over_b: f64, poisson_ratio: f64) -> f64 {
         let point = TablePoint::new(a_over_b, poisson_ratio);
         match point.lookup() {
-            Lookup::BetweenRows { lower, fraction } => point.interpolate(&INV_C33, lower, fraction),
+            Lookup::BetweenRows { lower, fraction } => point.interpolate(&C33, lower, fraction),
             Lookup::BelowTable { edge_row, weight } if point.a_is_shorter => {
                 let thin_strip = |g: f64| PI * PI / (16.0 * (1.0 - poisson_ratio) * g);
-                blend(
-                    thin_strip(point.g.max(G_FLOOR)),
-                    point.at_row(&INV_C33, edge_row),
-                    thin_strip(G_TABLE_MIN),
-                    weight,
-                )
+                blend(thin_strip(point.g.max(G_FLOOR)), point.at_row(&C33, edge_row), thin_strip(G_TABLE_MIN), weight)
             }
-            Lookup::BelowTable { edge_row, .. } => point.at_row(&INV_C33, edge_row),
+            Lookup::BelowTable { edge_row, .. } => point.at_row(&C33, edge_row),
         }
     }
 }
@@ -139,21 +141,22 @@ impl TablePoint {
         Lookup::BetweenRows { lower, fraction: position - lower as f64 }
     }
 
-    /// The coefficient at the tabulated row `row`, at this ν: 1/C is quadratic in ν.
+    /// The coefficient at the tabulated row `row`, at this ν.
     fn at_row(&self, column: &Column, row: usize) -> f64 {
-        let [w0, w1, w2] = self.weights;
-        let inv = &column[row];
-        1.0 / (w0 * inv[0] + w1 * inv[1] + w2 * inv[2])
+        self.at_poisson(column[row])
     }
 
-    /// Linear interpolation in g between rows `lower` and `lower + 1`.
+    /// Linear interpolation in g between rows `lower` and `lower + 1` at each tabulated ν, then
+    /// the quadratic rule in ν.
     fn interpolate(&self, column: &Column, lower: usize, fraction: f64) -> f64 {
-        let low = self.at_row(column, lower);
-        if fraction == 0.0 {
-            return low;
-        }
-        let high = self.at_row(column, lower + 1);
-        low + (high - low) * fraction
+        let (low, high) = (column[lower], column[lower + 1]);
+        self.at_poisson([0, 1, 2].map(|k| low[k] + (high[k] - low[k]) * fraction))
+    }
+
+    /// 1/C quadratic in ν through the node values [c0, c1, c2], with a single division.
+    fn at_poisson(&self, [c0, c1, c2]: [f64; 3]) -> f64 {
+        let [w0, w1, w2] = self.weights;
+        c0 * c1 * c2 / (w0 * c1 * c2 + w1 * c0 * c2 + w2 * c0 * c1)
     }
 }
 

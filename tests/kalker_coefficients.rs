@@ -62,7 +62,12 @@ fn poisson_interpolation_is_quadratic_in_the_reciprocal() {
     let c = KalkerCoefficients::new(0.5, 0.28);
     assert!(relative_difference(c.c11, expected_c11) < 1e-14, "{} vs {expected_c11}", c.c11);
     assert!(relative_difference(c.c23, expected_c23) < 1e-14, "{} vs {expected_c23}", c.c23);
-    // Between rows the coefficients are linear in g: a/b = 0.55 lies half-way between 0.5 and 0.6.
+    // Between rows, as in CONTACT's linrol: linear in g at each tabulated ν first, then the rule
+    // in ν. a/b = 0.55 lies half-way between the rows 0.5 and 0.6.
+    let node = |c_0_5: f64, c_0_6: f64| (c_0_5 + c_0_6) / 2.0;
+    let expected_c11 = 1.0 / (-0.0528 / node(2.88, 2.98) + 0.9856 / node(3.62, 3.72) + 0.0672 / node(4.83, 4.91));
+    let c = KalkerCoefficients::new(0.55, 0.28);
+    assert!(relative_difference(c.c11, expected_c11) < 1e-14, "{} vs {expected_c11}", c.c11);
     let mid = KalkerCoefficients::new(0.55, 0.0);
     assert!(relative_difference(mid.c22, (2.88 + 2.98) / 2.0) < 1e-14, "{mid:?}");
     // b/a = 0.45 (a/b = 1/0.45) lies half-way between the b/a rows 0.5 and 0.4.

@@ -4,8 +4,8 @@
 Follows the paper's formulas literally, with ERRATA.md's corrections: Kalker's c_jj (29, E1),
 C (28), epsilon (7), F (14), the split (3) with the sign convention E4, s_yC (21), C_s (32, E2),
 epsilon_s (25), K_M (20) *as printed* with delta (12), F_yS (24). The Kalker coefficients are
-interpolated from data/kalker_coefficients.csv by the CSV header's rule (and, for g < 0.1, the
-blend documented in src/kalker_coefficients.rs).
+interpolated from data/kalker_coefficients.csv as CONTACT's linrol does (linear in g, then the
+CSV header's rule in nu) and, for g < 0.1, blended as documented in src/kalker_coefficients.rs.
 
 Run:  python3 tests/data/polach_worked_cases.py > tests/data/polach_worked_cases.csv
 The Rust test tests/polach_worked_cases.rs reads the CSV and matches it to 1e-12.
@@ -37,18 +37,15 @@ def at_poisson(values, nu):
 
 
 def table_coefficients(branch, g, nu):
-    """Linear in g between the rows of one branch; rows are interpolated in nu first."""
+    """As CONTACT's linrol: linear in g between the rows of one branch at each tabulated nu,
+    then the quadratic rule in nu."""
     rows = [r for r in kalker_rows() if r[0] == branch or (r[0] == "a/b" and r[1] == 1.0)]
     rows.sort(key=lambda r: r[1])
     for (_, g0, v0), (_, g1, v1) in zip(rows, rows[1:]):
         if g0 <= g <= g1:
             t = (g - g0) / (g1 - g0)
-            result = []
-            for k in range(3):
-                lo = at_poisson(v0[3 * k:3 * k + 3], nu)
-                hi = at_poisson(v1[3 * k:3 * k + 3], nu)
-                result.append(lo + (hi - lo) * t)
-            return result
+            at_g = [lo + (hi - lo) * t for lo, hi in zip(v0, v1)]
+            return [at_poisson(at_g[3 * k:3 * k + 3], nu) for k in range(3)]
     raise ValueError(g)
 
 
