@@ -1,31 +1,34 @@
 //! The state of one contact patch: what every creep-force model takes as input.
 
 use crate::invalid_input::InvalidInput;
+use crate::numerics::{value, Scalar};
 
 /// One contact patch, in SI units.
 ///
 /// Axes follow Kalker: x in the rolling direction, y lateral, z normal into the wheel.
 /// Creepages are rigid-slip velocities divided by the rolling speed.
+///
+/// `T` is `f64` for values; models evaluate a dual-number `ContactInput` to differentiate.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactInput {
+pub struct ContactInput<T = f64> {
     /// Longitudinal creepage ξ (s_x in Polach) [1].
-    pub creepage_longitudinal: f64,
+    pub creepage_longitudinal: T,
     /// Lateral creepage η (s_y in Polach) [1].
-    pub creepage_lateral: f64,
+    pub creepage_lateral: T,
     /// Spin creepage φ (Φ in Polach) [1/m].
-    pub spin_creepage: f64,
+    pub spin_creepage: T,
     /// Normal force Q [N]. Q ≤ 0 means the wheel has lifted off: every model returns zero force.
-    pub normal_force: f64,
+    pub normal_force: T,
     /// Contact-ellipse semi-axis a in the rolling direction [m].
-    pub semi_axis_a: f64,
+    pub semi_axis_a: T,
     /// Contact-ellipse semi-axis b in the lateral direction [m].
-    pub semi_axis_b: f64,
+    pub semi_axis_b: T,
     /// Coulomb friction coefficient μ (f in Polach) [1]. μ = 0 gives zero force.
-    pub friction_coefficient: f64,
+    pub friction_coefficient: T,
     /// Combined shear modulus G of wheel and rail [Pa].
-    pub shear_modulus: f64,
+    pub shear_modulus: T,
     /// Combined Poisson's ratio ν [1], in [0, 0.5].
-    pub poisson_ratio: f64,
+    pub poisson_ratio: T,
 }
 
 impl ContactInput {
@@ -49,16 +52,18 @@ impl ContactInput {
         )?;
         check("poisson_ratio", self.poisson_ratio, (0.0..=0.5).contains(&self.poisson_ratio), "must lie in [0, 0.5]")
     }
+}
 
+impl<T: Scalar> ContactInput<T> {
     /// True when no tangential force can be transmitted: lift-off (Q ≤ 0) or μ = 0.
     pub fn transmits_no_force(&self) -> bool {
-        self.normal_force <= 0.0 || self.friction_coefficient == 0.0
+        value(self.normal_force) <= 0.0 || value(self.friction_coefficient) == 0.0
     }
 
     /// The Coulomb limit μQ [N] (0 after lift-off).
-    pub fn friction_limit(&self) -> f64 {
+    pub fn friction_limit(&self) -> T {
         if self.transmits_no_force() {
-            0.0
+            T::from(0.0)
         } else {
             self.friction_coefficient * self.normal_force
         }

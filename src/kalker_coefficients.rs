@@ -38,6 +38,8 @@
 
 use std::f64::consts::PI;
 
+use crate::numerics::{value, Scalar};
+
 /// One tabulated coefficient: per table row, C at ν = 0, 0.25, 0.5.
 pub(crate) type Column = [[f64; 3]; 19];
 
@@ -54,14 +56,16 @@ const G_TABLE_MIN: f64 = 0.1;
 const G_FLOOR: f64 = 1e-100;
 
 /// Kalker's creepage coefficients for one ellipse shape and material [1].
+///
+/// `T` is `f64` for values, a dual number where the models differentiate with respect to a/b.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct KalkerCoefficients {
+pub struct KalkerCoefficients<T = f64> {
     /// Longitudinal creepage coefficient C11.
-    pub c11: f64,
+    pub c11: T,
     /// Lateral creepage coefficient C22.
-    pub c22: f64,
+    pub c22: T,
     /// Lateral force from spin, C23 (= −C32 for quasi-identical bodies).
-    pub c23: f64,
+    pub c23: T,
 }
 
 impl KalkerCoefficients {
@@ -69,6 +73,19 @@ impl KalkerCoefficients {
     /// Poisson's ratio `poisson_ratio` in [0, 0.5]. `a_over_b` must be > 0 (not checked here:
     /// callers validate their inputs first).
     pub fn new(a_over_b: f64, poisson_ratio: f64) -> Self {
+        Self::at(a_over_b, poisson_ratio)
+    }
+
+    /// Kalker's spin-moment coefficient C33 [1] for the same arguments as [`Self::new`], with
+    /// M_z = G c³ C23 η − G c⁴ C33 φ, c = √(ab) (moment on the wheel, Kalker's convention).
+    pub fn spin_moment_c33(a_over_b: f64, poisson_ratio: f64) -> f64 {
+        spin_moment_c33_at(a_over_b, poisson_ratio)
+    }
+}
+
+impl<D: Scalar> KalkerCoefficients<D> {
+    /// [`KalkerCoefficients::new`] for any [`Scalar`] a/b.
+    pub(crate) fn at(a_over_b: D, poisson_ratio: f64) -> Self {
         let point = TablePoint::new(a_over_b, poisson_ratio);
         match point.lookup() {
             Lookup::BetweenRows { lower, fraction } => Self {
@@ -77,10 +94,10 @@ impl KalkerCoefficients {
                 c23: point.interpolate(&C23, lower, fraction),
             },
             Lookup::BelowTable { edge_row, weight } => {
-                let asymptote_edge = asymptotes(G_TABLE_MIN, point.a_is_shorter, poisson_ratio);
-                let asymptote = asymptotes(point.g.max(G_FLOOR), point.a_is_shorter, poisson_ratio);
-                let blend = |column: &Column, asym: f64, asym_edge: f64| {
-                    blend(asym, point.at_row(column, edge_row), asym_edge, weight)
+                let asymptote_edge = asymptotes(D::from(G_TABLE_MIN), point.a_is_shorter, poisson_ratio);
+                let asymptote = asymptotes(point.floored_g(), point.a_is_shorter, poisson_ratio);
+                let blend = |column: &Column, asym: D, asym_edge: D| {
+                    blend(asym, point.at_row(column, edge_row), value(asym_edge), weight)
                 };
                 Self {
                     c11: blend(&C11, asymptote.c11, asymptote_edge.c11),
@@ -90,54 +107,62 @@ impl KalkerCoefficients {
             }
         }
     }
+}
 
-    /// Kalker's spin-moment coefficient C33 [1] for the same arguments as [`Self::new`], with
-    /// M_z = G c³ C23 η − G c⁴ C33 φ, c = √(ab) (moment on the wheel, Kalker's convention).
-    pub fn spin_moment_c33(a_over_b: f64, poisson_ratio: f64) -> f64 {
-        let point = TablePoint::new(a_over_b, poisson_ratio);
-        match point.lookup() {
-            Lookup::BetweenRows { lower, fraction } => point.interpolate(&C33, lower, fraction),
-            Lookup::BelowTable { edge_row, weight } if point.a_is_shorter => {
-                let thin_strip = |g: f64| PI * PI / (16.0 * (1.0 - poisson_ratio) * g);
-                blend(thin_strip(point.g.max(G_FLOOR)), point.at_row(&C33, edge_row), thin_strip(G_TABLE_MIN), weight)
-            }
-            Lookup::BelowTable { edge_row, .. } => point.at_row(&C33, edge_row),
+/// C33 for any [`Scalar`] a/b; see [`KalkerCoefficients::spin_moment_c33`].
+pub(crate) fn spin_moment_c33_at<D: Scalar>(a_over_b: D, poisson_ratio: f64) -> D {
+    let point = TablePoint::new(a_over_b, poisson_ratio);
+    match point.lookup() {
+        Lookup::BetweenRows { lower, fraction } => point.interpolate(&C33, lower, fraction),
+        Lookup::BelowTable { edge_row, weight } if point.a_is_shorter => {
+            let thin_strip = |g: D| g.recip() * (PI * PI / (16.0 * (1.0 - poisson_ratio)));
+            let edge = value(thin_strip(D::from(G_TABLE_MIN)));
+            blend(thin_strip(point.floored_g()), point.at_row(&C33, edge_row), edge, weight)
         }
+        Lookup::BelowTable { edge_row, .. } => D::from(point.at_row(&C33, edge_row)),
     }
 }
 
 /// Where one ellipse shape and material sit in Kalker's table; shared by every coefficient.
-struct TablePoint {
+struct TablePoint<D> {
     /// Lagrange weights of the nodes ν = 0, 0.25, 0.5.
     weights: [f64; 3],
     /// g = smaller/larger semi-axis.
-    g: f64,
+    g: D,
     /// a ≤ b (the a/b branch of the table).
     a_is_shorter: bool,
 }
 
 /// How a coefficient is found for one [`TablePoint`].
-enum Lookup {
+enum Lookup<D> {
     /// Linear interpolation between rows `lower` and `lower + 1`.
-    BetweenRows { lower: usize, fraction: f64 },
+    BetweenRows { lower: usize, fraction: D },
     /// g < 0.1: the asymptote, blended with the edge row by `weight` = g/0.1.
-    BelowTable { edge_row: usize, weight: f64 },
+    BelowTable { edge_row: usize, weight: D },
 }
 
-impl TablePoint {
-    fn new(a_over_b: f64, nu: f64) -> Self {
-        let (g, a_is_shorter) = if a_over_b <= 1.0 { (a_over_b, true) } else { (1.0 / a_over_b, false) };
+impl<D: Scalar> TablePoint<D> {
+    fn new(a_over_b: D, nu: f64) -> Self {
+        let (g, a_is_shorter) = if value(a_over_b) <= 1.0 { (a_over_b, true) } else { (a_over_b.recip(), false) };
         Self { weights: lagrange_weights(nu), g, a_is_shorter }
     }
 
-    fn lookup(&self) -> Lookup {
-        if self.g < G_TABLE_MIN {
+    fn floored_g(&self) -> D {
+        if value(self.g) < G_FLOOR {
+            D::from(G_FLOOR)
+        } else {
+            self.g
+        }
+    }
+
+    fn lookup(&self) -> Lookup<D> {
+        if value(self.g) < G_TABLE_MIN {
             let edge_row = if self.a_is_shorter { 0 } else { ROW_LAST };
             return Lookup::BelowTable { edge_row, weight: self.g / G_TABLE_MIN };
         }
         // Position in rows: a/b branch row i at g = 0.1(i+1); b/a branch row 9+j at g = 1 − 0.1 j.
-        let position = if self.a_is_shorter { self.g * 10.0 - 1.0 } else { ROW_ROUND as f64 + (1.0 - self.g) * 10.0 };
-        let lower = (position as usize).min(ROW_LAST - 1);
+        let position = if self.a_is_shorter { self.g * 10.0 - 1.0 } else { (-self.g + 1.0) * 10.0 + ROW_ROUND as f64 };
+        let lower = (value(position) as usize).min(ROW_LAST - 1);
         Lookup::BetweenRows { lower, fraction: position - lower as f64 }
     }
 
@@ -148,21 +173,21 @@ impl TablePoint {
 
     /// Linear interpolation in g between rows `lower` and `lower + 1` at each tabulated ν, then
     /// the quadratic rule in ν.
-    fn interpolate(&self, column: &Column, lower: usize, fraction: f64) -> f64 {
+    fn interpolate(&self, column: &Column, lower: usize, fraction: D) -> D {
         let (low, high) = (column[lower], column[lower + 1]);
-        self.at_poisson([0, 1, 2].map(|k| low[k] + (high[k] - low[k]) * fraction))
+        self.at_poisson([0, 1, 2].map(|k| fraction * (high[k] - low[k]) + low[k]))
     }
 
     /// 1/C quadratic in ν through the node values [c0, c1, c2], with a single division.
-    fn at_poisson(&self, [c0, c1, c2]: [f64; 3]) -> f64 {
+    fn at_poisson<T: Scalar>(&self, [c0, c1, c2]: [T; 3]) -> T {
         let [w0, w1, w2] = self.weights;
-        c0 * c1 * c2 / (w0 * c1 * c2 + w1 * c0 * c2 + w2 * c0 * c1)
+        c0 * c1 * c2 / (c1 * c2 * w0 + c0 * c2 * w1 + c0 * c1 * w2)
     }
 }
 
 /// The multiplicative blend of the module documentation.
-fn blend(asymptote: f64, table_edge: f64, asymptote_edge: f64, weight: f64) -> f64 {
-    asymptote * (1.0 + (table_edge / asymptote_edge - 1.0) * weight)
+fn blend<D: Scalar>(asymptote: D, table_edge: f64, asymptote_edge: f64, weight: D) -> D {
+    asymptote * (weight * (table_edge / asymptote_edge - 1.0) + 1.0)
 }
 
 /// Lagrange weights of the nodes ν = 0, 0.25, 0.5 (CSV header):
@@ -172,22 +197,23 @@ fn lagrange_weights(nu: f64) -> [f64; 3] {
 }
 
 /// Kalker's asymptotic coefficients for a thin ellipse, g = smaller/larger semi-axis → 0.
-fn asymptotes(g: f64, a_is_shorter: bool, nu: f64) -> KalkerCoefficients {
+fn asymptotes<D: Scalar>(g: D, a_is_shorter: bool, nu: f64) -> KalkerCoefficients<D> {
     let ln_4 = 4.0_f64.ln();
     if a_is_shorter {
         // a ≪ b: the contact is a thin strip across the rail.
         KalkerCoefficients {
-            c11: PI * PI / (4.0 * (1.0 - nu)),
-            c22: PI * PI / 4.0,
-            c23: PI * g.sqrt() / (3.0 * (1.0 - nu)) * (1.0 + nu * ((16.0 / g).ln() - 5.0)),
+            c11: D::from(PI * PI / (4.0 * (1.0 - nu))),
+            c22: D::from(PI * PI / 4.0),
+            c23: g.sqrt() * (PI / (3.0 * (1.0 - nu))) * ((g.recip() * 16.0).ln() * nu + (1.0 - 5.0 * nu)),
         }
     } else {
         // a ≫ b, with Λ = ln(16/g²) written as ln 16 − 2 ln g so that g² cannot underflow.
-        let lambda = 16.0_f64.ln() - 2.0 * g.ln();
-        let c11 = 2.0 * PI / ((lambda - 2.0 * nu) * g) * (1.0 + (3.0 - ln_4) / (lambda - 2.0 * nu));
-        let d22 = (1.0 - nu) * lambda + 2.0 * nu;
-        let c22 = 2.0 * PI / g * (1.0 + (1.0 - nu) * (3.0 - ln_4) / d22) / d22;
-        let c23 = 2.0 * PI / (3.0 * g * g.sqrt() * ((1.0 - nu) * lambda - 2.0 + 4.0 * nu));
+        let lambda = g.ln() * -2.0 + 16.0_f64.ln();
+        let d11 = lambda - 2.0 * nu;
+        let c11 = (d11 * g).recip() * (2.0 * PI) * (d11.recip() * (3.0 - ln_4) + 1.0);
+        let d22 = lambda * (1.0 - nu) + 2.0 * nu;
+        let c22 = g.recip() * (2.0 * PI) * (d22.recip() * ((1.0 - nu) * (3.0 - ln_4)) + 1.0) / d22;
+        let c23 = (g * g.sqrt() * (lambda * (1.0 - nu) - 2.0 + 4.0 * nu) * 3.0).recip() * (2.0 * PI);
         KalkerCoefficients { c11, c22, c23 }
     }
 }

@@ -1,16 +1,29 @@
-//! Small numerical helpers shared by the models.
+//! Small numerical helpers shared by the models, and the number type they are written over.
+
+use num_dual::DualNum;
+
+/// A real number for the models: `f64` for values, a dual number (`num_dual::Dual64`) for exact
+/// derivatives. Models are written once over `Scalar`; branches look at [`value`] only.
+pub trait Scalar: DualNum<Primitive = f64> + Copy {}
+
+impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
+
+/// The real part (the value without its derivative).
+pub(crate) fn value<D: Scalar>(x: D) -> f64 {
+    x.re()
+}
 
 /// √(x² + y²) without spurious underflow or overflow: squares are formed directly when they are
 /// safe (the common case, a few instructions) and of scaled values otherwise.
-pub(crate) fn magnitude(x: f64, y: f64) -> f64 {
-    let largest = x.abs().max(y.abs());
+pub(crate) fn magnitude<D: Scalar>(x: D, y: D) -> D {
+    let largest = value(x).abs().max(value(y).abs());
     if largest > 1e-150 && largest < 1e150 {
         (x * x + y * y).sqrt()
     } else if largest == 0.0 || !largest.is_finite() {
-        largest
+        D::from(largest)
     } else {
         let (xs, ys) = (x / largest, y / largest);
-        largest * (xs * xs + ys * ys).sqrt()
+        (xs * xs + ys * ys).sqrt() * largest
     }
 }
 
@@ -22,13 +35,13 @@ mod tests {
     fn exact_across_the_whole_range() {
         assert_eq!(magnitude(3.0, -4.0), 5.0);
         // Scaled path: exact to a few ulps where x² and y² would underflow or overflow.
-        for (x, y, expected) in [(3e-300, 4e-300, 5e-300), (-3e200, 4e200, 5e200)] {
+        for (x, y, expected) in [(3e-300_f64, 4e-300, 5e-300), (-3e200, 4e200, 5e200)] {
             assert!((magnitude(x, y) / expected - 1.0).abs() < 4.0 * f64::EPSILON);
         }
         assert_eq!(magnitude(0.0, -0.0), 0.0);
         assert_eq!(magnitude(1e-320, 0.0), 1e-320);
         assert_eq!(magnitude(f64::MAX, f64::MAX), f64::INFINITY);
-        for (x, y) in [(1e-151, 2e-151), (1e149, 1e151), (0.3, 1e-170)] {
+        for (x, y) in [(1e-151_f64, 2e-151), (1e149, 1e151), (0.3, 1e-170)] {
             assert!((magnitude(x, y) / x.hypot(y) - 1.0).abs() < 4.0 * f64::EPSILON);
         }
     }

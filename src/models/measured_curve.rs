@@ -17,6 +17,8 @@
 use std::f64::consts::{FRAC_1_PI, PI};
 use std::fmt;
 
+use crate::numerics::Scalar;
+
 /// Bracket of t = k − 1 searched for the friction ratio. Below 1e-15 the peak is
 /// indistinguishable from f_k in double precision; above 1e12, from (1 + 1/π) f_k.
 const RATIO_EXCESS_RANGE: (f64, f64) = (1e-15, 1e12);
@@ -123,8 +125,8 @@ impl MeasuredCurve {
     ///
     /// C is taken at the scene's own Q, a, b: under Hertz scaling a²b/Q does not change with the
     /// load, so the curve peaks at s_max for every load, and at μ = f_k it is the measured curve.
-    pub(crate) fn gradient_per_creepage(&self, friction_coefficient: f64) -> f64 {
-        self.gradient_at_peak * self.kinetic_friction / (self.creepage_at_peak * friction_coefficient)
+    pub(crate) fn gradient_per_creepage<D: Scalar>(&self, friction_coefficient: D) -> D {
+        D::from(self.gradient_at_peak * self.kinetic_friction) / (friction_coefficient * self.creepage_at_peak)
     }
 }
 

@@ -10,8 +10,9 @@
 
 use std::f64::consts::PI;
 
+use crate::creep_force_model::dual_derivative;
 use crate::models::polach2005::LargeCreepage;
-use crate::numerics::magnitude;
+use crate::numerics::{magnitude, value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, MeasuredCurve};
 
 /// Largest gradient ε used. Beyond it the force is saturated to within 1e-150 relative, and
@@ -44,23 +45,39 @@ pub struct Polach {
 impl CreepForceModel for Polach {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
         input.validate()?;
+        Ok(self.forces(input))
+    }
+
+    fn directional_derivative(
+        &self,
+        input: &ContactInput,
+        direction: &ContactInput,
+    ) -> Result<CreepForces, InvalidInput> {
+        dual_derivative(input, direction, |dual| self.forces(dual))
+    }
+}
+
+impl Polach {
+    /// The forces for a validated input, over any [`Scalar`]: `f64` for values, a dual number
+    /// for their exact derivative. Branches look at values only.
+    fn forces<D: Scalar>(&self, input: &ContactInput<D>) -> CreepForces<D> {
         if input.transmits_no_force() {
-            return Ok(CreepForces::default());
+            return CreepForces::zero();
         }
         let a = input.semi_axis_a;
         let b = input.semi_axis_b;
         // Spin as a creepage, aΦ (eq. 21); its product can overflow, so it is clamped first.
-        let spin_shift = (input.spin_creepage * a).clamp(-CREEPAGE_MAX, CREEPAGE_MAX);
+        let spin_shift = clamp_value(input.spin_creepage * a, CREEPAGE_MAX);
         let [xi, eta, spin_shift] =
             bounded_creepages([input.creepage_longitudinal, input.creepage_lateral, spin_shift]);
 
         // Eq. (21): spin counts towards the lateral creepage only where it enlarges it.
         let eta_with_spin = eta + spin_shift;
-        let s_yc = if eta_with_spin.abs() > eta.abs() { eta_with_spin } else { eta };
+        let s_yc = if value(eta_with_spin).abs() > value(eta).abs() { eta_with_spin } else { eta };
         // Eq. (22): resulting creepage.
         let s_c = magnitude(xi, s_yc);
-        if s_c == 0.0 {
-            return Ok(CreepForces::default()); // E6: no creepage, no force.
+        if value(s_c) == 0.0 {
+            return CreepForces::zero(); // E6: no creepage, no force.
         }
         // Polach 2005: friction falls with the slip velocity w = s_C·|V|; k_A, k_S scale ε.
         let (friction, adhesion_reduction, slip_reduction) = match &self.large_creepage {
@@ -71,17 +88,18 @@ impl CreepForceModel for Polach {
         // to rounding even where μQ is subnormal.
         let friction_limit = input.normal_force * friction;
         // Eq. (24): finite-a/b correction of the spin force.
-        let k_s = 1.0 + 6.3 * (1.0 - (-a / b).exp());
+        let k_s = (-(-(a / b)).exp() + 1.0) * 6.3 + 1.0;
 
         // ε = κ·s_C (eq. 7) and ε_s = κ_s·|s_yC| (eq. 25); `law_adhesion` is 1/k of eq. (34).
         let (kappa, kappa_spin, law_adhesion) = match &self.stiffness {
             StiffnessSource::Kalker => {
-                let c = KalkerCoefficients::new(a / b, input.poisson_ratio);
+                let c = KalkerCoefficients::at(a / b, value(input.poisson_ratio));
                 // E3: ε = π G a b c_jj s_C / (4 Q f), from eq. (7) with C of eq. (28).
-                let kappa = PI * input.shear_modulus * a * b * direction_weighted_c(xi, eta, c.c11, c.c22)
-                    / (4.0 * friction_limit);
+                let kappa = input.shear_modulus * PI * a * b * direction_weighted_c(xi, eta, c.c11, c.c22)
+                    / (friction_limit * 4.0);
                 // E2: ε_s = (8/3) G b √(ab) c23 |s_yC| / (Q f K_S), eq. (25) with C_s of eq. (32).
-                let kappa_spin = 8.0 / 3.0 * input.shear_modulus * b * (a * b).sqrt() * c.c23 / (friction_limit * k_s);
+                let kappa_spin =
+                    input.shear_modulus * (8.0 / 3.0) * b * (a * b).sqrt() * c.c23 / (friction_limit * k_s);
                 (kappa, kappa_spin, 1.0)
             }
             StiffnessSource::MeasuredCurve(curve) => {
@@ -89,18 +107,19 @@ impl CreepForceModel for Polach {
                 (kappa, kappa / k_s, 1.0 / curve.friction_ratio())
             }
         };
-        // `min` also maps a NaN (0/0 from underflowing products) to the saturated end.
-        let epsilon = (kappa * s_c).min(GRADIENT_MAX);
-        let epsilon_spin = (kappa_spin * s_yc.abs()).min(GRADIENT_MAX);
+        // The cap also maps a NaN (0/0 from underflowing products) to the saturated end.
+        let epsilon = capped(kappa * s_c, GRADIENT_MAX);
+        let epsilon_spin = capped(kappa_spin * s_yc.abs(), GRADIENT_MAX);
 
         // One law covers eq. (14) (k_A = k_S = 1, bit for bit), eq. (34) (k_A = 1/k, since
         // kε/(k²+ε²) = (ε/k)/(1+(ε/k)²)) and Polach 2005 (its k_A, k_S; errata E8):
         //     F = μQ · (2/π) · ( k_A ε/(1 + (k_A ε)²) + arctan(k_S ε) ).
         // The factor rises monotonically to 1 for k_A = k_S = 1; otherwise it may peak above 1
         // (at most 1 + 1/π) and falls back towards 1 at large ε.
-        let adhesion_gradient = law_adhesion * adhesion_reduction * epsilon;
-        let saturation = 2.0 / PI
-            * (adhesion_gradient / (1.0 + adhesion_gradient * adhesion_gradient) + (slip_reduction * epsilon).atan());
+        let adhesion_gradient = epsilon * (law_adhesion * adhesion_reduction);
+        let saturation = (adhesion_gradient / (adhesion_gradient * adhesion_gradient + 1.0)
+            + (epsilon * slip_reduction).atan())
+            * (2.0 / PI);
         let force = friction_limit * saturation;
         // Eq. (3) with the sign convention E4: forces oppose the creepages.
         let force_longitudinal = -force * (xi / s_c);
@@ -108,9 +127,9 @@ impl CreepForceModel for Polach {
         // Eqs. (23), (24): spin's lateral force, with K_M of eq. (20) in closed form. The factor
         // a·Φ/s_C is `spin_shift / s_c`, and |a·Φ| ≤ 2·s_C by eq. (21), so it is bounded.
         let force_lateral_spin =
-            9.0 / 16.0 * friction_limit * spin_moment_factor(epsilon_spin) * k_s * (spin_shift / s_c);
+            friction_limit * (9.0 / 16.0) * spin_moment_factor(epsilon_spin) * k_s * (spin_shift / s_c);
         let force_lateral = force_lateral_creep + force_lateral_spin;
-        Ok(CreepForces::new(force_longitudinal, force_lateral, None, friction_limit))
+        CreepForces::new(force_longitudinal, force_lateral, None, friction_limit)
     }
 }
 
@@ -124,15 +143,15 @@ impl CreepForceModel for Polach {
 /// ```
 ///
 /// exactly: no cancellation at any ε (the concern of E5), and |K_M| ≤ √3/8 (at ε = 1/√3).
-pub fn spin_moment_factor(epsilon: f64) -> f64 {
-    let d = 1.0 + epsilon * epsilon;
-    -2.0 / 3.0 * (epsilon / d) / d
+pub fn spin_moment_factor<D: Scalar>(epsilon: D) -> D {
+    let d = epsilon * epsilon + 1.0;
+    epsilon / d / d * (-2.0 / 3.0)
 }
 
 /// Eq. (29) as corrected by E1: c_jj = √((c11·s_x/s)² + (c22·s_y/s)²), s = √(s_x² + s_y²).
 /// For s = 0 (pure spin) c_jj only multiplies s_x/s_C = s_y/s_C = 0 (E6): return c22.
-fn direction_weighted_c(xi: f64, eta: f64, c11: f64, c22: f64) -> f64 {
-    let largest = xi.abs().max(eta.abs());
+fn direction_weighted_c<D: Scalar>(xi: D, eta: D, c11: D, c22: D) -> D {
+    let largest = value(xi).abs().max(value(eta).abs());
     if largest == 0.0 {
         return c22;
     }
@@ -143,12 +162,30 @@ fn direction_weighted_c(xi: f64, eta: f64, c11: f64, c22: f64) -> f64 {
 
 /// Scales the creepages (ξ, η, aΦ) by one common factor so that none exceeds CREEPAGE_MAX: their
 /// direction, and so eq. (21), is kept; at that size the force is saturated either way.
-fn bounded_creepages(creepages: [f64; 3]) -> [f64; 3] {
-    let largest = creepages.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+fn bounded_creepages<D: Scalar>(creepages: [D; 3]) -> [D; 3] {
+    let largest = creepages.iter().fold(0.0_f64, |m, c| m.max(value(*c).abs()));
     if largest <= CREEPAGE_MAX {
         creepages
     } else {
         creepages.map(|c| c * (CREEPAGE_MAX / largest))
+    }
+}
+
+/// `x` limited to [−limit, limit] by value (an infinite product becomes ±limit).
+fn clamp_value<D: Scalar>(x: D, limit: f64) -> D {
+    if value(x).abs() > limit {
+        D::from(limit.copysign(value(x)))
+    } else {
+        x
+    }
+}
+
+/// `x` capped at `limit` by value; NaN becomes `limit`, as `f64::min` does.
+fn capped<D: Scalar>(x: D, limit: f64) -> D {
+    if value(x) <= limit {
+        x
+    } else {
+        D::from(limit)
     }
 }
 
@@ -176,8 +213,8 @@ mod tests {
             assert!((closed - errata_e5(epsilon)).abs() < 1e-15, "E5 at {epsilon}");
         }
         // Hand values: ε = 1 → δ = 0 → K_M = 1/6 − 1/3; ε = 2 → δ = 0.6 → −0.053333….
-        assert_eq!(spin_moment_factor(1.0), -1.0 / 6.0);
-        assert!((spin_moment_factor(2.0) + 0.16 / 3.0).abs() < 1e-16);
+        assert_eq!(spin_moment_factor(1.0_f64), -1.0 / 6.0);
+        assert!((spin_moment_factor(2.0_f64) + 0.16 / 3.0).abs() < 1e-16);
     }
 
     #[test]
@@ -188,7 +225,7 @@ mod tests {
             let relative = (spin_moment_factor(epsilon) / asymptote - 1.0).abs();
             assert!(relative < 3.0 / (epsilon * epsilon) + 1e-15, "ε = {epsilon}: {relative}");
         }
-        assert_eq!(spin_moment_factor(1e150), 0.0);
-        assert!(spin_moment_factor(1e150).is_sign_negative());
+        assert_eq!(spin_moment_factor(1e150_f64), 0.0);
+        assert!(spin_moment_factor(1e150_f64).is_sign_negative());
     }
 }

@@ -12,6 +12,7 @@
 //! with k_A the stiffness reduction in the adhesion area and k_S in the slip area,
 //! 0 < k_S ≤ k_A ≤ 1. The initial slope is reduced by (k_A + k_S)/2.
 
+use crate::numerics::Scalar;
 use crate::InvalidInput;
 
 /// The parameters of Polach's 2005 extension, validated.
@@ -74,9 +75,9 @@ impl Polach2005 {
 
     /// μ(w) = μ0((1 − A) e^{−B w} + A) for the maximum friction μ0 at zero slip velocity and slip
     /// velocity w ≥ 0 [m/s].
-    pub fn friction(&self, maximum_friction: f64, slip_velocity: f64) -> f64 {
+    pub fn friction<D: Scalar>(&self, maximum_friction: D, slip_velocity: D) -> D {
         let a = self.friction_limit_ratio;
-        maximum_friction * ((1.0 - a) * (-self.friction_decay * slip_velocity).exp() + a)
+        maximum_friction * ((slip_velocity * -self.friction_decay).exp() * (1.0 - a) + a)
     }
 }
 
@@ -99,7 +100,7 @@ impl LargeCreepage {
 
     /// Friction μ(w) and the reduction factors (k_A, k_S) for maximum friction μ0 and
     /// resulting creepage s_C.
-    pub(crate) fn law(&self, maximum_friction: f64, creepage: f64) -> (f64, f64, f64) {
+    pub(crate) fn law<D: Scalar>(&self, maximum_friction: D, creepage: D) -> (D, f64, f64) {
         let friction = self.extension.friction(maximum_friction, creepage * self.rolling_speed.abs());
         (friction, self.extension.adhesion_reduction, self.extension.slip_reduction)
     }

@@ -1,0 +1,203 @@
+//! Exact directional derivatives (forward-mode dual numbers) against finite differences.
+
+mod common;
+
+use common::{contact, contact_case, relative_difference};
+use wheel_rail_contact::{
+    ContactInput, CreepForceModel, CreepForces, KalkerCoefficients, LargeCreepage, MeasuredCurve, Polach, Polach2005,
+    StiffnessSource,
+};
+
+/// The input moved by `t` along `direction`.
+fn moved(x: &ContactInput, d: &ContactInput, t: f64) -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: x.creepage_longitudinal + t * d.creepage_longitudinal,
+        creepage_lateral: x.creepage_lateral + t * d.creepage_lateral,
+        spin_creepage: x.spin_creepage + t * d.spin_creepage,
+        normal_force: x.normal_force + t * d.normal_force,
+        semi_axis_a: x.semi_axis_a + t * d.semi_axis_a,
+        semi_axis_b: x.semi_axis_b + t * d.semi_axis_b,
+        friction_coefficient: x.friction_coefficient + t * d.friction_coefficient,
+        shear_modulus: x.shear_modulus + t * d.shear_modulus,
+        poisson_ratio: x.poisson_ratio,
+    }
+}
+
+fn outputs(f: &CreepForces) -> [f64; 3] {
+    [f.force_longitudinal, f.force_lateral, f.adhesion_utilisation]
+}
+
+/// Fourth-order central difference (Richardson): error O(t⁴) + rounding/t.
+fn finite_difference(model: &dyn CreepForceModel, x: &ContactInput, d: &ContactInput, t: f64) -> [f64; 3] {
+    let at = |s: f64| outputs(&model.creep_forces(&moved(x, d, s)).unwrap());
+    let (p1, m1, p2, m2) = (at(t), at(-t), at(2.0 * t), at(-2.0 * t));
+    std::array::from_fn(|k| (8.0 * (p1[k] - m1[k]) - (p2[k] - m2[k])) / (12.0 * t))
+}
+
+/// One direction per input, each scaled to move its input by 1e-3 of a typical value per unit.
+fn unit_directions(x: &ContactInput) -> Vec<(&'static str, ContactInput)> {
+    let zero = ContactInput {
+        creepage_longitudinal: 0.0,
+        creepage_lateral: 0.0,
+        spin_creepage: 0.0,
+        normal_force: 0.0,
+        semi_axis_a: 0.0,
+        semi_axis_b: 0.0,
+        friction_coefficient: 0.0,
+        shear_modulus: 0.0,
+        poisson_ratio: 0.0,
+    };
+    vec![
+        ("xi", ContactInput { creepage_longitudinal: 1e-3, ..zero }),
+        ("eta", ContactInput { creepage_lateral: 1e-3, ..zero }),
+        ("phi", ContactInput { spin_creepage: 0.1, ..zero }),
+        ("Q", ContactInput { normal_force: 1e-3 * x.normal_force, ..zero }),
+        ("a", ContactInput { semi_axis_a: 1e-3 * x.semi_axis_a, ..zero }),
+        ("b", ContactInput { semi_axis_b: 1e-3 * x.semi_axis_b, ..zero }),
+        ("mu", ContactInput { friction_coefficient: 1e-3, ..zero }),
+        ("G", ContactInput { shear_modulus: 1e-3 * x.shear_modulus, ..zero }),
+        (
+            "all",
+            ContactInput {
+                creepage_longitudinal: 3e-4,
+                creepage_lateral: -7e-4,
+                spin_creepage: 0.05,
+                normal_force: -2e-3 * x.normal_force,
+                semi_axis_a: 1e-3 * x.semi_axis_a,
+                semi_axis_b: -5e-4 * x.semi_axis_b,
+                friction_coefficient: 2e-4,
+                shear_modulus: 1e-4 * x.shear_modulus,
+                poisson_ratio: 0.0,
+            },
+        ),
+    ]
+}
+
+fn assert_matches_finite_differences(model: &dyn CreepForceModel, x: &ContactInput, label: &str) {
+    for (name, d) in unit_directions(x) {
+        // At Φ = 0 eq. (21) switches s_yC: the forces have one-sided derivatives in Φ there
+        // (see `spin_derivative_at_zero_spin_is_one_sided`), so central differences do not apply.
+        if x.spin_creepage == 0.0 && d.spin_creepage != 0.0 {
+            continue;
+        }
+        let t = 1e-3;
+        let exact = outputs(&model.directional_derivative(x, &d).unwrap());
+        let fd = finite_difference(model, x, &d, t);
+        let scale = fd.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        // The difference itself carries the rounding of the forces it subtracts, ~|F|·ε/t: it
+        // dominates near saturation, where the forces barely move.
+        let forces = outputs(&model.creep_forces(x).unwrap());
+        let rounding = 10.0 * forces.iter().map(|v| v.abs()).fold(0.0, f64::max) * f64::EPSILON / t;
+        for k in 0..3 {
+            assert!(
+                (exact[k] - fd[k]).abs() <= 1e-6 * scale + rounding,
+                "{label}, direction {name}, output {k}: exact {} vs finite difference {}",
+                exact[k],
+                fd[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn polach_derivatives_match_finite_differences_across_the_regimes() {
+    let model = Polach::default();
+    // Off the rows of Kalker's table: the coefficients are piecewise linear in a/b, so at a row
+    // the derivative in a or b is one-sided (the segment above it).
+    for a_over_b in [0.23, 0.55, 1.07, 2.2, 4.7, 0.05, 30.0] {
+        for (xi, eta, phi) in [
+            (1e-4, 0.0, 0.0),    // linear range
+            (2e-3, -1e-3, 0.0),  // transition
+            (0.05, 0.02, 0.0),   // near saturation
+            (5e-4, 1e-3, 0.3),   // spin enlarging η: s_yC = η + aΦ
+            (5e-4, 1e-3, -0.1),  // spin against η, |η + aΦ| < |η|: s_yC = η
+            (0.0, -6e-4, 0.625), // CONTACT's case 2 creepages
+            (1e-3, 0.0, 2.0),    // spin dominated
+        ] {
+            let x = contact(a_over_b, 0.28, xi, eta, phi);
+            assert_matches_finite_differences(&model, &x, &format!("a/b = {a_over_b}, ({xi}, {eta}, {phi})"));
+        }
+    }
+}
+
+#[test]
+fn derivatives_on_both_sides_of_the_spin_switch() {
+    // Eq. (21) switches at aΦ = −2η: the forces are continuous there but have a kink, so the
+    // derivative is checked 1 % off it on each side (the differences step 0.2 % of η at most).
+    let base = contact(1.07, 0.28, 2e-4, 1e-3, 0.0);
+    let phi_switch = -2.0 * 1e-3 / base.semi_axis_a;
+    for side in [1.0 - 1e-2, 1.0 + 1e-2] {
+        let x = ContactInput { spin_creepage: phi_switch * side, ..base };
+        assert_matches_finite_differences(&Polach::default(), &x, &format!("switch side {side}"));
+    }
+}
+
+#[test]
+fn measured_curve_and_polach_2005_derivatives_match_finite_differences() {
+    let curve = MeasuredCurve::from_peak(0.4, 0.01, 0.35).unwrap();
+    let measured = Polach { stiffness: StiffnessSource::MeasuredCurve(curve), ..Polach::default() };
+    let falling =
+        Polach { large_creepage: Some(LargeCreepage::new(Polach2005::DRY, 20.0).unwrap()), ..Polach::default() };
+    for (xi, eta, phi) in [(3e-3, 0.0, 0.0), (0.02, -4e-3, 0.5), (0.2, 0.0, 0.0)] {
+        let x = ContactInput { friction_coefficient: 0.35, ..contact(1.5, 0.28, xi, eta, phi) };
+        assert_matches_finite_differences(&measured, &x, "measured curve");
+        assert_matches_finite_differences(&falling, &x, "Polach 2005 dry");
+    }
+}
+
+#[test]
+fn at_zero_creepage_the_derivative_is_kalkers_stiffness() {
+    let x = contact_case();
+    let c = KalkerCoefficients::new(2.0, 0.28);
+    let ab = x.semi_axis_a * x.semi_axis_b;
+    let g = x.shear_modulus;
+    let along = |xi: f64, eta: f64, phi: f64| {
+        let d = ContactInput {
+            creepage_longitudinal: xi,
+            creepage_lateral: eta,
+            spin_creepage: phi,
+            normal_force: 0.0,
+            semi_axis_a: 0.0,
+            semi_axis_b: 0.0,
+            friction_coefficient: 0.0,
+            shear_modulus: 0.0,
+            poisson_ratio: 0.0,
+        };
+        Polach::default().directional_derivative(&x, &d).unwrap()
+    };
+    assert!(relative_difference(along(1.0, 0.0, 0.0).force_longitudinal, -g * ab * c.c11) < 1e-12);
+    assert!(relative_difference(along(0.0, 1.0, 0.0).force_lateral, -g * ab * c.c22) < 1e-12);
+    assert!(relative_difference(along(0.0, 0.0, 1.0).force_lateral, -g * ab.powf(1.5) * c.c23) < 1e-12);
+    // Loads, axes and friction do not move a force that is zero for every value of theirs.
+    let load =
+        ContactInput { normal_force: 1.0, creepage_longitudinal: 0.0, ..ContactInput { shear_modulus: 0.0, ..x } };
+    let d = ContactInput { semi_axis_a: 0.0, semi_axis_b: 0.0, friction_coefficient: 0.0, poisson_ratio: 0.0, ..load };
+    assert_eq!(Polach::default().directional_derivative(&x, &d).unwrap(), CreepForces::default());
+}
+
+#[test]
+fn spin_derivative_at_zero_spin_is_one_sided() {
+    // With η > 0, Φ < 0 keeps s_yC = η (eq. 21) and Φ > 0 makes it η + aΦ: at Φ = 0 the
+    // derivative in Φ is the one of the s_yC = η side, i.e. of Φ → 0⁻.
+    let model = Polach::default();
+    let x = contact(1.07, 0.28, 5e-4, 1e-3, 0.0);
+    let d = ContactInput { spin_creepage: 1.0, ..unit_directions(&x)[0].1 };
+    let d = ContactInput { creepage_longitudinal: 0.0, ..d };
+    let exact = model.directional_derivative(&x, &d).unwrap().force_lateral;
+    let at = |phi: f64| model.creep_forces(&ContactInput { spin_creepage: phi, ..x }).unwrap().force_lateral;
+    // Second-order one-sided difference from the left: (3 f(0) − 4 f(−t) + f(−2t)) / 2t.
+    let t = 1e-4;
+    let left = (3.0 * at(0.0) - 4.0 * at(-t) + at(-2.0 * t)) / (2.0 * t);
+    let right = (-3.0 * at(0.0) + 4.0 * at(t) - at(2.0 * t)) / (2.0 * t);
+    assert!(relative_difference(exact, left) < 1e-6, "{exact} vs left {left}");
+    assert!(relative_difference(left, right) > 1e-3, "no kink? left {left}, right {right}");
+}
+
+#[test]
+fn bad_directions_are_named() {
+    let x = contact_case();
+    let nan_rate = ContactInput { creepage_lateral: f64::NAN, ..x };
+    assert_eq!(Polach::default().directional_derivative(&x, &nan_rate).unwrap_err().variable, "creepage_lateral");
+    let poisson_rate = ContactInput { poisson_ratio: 1.0, ..x };
+    assert_eq!(Polach::default().directional_derivative(&x, &poisson_rate).unwrap_err().variable, "poisson_ratio");
+}
