@@ -4,8 +4,8 @@ mod common;
 
 use common::{contact, contact_case, relative_difference};
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, CreepForces, KalkerCoefficients, LargeCreepage, MeasuredCurve, Polach, Polach2005,
-    StiffnessSource,
+    ContactInput, CreepForceModel, CreepForces, KalkerCoefficients, KalkerLinear, LargeCreepage, MeasuredCurve, Polach,
+    Polach2005, ShenHedrickElkins, StiffnessSource,
 };
 
 /// The input moved by `t` along `direction`.
@@ -23,12 +23,13 @@ fn moved(x: &ContactInput, d: &ContactInput, t: f64) -> ContactInput {
     }
 }
 
-fn outputs(f: &CreepForces) -> [f64; 3] {
-    [f.force_longitudinal, f.force_lateral, f.adhesion_utilisation]
+/// F_x, F_y, |F|/μQ and M_z (0 for models without one).
+fn outputs(f: &CreepForces) -> [f64; 4] {
+    [f.force_longitudinal, f.force_lateral, f.adhesion_utilisation, f.spin_moment.unwrap_or(0.0)]
 }
 
 /// Fourth-order central difference (Richardson): error O(t⁴) + rounding/t.
-fn finite_difference(model: &dyn CreepForceModel, x: &ContactInput, d: &ContactInput, t: f64) -> [f64; 3] {
+fn finite_difference(model: &dyn CreepForceModel, x: &ContactInput, d: &ContactInput, t: f64) -> [f64; 4] {
     let at = |s: f64| outputs(&model.creep_forces(&moved(x, d, s)).unwrap());
     let (p1, m1, p2, m2) = (at(t), at(-t), at(2.0 * t), at(-2.0 * t));
     std::array::from_fn(|k| (8.0 * (p1[k] - m1[k]) - (p2[k] - m2[k])) / (12.0 * t))
@@ -83,14 +84,13 @@ fn assert_matches_finite_differences(model: &dyn CreepForceModel, x: &ContactInp
         let t = 1e-3;
         let exact = outputs(&model.directional_derivative(x, &d).unwrap());
         let fd = finite_difference(model, x, &d, t);
-        let scale = fd.iter().map(|v| v.abs()).fold(0.0, f64::max);
-        // The difference itself carries the rounding of the forces it subtracts, ~|F|·ε/t: it
-        // dominates near saturation, where the forces barely move.
-        let forces = outputs(&model.creep_forces(x).unwrap());
-        let rounding = 10.0 * forces.iter().map(|v| v.abs()).fold(0.0, f64::max) * f64::EPSILON / t;
-        for k in 0..3 {
+        // Each output on its own scale. The difference carries the rounding of the values it
+        // subtracts, ~|F|·ε/t: it dominates near saturation, where the forces barely move.
+        let values = outputs(&model.creep_forces(x).unwrap());
+        for k in 0..4 {
+            let rounding = 10.0 * values[k].abs() * f64::EPSILON / t;
             assert!(
-                (exact[k] - fd[k]).abs() <= 1e-6 * scale + rounding,
+                (exact[k] - fd[k]).abs() <= 1e-6 * fd[k].abs() + rounding,
                 "{label}, direction {name}, output {k}: exact {} vs finite difference {}",
                 exact[k],
                 fd[k]
@@ -118,6 +118,27 @@ fn polach_derivatives_match_finite_differences_across_the_regimes() {
             assert_matches_finite_differences(&model, &x, &format!("a/b = {a_over_b}, ({xi}, {eta}, {phi})"));
         }
     }
+}
+
+#[test]
+fn linear_and_shen_hedrick_elkins_derivatives_match_finite_differences() {
+    for a_over_b in [0.23, 1.07, 4.7, 0.05, 30.0] {
+        for (xi, eta, phi) in [(1e-4, 0.0, 0.0), (2e-3, -1e-3, 0.4), (0.05, 0.02, -0.3), (0.0, -6e-4, 0.625)] {
+            let x = contact(a_over_b, 0.28, xi, eta, phi);
+            let label = format!("a/b = {a_over_b}, ({xi}, {eta}, {phi})");
+            assert_matches_finite_differences(&KalkerLinear, &x, &format!("linear, {label}"));
+            assert_matches_finite_differences(&ShenHedrickElkins, &x, &format!("SHE, {label}"));
+        }
+    }
+    // The linear theory's derivative is its stiffness, everywhere.
+    let x = contact(2.0, 0.28, 3e-3, 0.0, 0.0);
+    let d = ContactInput { creepage_longitudinal: 1.0, ..ContactInput { ..unit_directions(&x)[1].1 } };
+    let d = ContactInput { creepage_lateral: 0.0, ..d };
+    let c = KalkerCoefficients::new(2.0, 0.28);
+    let stiffness = -x.shear_modulus * x.semi_axis_a * x.semi_axis_b * c.c11;
+    assert!(
+        relative_difference(KalkerLinear.directional_derivative(&x, &d).unwrap().force_longitudinal, stiffness) < 1e-14
+    );
 }
 
 #[test]

@@ -15,6 +15,9 @@
 //! saturating models exist. They are finite for every valid input (products beyond `f64::MAX`
 //! are held at ±`f64::MAX`).
 
+use crate::creep_force_model::dual_derivative;
+use crate::kalker_coefficients::spin_moment_c33_at;
+use crate::numerics::{value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients};
 
 /// Kalker's linear theory: F_x, F_y and M_z proportional to the creepages.
@@ -22,36 +25,48 @@ use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoef
 pub struct KalkerLinear;
 
 /// Linear-theory stiffnesses G c^n C_ij of one contact, each held finite.
-pub(crate) struct LinearTheory {
+pub(crate) struct LinearTheory<D> {
     /// G c² C11 [N].
-    k11: f64,
+    k11: D,
     /// G c² C22 [N].
-    k22: f64,
+    k22: D,
     /// G c³ C23 [N·m].
-    k23: f64,
+    k23: D,
 }
 
 impl CreepForceModel for KalkerLinear {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
         input.validate()?;
-        if input.transmits_no_force() {
-            return Ok(CreepForces::default());
-        }
-        let theory = LinearTheory::new(input);
-        let (fx, fy) = theory.forces(input);
-        let area = input.semi_axis_a * input.semi_axis_b;
-        let c33 = KalkerCoefficients::spin_moment_c33(input.semi_axis_a / input.semi_axis_b, input.poisson_ratio);
-        let k33 = finite(input.shear_modulus * (area * area) * c33);
-        let spin_moment = finite(term(theory.k23, input.creepage_lateral) - term(k33, input.spin_creepage));
-        Ok(CreepForces::new(fx, fy, Some(spin_moment), input.friction_limit()))
+        Ok(linear_forces(input))
+    }
+
+    fn directional_derivative(
+        &self,
+        input: &ContactInput,
+        direction: &ContactInput,
+    ) -> Result<CreepForces, InvalidInput> {
+        dual_derivative(input, direction, linear_forces)
     }
 }
 
-impl LinearTheory {
-    /// Stiffnesses for a validated input.
-    pub(crate) fn new(input: &ContactInput) -> Self {
+/// The linear forces and moment for a validated input, over any [`Scalar`].
+fn linear_forces<D: Scalar>(input: &ContactInput<D>) -> CreepForces<D> {
+    if input.transmits_no_force() {
+        return CreepForces::zero();
+    }
+    let theory = LinearTheory::new(input);
+    let (fx, fy) = theory.forces(input);
+    let area = input.semi_axis_a * input.semi_axis_b;
+    let c33 = spin_moment_c33_at(input.semi_axis_a / input.semi_axis_b, value(input.poisson_ratio));
+    let k33 = finite(input.shear_modulus * (area * area) * c33);
+    let spin_moment = finite(term(theory.k23, input.creepage_lateral) - term(k33, input.spin_creepage));
+    CreepForces::new(fx, fy, Some(spin_moment), input.friction_limit())
+}
+
+impl<D: Scalar> LinearTheory<D> {
+    pub(crate) fn new(input: &ContactInput<D>) -> Self {
         let area = input.semi_axis_a * input.semi_axis_b; // c²
-        let c = KalkerCoefficients::new(input.semi_axis_a / input.semi_axis_b, input.poisson_ratio);
+        let c = KalkerCoefficients::at(input.semi_axis_a / input.semi_axis_b, value(input.poisson_ratio));
         let g = input.shear_modulus;
         Self {
             k11: finite(g * area * c.c11),
@@ -60,24 +75,29 @@ impl LinearTheory {
         }
     }
 
-    /// (F_x, F_y) [N] of the module documentation.
-    pub(crate) fn forces(&self, input: &ContactInput) -> (f64, f64) {
+    /// (F_x', F_y') of the linear theory.
+    pub(crate) fn forces(&self, input: &ContactInput<D>) -> (D, D) {
         let force_longitudinal = -term(self.k11, input.creepage_longitudinal);
         let force_lateral = -finite(term(self.k22, input.creepage_lateral) + term(self.k23, input.spin_creepage));
         (force_longitudinal, force_lateral)
     }
 }
 
-/// stiffness × creepage, 0 for zero creepage (also when the stiffness is huge), held finite.
-fn term(stiffness: f64, creepage: f64) -> f64 {
-    if creepage == 0.0 {
-        0.0
+/// stiffness × creepage, exactly 0 for zero creepage even where the stiffness is held at f64::MAX.
+fn term<D: Scalar>(stiffness: D, creepage: D) -> D {
+    if value(creepage) == 0.0 {
+        // Keeps the derivative: d(k·s) = k·ds at s = 0.
+        stiffness * creepage
     } else {
         finite(stiffness * creepage)
     }
 }
 
-/// Holds ±∞ at ±`f64::MAX`.
-fn finite(value: f64) -> f64 {
-    value.clamp(-f64::MAX, f64::MAX)
+/// `x` held within ±f64::MAX by value.
+fn finite<D: Scalar>(x: D) -> D {
+    if value(x).abs() <= f64::MAX {
+        x
+    } else {
+        D::from(f64::MAX.copysign(value(x)))
+    }
 }

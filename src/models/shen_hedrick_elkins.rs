@@ -18,7 +18,9 @@
 //! linear M_z' scaled by ε is not bounded (for a/b → 0, C33 grows like 1/g while F' stays small).
 //! The curve is continuous with a continuous slope at β = 3.
 
+use crate::creep_force_model::dual_derivative;
 use crate::models::kalker_linear::LinearTheory;
+use crate::numerics::{magnitude, value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
 
 /// β at which the cubic reaches μQ with zero slope.
@@ -31,26 +33,38 @@ pub struct ShenHedrickElkins;
 impl CreepForceModel for ShenHedrickElkins {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
         input.validate()?;
-        if input.transmits_no_force() {
-            return Ok(CreepForces::default());
-        }
-        let (fx, fy) = LinearTheory::new(input).forces(input);
-        let limit = input.friction_limit();
-        // |F'| scaled by its largest component, so that neither square overflows.
-        let largest = fx.abs().max(fy.abs());
-        if largest == 0.0 {
-            return Ok(CreepForces::default());
-        }
-        let (unit_x, unit_y) = (fx / largest, fy / largest);
-        let unit_norm = unit_x.hypot(unit_y);
-        let beta = largest / limit * unit_norm;
-        let forces = if beta < FULL_SLIP_RATIO {
-            let factor = 1.0 - beta / 3.0 + beta * beta / 27.0;
-            CreepForces::new(fx * factor, fy * factor, None, limit)
-        } else {
-            // Full slip: F = μQ along F'.
-            CreepForces::new(limit * unit_x / unit_norm, limit * unit_y / unit_norm, None, limit)
-        };
-        Ok(forces)
+        Ok(saturated_forces(input))
+    }
+
+    fn directional_derivative(
+        &self,
+        input: &ContactInput,
+        direction: &ContactInput,
+    ) -> Result<CreepForces, InvalidInput> {
+        dual_derivative(input, direction, saturated_forces)
+    }
+}
+
+/// The saturated forces for a validated input, over any [`Scalar`].
+fn saturated_forces<D: Scalar>(input: &ContactInput<D>) -> CreepForces<D> {
+    if input.transmits_no_force() {
+        return CreepForces::zero();
+    }
+    let (fx, fy) = LinearTheory::new(input).forces(input);
+    let limit = input.friction_limit();
+    // |F'| scaled by its largest component, so that neither square overflows.
+    let largest = value(fx).abs().max(value(fy).abs());
+    if largest == 0.0 {
+        return CreepForces::zero();
+    }
+    let (unit_x, unit_y) = (fx / largest, fy / largest);
+    let unit_norm = magnitude(unit_x, unit_y);
+    let beta = D::from(largest) / limit * unit_norm;
+    if value(beta) < FULL_SLIP_RATIO {
+        let factor = -beta / 3.0 + beta * beta / 27.0 + 1.0;
+        CreepForces::new(fx * factor, fy * factor, None, limit)
+    } else {
+        // Full slip: F = μQ along F'.
+        CreepForces::new(limit * unit_x / unit_norm, limit * unit_y / unit_norm, None, limit)
     }
 }
