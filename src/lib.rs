@@ -33,5 +33,6 @@ pub use creep_force_model::CreepForceModel;
 pub use creep_forces::CreepForces;
 pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;
+pub use models::exact::{ElementState, ExactSolution, ExactTheory, GridSize};
 pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};
 pub use models::polach::{spin_moment_factor, Polach, StiffnessSource};
