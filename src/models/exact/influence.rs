@@ -7,15 +7,19 @@
 //! (quasi-identity, Kalker 1990 §1.5), traction p on body 1 and −p on body 2 give the
 //! displacement difference u = u₁ − u₂ with the kernel
 //!
-//!     K_xx = [(1−ν)/r + ν x²/r³] / (πG),   K_xy = ν x y / r³ / (πG),   K_yy = [(1−ν)/r + ν y²/r³] / (πG),
+//! ```text
+//! K_xx = [(1−ν)/r + ν x²/r³] / (πG),   K_xy = ν x y / r³ / (πG),   K_yy = [(1−ν)/r + ν y²/r³] / (πG),
+//! ```
 //!
 //! and no coupling to the normal direction. Integrating over a rectangle with uniform traction
 //! gives Love's closed forms (Love 1929, *Phil. Trans. R. Soc. A* 228; Kalker 1990 §5.2;
 //! CONTACT's `m_inflcf`). With the corner function
 //!
-//!     F_xx(x, y) = (1−ν) x asinh(y/|x|) + y asinh(x/|y|)     (∂²F_xx/∂x∂y = (1−ν)/r + ν x²/r³)
-//!     F_yy(x, y) = x asinh(y/|x|) + (1−ν) y asinh(x/|y|)
-//!     F_xy(x, y) = −ν r
+//! ```text
+//! F_xx(x, y) = (1−ν) x asinh(y/|x|) + y asinh(x/|y|)     (∂²F_xx/∂x∂y = (1−ν)/r + ν x²/r³)
+//! F_yy(x, y) = x asinh(y/|x|) + (1−ν) y asinh(x/|y|)
+//! F_xy(x, y) = −ν r
+//! ```
 //!
 //! the displacement at offset (X, Y) from the centre of a δx × δy rectangle is
 //! Σ ± F(X ± δx/2, Y ± δy/2) / (πG), the sign being the product of the two ± signs. The

@@ -7,8 +7,10 @@
 //! decouples the normal problem from the tangential one, so the pressure is Hertz's,
 //! p_n = p₀ √(1 − x²/a² − y²/b²) with p₀ = 3Q/(2πab), and the tangential tractions solve
 //!
-//!     s = w + (u(x) − u(x + δx))/δx,   w = (ξ − φ y, η + φ x),
-//!     |p| ≤ μ p_n;  s = 0 where |p| < μ p_n (adhesion);  p = −μ p_n s/|s| where s ≠ 0 (slip),
+//! ```text
+//! s = w + (u(x) − u(x + δx))/δx,   w = (ξ − φ y, η + φ x),
+//! |p| ≤ μ p_n;  s = 0 where |p| < μ p_n (adhesion);  p = −μ p_n s/|s| where s ≠ 0 (slip),
+//! ```
 //!
 //! discretised with piecewise-constant tractions on a rectangular grid (`grid.rs`), Love's
 //! influence coefficients (`influence.rs`) and a Gauss–Seidel march (`tangential.rs`).

@@ -11,7 +11,9 @@
 //! element I is the rigid slip plus the change of the displacement difference since the
 //! particle left element I + x̂ (a backward difference against the flow):
 //!
-//!     s_I = w_I + (u_I − u_{I+x̂})/δx = w_I + Σ_J (A_IJ/δx) Δp_J,    Δp_J = p_J − p_{J+x̂},
+//! ```text
+//! s_I = w_I + (u_I − u_{I+x̂})/δx = w_I + Σ_J (A_IJ/δx) Δp_J,    Δp_J = p_J − p_{J+x̂},
+//! ```
 //!
 //! with A Love's influence matrix (`influence.rs`) and p = 0 outside the contact, so Δp is
 //! non-zero on the contact and on the element just behind each row's trailing edge. Written in
