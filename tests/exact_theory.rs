@@ -98,7 +98,8 @@ fn reproduces_contacts_published_spin_case() {
 }
 
 /// The exact-theory creep curve of CONTACT's Eurosprinter example (`tests/data`), on CONTACT's
-/// grid of 48 × 44 elements.
+/// grid of 48 × 44 elements. Measured differences in F_x/(μN): +0.0002, +0.0001, −0.0005,
+/// −0.0008, +0.0001 at ξ = 0.04, 0.12, 0.2, 0.28, 1 %.
 #[test]
 fn reproduces_contacts_eurosprinter_creep_curve() {
     let data = include_str!("data/contact_tractcurv_eurosprinter.csv");
@@ -126,7 +127,8 @@ fn reproduces_contacts_eurosprinter_creep_curve() {
 }
 
 /// Large creepage: every element slips and the force is the Coulomb limit μQ, in the
-/// direction opposite to the creepage.
+/// direction opposite to the creepage. (Measured |F|/(μQ) = 0.999996: the elastic part of the
+/// slip still turns the slip directions by ~1e-3 rad at 10 % creepage.)
 #[test]
 fn full_slip_gives_the_coulomb_limit() {
     let model = ExactTheory::new(24, 24);
@@ -136,9 +138,9 @@ fn full_slip_gives_the_coulomb_limit() {
         let solution = model.solve(&case).unwrap();
         assert_eq!(solution.adhesion_area, 0.0, "ξ {xi}, η {eta}: adhesion left");
         let forces = solution.forces;
-        assert!((forces.adhesion_utilisation - 1.0).abs() < 1e-4, "|F|/(μQ) = {}", forces.adhesion_utilisation);
+        assert!((forces.adhesion_utilisation - 1.0).abs() < 1e-5, "|F|/(μQ) = {}", forces.adhesion_utilisation);
         let along_creepage = (forces.force_longitudinal * xi + forces.force_lateral * eta) / xi.hypot(eta);
-        assert!((along_creepage + case.friction_limit()).abs() < 1e-4 * case.friction_limit());
+        assert!((along_creepage + case.friction_limit()).abs() < 1e-5 * case.friction_limit());
     }
 }
 

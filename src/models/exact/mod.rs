@@ -12,15 +12,17 @@
 //! |p| ≤ μ p_n;  s = 0 where |p| < μ p_n (adhesion);  p = −μ p_n s/|s| where s ≠ 0 (slip),
 //! ```
 //!
-//! discretised with piecewise-constant tractions on a rectangular grid (`grid.rs`), Love's
+//! (with CONTACT's evaluation of the spin term at x + δx/6, see `rigid_slip`), discretised
+//! with piecewise-constant tractions on a rectangular grid (`grid.rs`), Love's
 //! influence coefficients (`influence.rs`) and a Gauss–Seidel march (`tangential.rs`).
 //!
 //! Sign convention: tractions and forces act on the wheel (body 1) and oppose the creepages;
 //! M_z = Σ (x p_y − y p_x) δA about the contact centre.
 //!
-//! Cost: O(N²) per sweep for N elements in contact, a few tens of sweeps; about 0.1 s at
-//! CONTACT's 44 × 44 grid in a release build (see `benches/exact.rs`). Meant for offline or
-//! low-rate use and as the reference of the ladder.
+//! Cost: O(N²) per sweep for N elements in contact, and the number of sweeps grows like √N
+//! (40–100 on the tested grids). Measured on CONTACT's spin case (`benches/exact.rs`, release):
+//! 6 ms at 20 × 20, 0.15 s at 40 × 40, 0.26 s at 44 × 44, 3.8 s at 80 × 80. Meant for offline
+//! or low-rate use and as the reference of the ladder.
 
 mod grid;
 mod influence;
@@ -34,8 +36,9 @@ pub use grid::GridSize;
 use influence::InfluenceTable;
 pub use tangential::ElementState;
 
-/// Largest number of elements along either axis. Work grows as the square of the element
-/// count (≈ 10 s per case at 120 × 120); the limit keeps a typo from running for hours.
+/// Largest number of elements along either axis (the "[1, 200]" of the validation message).
+/// Work grows as the fifth power of the elements per axis (N² per sweep, sweeps ∝ √N): about
+/// 4 s per case at 80 × 80, minutes at 200 × 200; the limit keeps a typo from running for hours.
 pub const MAX_ELEMENTS_PER_AXIS: usize = 200;
 /// Offset of the point where the spin part φx of the rigid slip is taken, in element lengths
 /// from the centre towards the leading edge; see [`rigid_slip`].
