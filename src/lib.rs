@@ -35,6 +35,7 @@ pub use creep_force_model::CreepForceModel;
 pub use creep_forces::CreepForces;
 pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;
+pub use models::exact::{ElementState, ExactSolution, ExactTheory, GridSize};
 pub use models::fastsim::{Fastsim, FastsimResult, Flexibility, TractionBound};
 pub use models::kalker_linear::KalkerLinear;
 pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};

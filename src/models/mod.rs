@@ -1,6 +1,7 @@
 //! The rungs of the speed–accuracy ladder, one model per file, all behind
 //! [`crate::CreepForceModel`].
 
+pub mod exact;
 pub mod fastsim;
 pub mod kalker_linear;
 pub mod measured_curve;
