@@ -611,3 +611,338 @@ fn type_name_of(kind: &Kind) -> &'static str {
         Kind::Integer { .. } | Kind::Enumeration { .. } => "Integer",
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID};
+    use std::cell::RefCell;
+    use std::rc::Rc;
+
+    type Log = Rc<RefCell<Vec<(Status, String, String)>>>;
+
+    struct Recorder(Log);
+
+    impl LogSink for Recorder {
+        fn log(&mut self, status: Status, category: &str, message: &str) {
+            self.0.borrow_mut().push((status, category.to_owned(), message.to_owned()));
+        }
+    }
+
+    fn arguments(guid: &str) -> InstantiateArguments<'_> {
+        InstantiateArguments {
+            instance_name: "wheel 1",
+            co_simulation: true,
+            guid,
+            resource_location: Some("file:///tmp/resources/"),
+            logging_on: false,
+        }
+    }
+
+    fn new_instance() -> (Instance, Log) {
+        let log = Log::default();
+        let instance = Instance::instantiate(arguments(GUID), Box::new(Recorder(log.clone()))).unwrap();
+        (instance, log)
+    }
+
+    fn last_message(log: &Log) -> String {
+        log.borrow().last().map(|(_, _, m)| m.clone()).unwrap_or_default()
+    }
+
+    /// Instantiated → initialization mode → step mode, with the start values.
+    fn stepping() -> (Instance, Log) {
+        let (mut instance, log) = new_instance();
+        assert_eq!(instance.setup_experiment(0.0, None), Status::Ok);
+        assert_eq!(instance.enter_initialization_mode(), Status::Ok);
+        assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+        (instance, log)
+    }
+
+    fn get(instance: &mut Instance, value_reference: u32) -> f64 {
+        let mut value = [f64::NAN];
+        assert_eq!(instance.get_real(&[value_reference], &mut value), Status::Ok, "{value_reference}");
+        value[0]
+    }
+
+    #[test]
+    fn instantiate_copies_name_and_resources_and_checks_the_guid() {
+        let (instance, _) = new_instance();
+        assert_eq!((instance.name(), instance.resource_location()), ("wheel 1", Some("file:///tmp/resources/")));
+        assert_eq!(instance.state(), Instantiated);
+        for (guid, co_simulation, name, expected) in [
+            ("{wrong}", true, "wheel", "fmi2Instantiate: fmuGUID {wrong} does not match"),
+            (GUID, false, "wheel", "fmi2Instantiate: this FMU supports Co-Simulation only"),
+            (GUID, true, " ", "fmi2Instantiate: instanceName must not be empty"),
+        ] {
+            let log = Log::default();
+            let arguments = InstantiateArguments { co_simulation, instance_name: name, ..arguments(guid) };
+            assert!(Instance::instantiate(arguments, Box::new(Recorder(log.clone()))).is_none());
+            assert!(last_message(&log).starts_with(expected), "{}", last_message(&log));
+            assert_eq!(log.borrow()[0].0, Status::Error);
+        }
+    }
+
+    #[test]
+    fn outputs_follow_the_inputs_set_before_each_step() {
+        let (mut instance, _) = new_instance();
+        instance.setup_experiment(0.5, Some(2.0));
+        instance.enter_initialization_mode();
+        assert_eq!(instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[-2e-3]), Status::Ok);
+        // In initialization mode a Get sees the input just set.
+        let traction = get(&mut instance, vr::FORCE_LONGITUDINAL);
+        assert!(traction > 0.0, "negative creepage gives a positive force: {traction}");
+        assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+        assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), traction);
+        // After the step, not before: the outputs change with DoStep only.
+        instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[2e-3]);
+        assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), traction);
+        assert_eq!(instance.do_step(0.5, 0.25), Status::Ok);
+        assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), -traction, "odd in the creepage");
+        assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.75));
+        // Variable step sizes, each continuing from the end of the last.
+        for (t, h) in [(0.75, 1e-3), (0.751, 0.249), (1.0, 1.0)] {
+            assert_eq!(instance.do_step(t, h), Status::Ok, "t = {t}, h = {h}");
+        }
+    }
+
+    #[test]
+    fn do_step_checks_time_and_step_size() {
+        let (mut instance, log) = new_instance();
+        instance.setup_experiment(0.0, Some(1.0));
+        instance.enter_initialization_mode();
+        instance.exit_initialization_mode();
+        for (t, h, expected) in [
+            (0.0, 0.0, "fmi2DoStep: communicationStepSize = 0 is invalid: must be finite and > 0"),
+            (0.0, -1e-3, "fmi2DoStep: communicationStepSize = -0.001 is invalid: must be finite and > 0"),
+            (0.0, f64::NAN, "fmi2DoStep: communicationStepSize = NaN is invalid: must be finite and > 0"),
+            (0.1, 1e-3, "fmi2DoStep: currentCommunicationPoint = 0.1 is not the instance's time 0"),
+            (f64::NAN, 1e-3, "fmi2DoStep: currentCommunicationPoint = NaN is not the instance's time 0"),
+            (0.0, 1.5, "fmi2DoStep: the step would end at 1.5, after stopTime = 1"),
+        ] {
+            assert_eq!(instance.do_step(t, h), Status::Error);
+            assert_eq!(last_message(&log), expected);
+        }
+        // A master's own rounding of t + h is accepted.
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+        assert_eq!(instance.do_step(0.1 + 1e-15, 0.2), Status::Ok);
+    }
+
+    #[test]
+    fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
+        let (mut instance, log) = stepping();
+        let before = *instance.values();
+        for (value_reference, value, expected) in [
+            (vr::CREEPAGE_LATERAL, f64::NAN, "fmi2DoStep: creepage_lateral = NaN is invalid: must be finite"),
+            (vr::NORMAL_FORCE, f64::INFINITY, "fmi2DoStep: normal_force = inf is invalid: must be finite"),
+            (vr::SEMI_AXIS_A, 0.0, "fmi2DoStep: semi_axis_a = 0 is invalid: must be finite and > 0"),
+            (
+                vr::FRICTION_COEFFICIENT,
+                -0.1,
+                "fmi2DoStep: friction_coefficient = -0.1 is invalid: must be finite and >= 0",
+            ),
+            (vr::SHEAR_MODULUS, -1.0, "fmi2DoStep: shear_modulus = -1 is invalid: must be finite and > 0"),
+            (vr::POISSON_RATIO, 0.6, "fmi2DoStep: poisson_ratio = 0.6 is invalid: must lie in [0, 0.5]"),
+        ] {
+            assert_eq!(instance.set_real(&[value_reference], &[value]), Status::Ok);
+            assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
+            assert_eq!(last_message(&log), expected);
+            assert_eq!(instance.values().outputs, before.outputs, "outputs keep their last valid values");
+            let start = before.real(value_reference).unwrap();
+            instance.set_real(&[value_reference], &[start]);
+        }
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok, "usable again once the values are good");
+        assert_eq!(*instance.values(), before);
+    }
+
+    #[test]
+    fn impossible_measured_curve_is_an_error_at_exit_initialization() {
+        let (mut instance, log) = new_instance();
+        instance.setup_experiment(0.0, None);
+        instance.enter_initialization_mode();
+        instance.set_integer(&[vr::STIFFNESS_SOURCE], &[StiffnessSourceValue::MEASURED]);
+        instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.25]);
+        assert_eq!(instance.exit_initialization_mode(), Status::Error);
+        assert!(last_message(&log).starts_with("fmi2ExitInitializationMode: measured_peak_adhesion = 0.25 is invalid"));
+        assert_eq!(instance.state(), InitializationMode, "the master may correct the value");
+        instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.34]);
+        assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+    }
+
+    struct StiffnessSourceValue;
+    impl StiffnessSourceValue {
+        const MEASURED: i32 = crate::fmi::model_description::StiffnessSource::MeasuredCurve as i32;
+    }
+
+    #[test]
+    fn lift_off_gives_zero_forces_without_error() {
+        let (mut instance, _) = stepping();
+        instance.set_real(&[vr::NORMAL_FORCE], &[-10.0]);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+        let mut outputs = [f64::NAN; 3];
+        instance.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION], &mut outputs);
+        assert_eq!(outputs, [0.0; 3]);
+    }
+
+    #[test]
+    fn set_and_get_check_their_references_and_set_all_or_nothing() {
+        let (mut instance, log) = stepping();
+        let cases: [(u32, &str); 3] = [
+            (999, "fmi2SetReal: unknown value reference 999"),
+            (vr::STIFFNESS_SOURCE, "fmi2SetReal: value reference 102 (stiffness_source) is not a Real"),
+            (vr::FORCE_LATERAL, "fmi2SetReal: force_lateral is an output and cannot be set"),
+        ];
+        for (value_reference, expected) in cases {
+            assert_eq!(instance.set_real(&[vr::CREEPAGE_LATERAL, value_reference], &[1e-3, 1.0]), Status::Error);
+            assert_eq!(last_message(&log), expected);
+            assert_eq!(instance.values().inputs.creepage_lateral, 0.0, "nothing set");
+        }
+        let mut value = [0.0];
+        assert_eq!(instance.get_real(&[1000], &mut value), Status::Error);
+        assert_eq!(last_message(&log), "fmi2GetReal: unknown value reference 1000");
+        let mut source = [0];
+        assert_eq!(instance.get_integer(&[vr::STIFFNESS_SOURCE], &mut source), Status::Ok);
+        assert_eq!(source, [1]);
+        assert_eq!(instance.get_absent_type("fmi2GetBoolean", "Boolean", &[]), Status::Ok);
+        assert_eq!(instance.get_absent_type("fmi2GetBoolean", "Boolean", &[vr::NORMAL_FORCE]), Status::Error);
+        assert_eq!(last_message(&log), "fmi2GetBoolean: value reference 3 (normal_force) is not a Boolean");
+        assert_eq!(instance.set_absent_type("fmi2SetString", "String", &[]), Status::Ok);
+    }
+
+    /// Every call outside the states the standard allows it in is refused, the state unchanged.
+    #[test]
+    fn illegal_calls_are_refused_in_every_state() {
+        type Call = fn(&mut Instance) -> Status;
+        let calls: [(&str, Call, &[State]); 12] = [
+            ("fmi2SetupExperiment", |i| i.setup_experiment(0.0, None), &[Instantiated]),
+            ("fmi2EnterInitializationMode", Instance::enter_initialization_mode, &[Instantiated]),
+            ("fmi2ExitInitializationMode", Instance::exit_initialization_mode, &[InitializationMode]),
+            ("fmi2DoStep", |i| i.do_step(0.0, 1e-3), &[StepComplete]),
+            ("fmi2Terminate", Instance::terminate, &[StepComplete]),
+            ("fmi2CancelStep", Instance::cancel_step, &[]),
+            ("fmi2GetReal", |i| i.get_real(&[0], &mut [0.0]), READABLE),
+            ("fmi2SetReal", |i| i.set_real(&[0], &[0.0]), WRITABLE),
+            ("fmi2GetStatus", |i| i.get_status(StatusKind::DoStepStatus), STEPPED),
+            (
+                "fmi2GetRealStatus",
+                |i| i.get_real_status(StatusKind::LastSuccessfulTime).err().unwrap_or(Status::Ok),
+                STEPPED,
+            ),
+            ("fmi2Reset", Instance::reset, LIVE),
+            ("fmi2GetFMUstate", |i| i.unsupported(Unsupported::FmuState("fmi2GetFMUstate")), LIVE),
+        ];
+        let states: [(State, fn() -> Instance); 4] = [
+            (Instantiated, || new_instance().0),
+            (InitializationMode, || {
+                let mut i = new_instance().0;
+                i.enter_initialization_mode();
+                i
+            }),
+            (StepComplete, || stepping().0),
+            (Terminated, || {
+                let mut i = stepping().0;
+                i.terminate();
+                i
+            }),
+        ];
+        for (state, make) in states {
+            for (name, call, allowed) in &calls {
+                let log = Log::default();
+                let mut instance = make();
+                instance.sink = Box::new(Recorder(log.clone()));
+                let status = call(&mut instance);
+                let message = last_message(&log);
+                if allowed.contains(&state) {
+                    assert!(!message.contains("illegal call"), "{name} in {state:?}: {message}");
+                } else {
+                    assert_eq!(status, Status::Error, "{name} in {state:?}");
+                    assert_eq!(message, format!("{name}: illegal call in state {}", state.name()));
+                    assert_eq!(instance.state(), state);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn reset_returns_to_the_start_values() {
+        let (mut instance, _) = stepping();
+        instance.set_real(&[vr::NORMAL_FORCE, vr::SHEAR_MODULUS], &[50e3, 80e9]);
+        instance.do_step(0.0, 1.0);
+        assert_eq!(instance.reset(), Status::Ok);
+        assert_eq!(instance.state(), Instantiated);
+        assert_eq!(instance.values().inputs, Inputs::default());
+        assert_eq!(instance.values().parameters.shear_modulus, 82e9);
+        // A new run starts from the new start time.
+        instance.setup_experiment(3.0, None);
+        instance.enter_initialization_mode();
+        instance.exit_initialization_mode();
+        assert_eq!(instance.do_step(3.0, 0.5), Status::Ok);
+    }
+
+    #[test]
+    fn status_inquiries_answer_as_specified() {
+        let (mut instance, log) = stepping();
+        instance.do_step(0.0, 0.125);
+        assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.125));
+        assert_eq!(instance.get_boolean_status(StatusKind::Terminated), Ok(false));
+        assert_eq!(instance.get_status(StatusKind::DoStepStatus), Status::Discard);
+        assert!(last_message(&log).starts_with("fmi2GetStatus: no DoStepStatus to report"));
+        assert_eq!(instance.get_integer_status(StatusKind::LastSuccessfulTime), Status::Discard);
+        assert_eq!(instance.get_string_status(StatusKind::PendingStatus), Status::Discard);
+        assert_eq!(instance.get_real_status(StatusKind::Terminated), Err(Status::Discard));
+    }
+
+    #[test]
+    fn unsupported_capabilities_name_their_flag() {
+        let (mut instance, log) = stepping();
+        assert_eq!(instance.unsupported(Unsupported::DirectionalDerivative), Status::Error);
+        let expected = "fmi2GetDirectionalDerivative: not supported (providesDirectionalDerivative = false in modelDescription.xml)";
+        assert_eq!(last_message(&log), expected);
+        instance.unsupported(Unsupported::FmuState("fmi2SerializeFMUstate"));
+        assert!(last_message(&log).contains("canSerializeFMUstate = false"));
+    }
+
+    #[test]
+    fn debug_logging_selects_categories() {
+        let (mut instance, log) = new_instance();
+        // Logging off: status messages only.
+        instance.setup_experiment(0.0, None);
+        instance.do_step(0.0, 1.0);
+        assert_eq!(log.borrow().len(), 1);
+        assert_eq!(log.borrow()[0].1, "logStatusError");
+        // On, all categories: call traces too.
+        assert_eq!(instance.set_debug_logging(true, &[]), Status::Ok);
+        instance.enter_initialization_mode();
+        assert_eq!(last_message(&log), "fmi2EnterInitializationMode");
+        // Only warnings: errors and traces are filtered out.
+        log.borrow_mut().clear();
+        assert_eq!(instance.set_debug_logging(true, &["logStatusWarning"]), Status::Ok);
+        instance.do_step(0.0, 1.0);
+        instance.exit_initialization_mode();
+        assert!(log.borrow().is_empty(), "{:?}", log.borrow());
+        // Only errors.
+        instance.set_debug_logging(true, &["logStatusError"]);
+        instance.exit_initialization_mode();
+        assert_eq!(last_message(&log), "fmi2ExitInitializationMode: illegal call in state stepComplete");
+        assert_eq!(log.borrow().len(), 1);
+        // logAll: everything; an unknown category is a warning.
+        assert_eq!(instance.set_debug_logging(true, &["logAll", "noSuchCategory"]), Status::Warning);
+        assert!(
+            last_message(&log).starts_with("fmi2SetDebugLogging: unknown log categories [\"noSuchCategory\"] ignored")
+        );
+        instance.do_step(0.0, 1.0);
+        assert_eq!(last_message(&log), "fmi2DoStep: currentCommunicationPoint = 0, communicationStepSize = 1");
+    }
+
+    #[test]
+    fn a_panic_becomes_fatal_and_only_freeing_remains() {
+        let (mut instance, log) = stepping();
+        let status = instance.guarded("fmi2DoStep", |_| panic!("a bug"));
+        assert_eq!(status, Status::Fatal);
+        assert_eq!(instance.state(), State::Fatal);
+        let (status, category, message) = log.borrow().last().cloned().unwrap();
+        assert_eq!((status, category.as_str()), (Status::Fatal, "logStatusFatal"));
+        assert_eq!(message, "fmi2DoStep: internal error (a bug); this instance can only be freed");
+        assert_eq!(instance.guarded("fmi2Reset", Instance::reset), Status::Error);
+        assert_eq!(last_message(&log), "fmi2Reset: illegal call in state fatal");
+    }
+}
