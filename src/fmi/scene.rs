@@ -1,7 +1,7 @@
 //! One scene: the instance's values → the core's input and model → the outputs.
 //!
-//! Inputs and parameters are destructured without `..` and the outputs are built with a struct
-//! literal, so a variable added to or removed from `modelDescription.xml` stops the build here
+//! Inputs and parameters are destructured without `..` (unused fields bound to `_` explicitly)
+//! and the outputs are built with a struct literal, so a variable added to or removed from `modelDescription.xml` stops the build here
 //! until it is mapped.
 
 use super::model_description::{Inputs, Outputs, Parameters, StiffnessSource as StiffnessChoice, Values};
@@ -35,8 +35,8 @@ impl MeasuredCurveFit {
     }
 }
 
-/// The outputs for `values`, or the reason they cannot be computed (names the variable and value).
-pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Result<Outputs, String> {
+/// The core's input for the instance's values.
+pub fn contact_input(values: &Values) -> ContactInput {
     let Inputs {
         creepage_longitudinal,
         creepage_lateral,
@@ -46,30 +46,7 @@ pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Re
         semi_axis_b,
         friction_coefficient,
     } = values.inputs;
-    let Parameters {
-        shear_modulus,
-        poisson_ratio,
-        stiffness_source,
-        measured_peak_adhesion,
-        measured_creepage_at_peak,
-        measured_kinetic_friction,
-    } = values.parameters;
-    let stiffness = match StiffnessChoice::from_value(stiffness_source) {
-        Some(StiffnessChoice::Kalker) => StiffnessSource::Kalker,
-        Some(StiffnessChoice::MeasuredCurve) => StiffnessSource::MeasuredCurve(
-            fit.get(measured_peak_adhesion, measured_creepage_at_peak, measured_kinetic_friction)
-                .map_err(|e| e.to_string())?,
-        ),
-        None => {
-            let items: Vec<String> =
-                StiffnessChoice::ITEMS.iter().map(|(name, value, _)| format!("{value} ({name})")).collect();
-            return Err(format!(
-                "stiffness_source = {stiffness_source} is invalid: must be one of {}",
-                items.join(", ")
-            ));
-        }
-    };
-    let input = ContactInput {
+    ContactInput {
         creepage_longitudinal,
         creepage_lateral,
         spin_creepage,
@@ -77,10 +54,39 @@ pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Re
         semi_axis_a,
         semi_axis_b,
         friction_coefficient,
-        shear_modulus,
-        poisson_ratio,
-    };
-    let forces = Polach { stiffness }.creep_forces(&input).map_err(|e| e.to_string())?;
+        shear_modulus: values.parameters.shear_modulus,
+        poisson_ratio: values.parameters.poisson_ratio,
+    }
+}
+
+/// The stiffness source the parameters select (the measured curve fitted if needed).
+fn stiffness(parameters: &Parameters, fit: &mut MeasuredCurveFit) -> Result<StiffnessSource, String> {
+    let Parameters {
+        shear_modulus: _,
+        poisson_ratio: _,
+        stiffness_source,
+        measured_peak_adhesion,
+        measured_creepage_at_peak,
+        measured_kinetic_friction,
+    } = *parameters;
+    match StiffnessChoice::from_value(stiffness_source) {
+        Some(StiffnessChoice::Kalker) => Ok(StiffnessSource::Kalker),
+        Some(StiffnessChoice::MeasuredCurve) => fit
+            .get(measured_peak_adhesion, measured_creepage_at_peak, measured_kinetic_friction)
+            .map(StiffnessSource::MeasuredCurve)
+            .map_err(|e| e.to_string()),
+        None => {
+            let items: Vec<String> =
+                StiffnessChoice::ITEMS.iter().map(|(name, value, _)| format!("{value} ({name})")).collect();
+            Err(format!("stiffness_source = {stiffness_source} is invalid: must be one of {}", items.join(", ")))
+        }
+    }
+}
+
+/// The outputs for `values`, or the reason they cannot be computed (names the variable and value).
+pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Result<Outputs, String> {
+    let model = Polach { stiffness: stiffness(&values.parameters, fit)? };
+    let forces = model.creep_forces(&contact_input(values)).map_err(|e| e.to_string())?;
     Ok(Outputs {
         force_longitudinal: forces.force_longitudinal,
         force_lateral: forces.force_lateral,
