@@ -1,0 +1,948 @@
+//! One FMU instance: its values, the FMI 2.0 Co-Simulation state machine, and logging.
+//!
+//! Safe code only: `ffi` turns C arguments into slices and strings and calls these methods, so
+//! unit tests drive every rule here without the C boundary.
+//!
+//! Rules (FMI 2.0.4, section 4.2.4, Co-Simulation state machine):
+//! - a call outside the states that allow it returns `Error` and logs
+//!   `fmi2XXX: illegal call in state YYY`; the state does not change;
+//! - an invalid value (NaN, a ≤ 0, …) is reported where outputs are computed
+//!   (ExitInitializationMode, DoStep, GetReal of an output in InitializationMode) as `Error`
+//!   naming the variable and value. The instance keeps its state, so the master can set a good
+//!   value and carry on (this FMU never enters the standard's `error` state);
+//! - a panic inside a call (a bug) is caught by [`Instance::guarded`]: `Fatal`, logged, and the
+//!   instance accepts nothing but fmi2FreeInstance afterwards.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use super::model_description::{self, variable, Causality, Kind, Values, Variability, LOG_CATEGORIES};
+use super::scene::{compute_outputs, MeasuredCurveFit};
+
+/// What an FMI call returns (`fmi2Status` without `fmi2Pending`: every call is synchronous).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    Ok,
+    Warning,
+    Discard,
+    Error,
+    Fatal,
+}
+
+/// The states of the Co-Simulation state machine that this FMU can be in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    Instantiated,
+    InitializationMode,
+    StepComplete,
+    Terminated,
+    Fatal,
+}
+
+impl State {
+    /// The state's name as the standard writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            State::Instantiated => "instantiated",
+            State::InitializationMode => "initializationMode",
+            State::StepComplete => "stepComplete",
+            State::Terminated => "terminated",
+            State::Fatal => "fatal",
+        }
+    }
+}
+
+use State::{InitializationMode, Instantiated, StepComplete, Terminated};
+
+/// Where SetDebugLogging, Reset and the FMU-state functions are allowed.
+const LIVE: &[State] = &[Instantiated, InitializationMode, StepComplete, Terminated];
+/// Where values may be read.
+const READABLE: &[State] = &[InitializationMode, StepComplete, Terminated];
+/// Where values may be written (which ones: see [`Instance::check_settable`]).
+const WRITABLE: &[State] = &[Instantiated, InitializationMode, StepComplete];
+/// Where the step status may be inquired.
+const STEPPED: &[State] = &[StepComplete, Terminated];
+
+/// `fmi2StatusKind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StatusKind {
+    DoStepStatus,
+    PendingStatus,
+    LastSuccessfulTime,
+    Terminated,
+}
+
+/// Receives the messages that pass the instance's log filter (the master's logger callback).
+pub trait LogSink {
+    fn log(&mut self, status: Status, category: &str, message: &str);
+}
+
+/// Which messages reach the logger.
+///
+/// With debug logging off, only messages with a non-OK status (warnings, discards, errors,
+/// fatal): the standard's status descriptions say the FMU calls the logger for those, and leaves
+/// it to the logger whether to show them. With debug logging on, all categories, or only those
+/// given to fmi2SetDebugLogging (`logAll` selects all).
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct LogFilter {
+    debug_logging: bool,
+    categories: Option<Vec<&'static str>>,
+}
+
+impl LogFilter {
+    fn passes(&self, status: Status, category: &str) -> bool {
+        if !self.debug_logging {
+            return status != Status::Ok;
+        }
+        match &self.categories {
+            None => true,
+            Some(selected) => selected.iter().any(|c| *c == category || *c == "logAll"),
+        }
+    }
+}
+
+fn status_category(status: Status) -> &'static str {
+    match status {
+        Status::Ok => "logCalls",
+        Status::Warning => "logStatusWarning",
+        Status::Discard => "logStatusDiscard",
+        Status::Error => "logStatusError",
+        Status::Fatal => "logStatusFatal",
+    }
+}
+
+/// Two communication points closer than this (relative to max(1, |t|)) are the same: masters
+/// compute t + h in their own rounding.
+const TIME_TOLERANCE: f64 = 1e-9;
+
+/// Under `cfg(test)` only: a log category that makes fmi2SetDebugLogging panic, so that a test
+/// can drive a real panic through an export and see it become fmi2Fatal. Not in any FMU binary.
+#[cfg(test)]
+pub(crate) const PANIC_CATEGORY_FOR_TESTS: &str = "panicForTests";
+
+/// One instance of the FMU.
+pub struct Instance {
+    name: String,
+    resource_location: Option<String>,
+    state: State,
+    values: Values,
+    time: f64,
+    stop_time: Option<f64>,
+    measured_curve: MeasuredCurveFit,
+    log_filter: LogFilter,
+    sink: Box<dyn LogSink>,
+}
+
+/// What fmi2Instantiate received, decoded.
+pub struct InstantiateArguments<'a> {
+    pub instance_name: &'a str,
+    pub co_simulation: bool,
+    pub guid: &'a str,
+    pub resource_location: Option<&'a str>,
+    pub logging_on: bool,
+}
+
+impl Instance {
+    /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name or Model
+    /// Exchange.
+    pub fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Instance> {
+        let InstantiateArguments { instance_name, co_simulation, guid, resource_location, logging_on } = arguments;
+        let problem = if instance_name.trim().is_empty() {
+            Some("instanceName must not be empty".to_owned())
+        } else if !co_simulation {
+            Some(format!(
+                "this FMU supports Co-Simulation only (modelIdentifier {})",
+                model_description::MODEL_IDENTIFIER
+            ))
+        } else if guid != model_description::GUID {
+            Some(format!("fmuGUID {guid} does not match this FMU's GUID {}", model_description::GUID))
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
+            sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
+            return None;
+        }
+        let mut instance = Instance {
+            name: instance_name.to_owned(),
+            resource_location: resource_location.map(str::to_owned),
+            state: Instantiated,
+            values: Values::default(),
+            time: 0.0,
+            stop_time: None,
+            measured_curve: MeasuredCurveFit::default(),
+            log_filter: LogFilter { debug_logging: logging_on, categories: None },
+            sink,
+        };
+        instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
+        Some(instance)
+    }
+
+    /// The name the master gave.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The resource location the master gave (`None` if it passed NULL).
+    pub fn resource_location(&self) -> Option<&str> {
+        self.resource_location.as_deref()
+    }
+
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// The instance's values (inputs, parameters, last outputs).
+    pub fn values(&self) -> &Values {
+        &self.values
+    }
+
+    /// Runs one FMI call. A panic inside it (a bug: no valid input panics) becomes `Fatal`, is
+    /// logged, and leaves the instance in the `fatal` state, where every call but
+    /// fmi2FreeInstance is refused. `AssertUnwindSafe` is sound for that reason: nothing reads
+    /// the values a panic may have left half-updated.
+    pub fn guarded(&mut self, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> Status {
+        match catch_unwind(AssertUnwindSafe(|| body(self))) {
+            Ok(status) => status,
+            Err(payload) => {
+                self.state = State::Fatal;
+                let reason = payload
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| payload.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "unknown panic".to_owned());
+                let message = format!("{call}: internal error ({reason}); this instance can only be freed");
+                self.emit(Status::Fatal, &message);
+                Status::Fatal
+            }
+        }
+    }
+
+    fn emit(&mut self, status: Status, message: &str) {
+        let category = status_category(status);
+        if self.log_filter.passes(status, category) {
+            self.sink.log(status, category, message);
+        }
+    }
+
+    /// Logs a call trace (category logCalls); the message is only formatted when it will be sent.
+    fn trace(&mut self, message: impl FnOnce() -> String) {
+        if self.log_filter.passes(Status::Ok, status_category(Status::Ok)) {
+            let text = message();
+            self.sink.log(Status::Ok, status_category(Status::Ok), &text);
+        }
+    }
+
+    fn fail(&mut self, call: &str, reason: &str) -> Status {
+        self.emit(Status::Error, &format!("{call}: {reason}"));
+        Status::Error
+    }
+
+    fn require(&mut self, call: &str, allowed: &[State]) -> Result<(), Status> {
+        if allowed.contains(&self.state) {
+            Ok(())
+        } else {
+            let state = self.state.name();
+            Err(self.fail(call, &format!("illegal call in state {state}")))
+        }
+    }
+
+    /// fmi2SetDebugLogging. Unknown categories are ignored with a warning.
+    pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
+        const CALL: &str = "fmi2SetDebugLogging";
+        #[cfg(test)]
+        if categories.contains(&PANIC_CATEGORY_FOR_TESTS) {
+            panic!("forced by a test through the category {PANIC_CATEGORY_FOR_TESTS}");
+        }
+        if let Err(status) = self.require(CALL, LIVE) {
+            return status;
+        }
+        let known: Vec<&'static str> =
+            LOG_CATEGORIES.iter().copied().filter(|known| categories.contains(known)).collect();
+        let selection = if categories.is_empty() { None } else { Some(known) };
+        self.log_filter = LogFilter { debug_logging: logging_on, categories: selection };
+        let unknown: Vec<&&str> = categories.iter().filter(|c| !LOG_CATEGORIES.contains(c)).collect();
+        self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
+        if unknown.is_empty() {
+            Status::Ok
+        } else {
+            let message = format!("{CALL}: unknown log categories {unknown:?} ignored; known: {LOG_CATEGORIES:?}");
+            self.emit(Status::Warning, &message);
+            Status::Warning
+        }
+    }
+
+    /// fmi2SetupExperiment. The tolerance is not used: the outputs are algebraic in the inputs.
+    pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status {
+        const CALL: &str = "fmi2SetupExperiment";
+        if let Err(status) = self.require(CALL, &[Instantiated]) {
+            return status;
+        }
+        self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
+        if !start_time.is_finite() {
+            return self.fail(CALL, &format!("startTime = {start_time} is invalid: must be finite"));
+        }
+        if let Some(stop) = stop_time.filter(|stop| stop.is_nan() || *stop < start_time) {
+            return self.fail(CALL, &format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"));
+        }
+        self.time = start_time;
+        self.stop_time = stop_time;
+        Status::Ok
+    }
+
+    pub fn enter_initialization_mode(&mut self) -> Status {
+        const CALL: &str = "fmi2EnterInitializationMode";
+        if let Err(status) = self.require(CALL, &[Instantiated]) {
+            return status;
+        }
+        self.trace(|| CALL.to_owned());
+        self.state = InitializationMode;
+        Status::Ok
+    }
+
+    /// fmi2ExitInitializationMode: computes the outputs; with an invalid value it stays in
+    /// initialization mode so that the master can correct it.
+    pub fn exit_initialization_mode(&mut self) -> Status {
+        const CALL: &str = "fmi2ExitInitializationMode";
+        if let Err(status) = self.require(CALL, &[InitializationMode]) {
+            return status;
+        }
+        self.trace(|| CALL.to_owned());
+        if let Err(status) = self.update_outputs(CALL) {
+            return status;
+        }
+        self.state = StepComplete;
+        Status::Ok
+    }
+
+    pub fn terminate(&mut self) -> Status {
+        const CALL: &str = "fmi2Terminate";
+        if let Err(status) = self.require(CALL, &[StepComplete]) {
+            return status;
+        }
+        self.trace(|| CALL.to_owned());
+        self.state = Terminated;
+        Status::Ok
+    }
+
+    /// fmi2Reset: back to the start values and the `instantiated` state (the log settings stay).
+    pub fn reset(&mut self) -> Status {
+        const CALL: &str = "fmi2Reset";
+        if let Err(status) = self.require(CALL, LIVE) {
+            return status;
+        }
+        self.trace(|| CALL.to_owned());
+        self.values = Values::default();
+        self.time = 0.0;
+        self.stop_time = None;
+        self.measured_curve = MeasuredCurveFit::default();
+        self.state = Instantiated;
+        Status::Ok
+    }
+
+    fn update_outputs(&mut self, call: &str) -> Result<(), Status> {
+        match compute_outputs(&self.values, &mut self.measured_curve) {
+            Ok(outputs) => {
+                self.values.outputs = outputs;
+                Ok(())
+            }
+            Err(reason) => Err(self.fail(call, &reason)),
+        }
+    }
+
+    /// Why `value_reference` cannot be written as `type_name` now, if it cannot.
+    fn check_settable(&self, value_reference: u32, type_name: &str) -> Result<(), String> {
+        let Some(variable) = variable(value_reference) else {
+            return Err(format!("unknown value reference {value_reference}"));
+        };
+        let name = variable.name;
+        if type_name_of(&variable.kind) != type_name {
+            return Err(format!("value reference {value_reference} ({name}) is not a {type_name}"));
+        }
+        match (variable.causality, variable.variability) {
+            (Causality::Output, _) => Err(format!("{name} is an output and cannot be set")),
+            (Causality::Parameter, Variability::Fixed) if self.state == StepComplete => {
+                Err(format!("{name} is a fixed parameter and cannot be set after initialization"))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    fn check_readable(value_reference: u32, type_name: &str) -> Result<(), String> {
+        match variable(value_reference) {
+            None => Err(format!("unknown value reference {value_reference}")),
+            Some(v) if type_name_of(&v.kind) != type_name => {
+                Err(format!("value reference {value_reference} ({}) is not a {type_name}", v.name))
+            }
+            Some(_) => Ok(()),
+        }
+    }
+
+    /// Checks every reference first, so that a call sets either all its values or none.
+    fn prepare_set(&mut self, call: &str, value_references: &[u32], type_name: &str) -> Result<(), Status> {
+        self.require(call, WRITABLE)?;
+        for &value_reference in value_references {
+            if let Err(reason) = self.check_settable(value_reference, type_name) {
+                return Err(self.fail(call, &reason));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the references and, in initialization mode, brings the outputs up to date with
+    /// the values just set if any is read.
+    fn prepare_get(&mut self, call: &str, value_references: &[u32], type_name: &str) -> Result<(), Status> {
+        self.require(call, READABLE)?;
+        for &value_reference in value_references {
+            if let Err(reason) = Self::check_readable(value_reference, type_name) {
+                return Err(self.fail(call, &reason));
+            }
+        }
+        let reads_output =
+            || value_references.iter().any(|&r| variable(r).is_some_and(|v| v.causality == Causality::Output));
+        if self.state == InitializationMode && reads_output() {
+            self.update_outputs(call)?;
+        }
+        Ok(())
+    }
+
+    pub fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
+        if let Err(status) = self.prepare_set("fmi2SetReal", value_references, "Real") {
+            return status;
+        }
+        for (&value_reference, &value) in value_references.iter().zip(values) {
+            if let Some(field) = self.values.real_mut(value_reference) {
+                *field = value;
+            }
+        }
+        self.trace(|| format!("fmi2SetReal: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    pub fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
+        if let Err(status) = self.prepare_get("fmi2GetReal", value_references, "Real") {
+            return status;
+        }
+        for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
+            *slot = self.values.real(value_reference).unwrap_or(f64::NAN);
+        }
+        self.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    /// fmi2SetInteger: Integer and Enumeration variables.
+    pub fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status {
+        if let Err(status) = self.prepare_set("fmi2SetInteger", value_references, "Integer") {
+            return status;
+        }
+        for (&value_reference, &value) in value_references.iter().zip(values) {
+            if let Some(field) = self.values.integer_mut(value_reference) {
+                *field = value;
+            }
+        }
+        self.trace(|| format!("fmi2SetInteger: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    pub fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
+        if let Err(status) = self.prepare_get("fmi2GetInteger", value_references, "Integer") {
+            return status;
+        }
+        for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
+            *slot = self.values.integer(value_reference).unwrap_or_default();
+        }
+        self.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    /// fmi2GetBoolean / fmi2GetString: this FMU has no such variables, so only n = 0 succeeds.
+    pub fn get_absent_type(&mut self, call: &str, type_name: &str, value_references: &[u32]) -> Status {
+        match self.prepare_get(call, value_references, type_name) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+
+    /// fmi2SetBoolean / fmi2SetString: this FMU has no such variables, so only n = 0 succeeds.
+    pub fn set_absent_type(&mut self, call: &str, type_name: &str, value_references: &[u32]) -> Status {
+        match self.prepare_set(call, value_references, type_name) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+
+    /// fmi2DoStep: outputs at t + h from the inputs set before the step (the model is algebraic).
+    pub fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
+        const CALL: &str = "fmi2DoStep";
+        if let Err(status) = self.require(CALL, &[StepComplete]) {
+            return status;
+        }
+        let (t, h) = (current_communication_point, communication_step_size);
+        self.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
+        if !(h > 0.0 && h.is_finite()) {
+            return self.fail(CALL, &format!("communicationStepSize = {h} is invalid: must be finite and > 0"));
+        }
+        let tolerance = TIME_TOLERANCE * self.time.abs().max(1.0);
+        let on_time = (t - self.time).abs() <= tolerance; // false for a NaN t
+        if !on_time {
+            let time = self.time;
+            return self.fail(CALL, &format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
+        }
+        let end = t + h;
+        if let Some(stop) = self.stop_time.filter(|stop| end > stop + tolerance) {
+            return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
+        }
+        if let Err(status) = self.update_outputs(CALL) {
+            return status;
+        }
+        self.time = end;
+        Status::Ok
+    }
+
+    /// fmi2CancelStep: DoStep never returns fmi2Pending, so there is never a step to cancel.
+    pub fn cancel_step(&mut self) -> Status {
+        match self.require("fmi2CancelStep", &[]) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+
+    fn discard_status(&mut self, call: &str, kind: StatusKind) -> Status {
+        let message = format!("{call}: no {kind:?} to report: fmi2DoStep never returns fmi2Pending or fmi2Discard");
+        self.emit(Status::Discard, &message);
+        Status::Discard
+    }
+
+    /// fmi2GetStatus: nothing to report (steps are synchronous and never discarded).
+    pub fn get_status(&mut self, kind: StatusKind) -> Status {
+        const CALL: &str = "fmi2GetStatus";
+        if let Err(status) = self.require(CALL, STEPPED) {
+            return status;
+        }
+        self.discard_status(CALL, kind)
+    }
+
+    /// fmi2GetRealStatus: `fmi2LastSuccessfulTime` is the end of the last completed step.
+    pub fn get_real_status(&mut self, kind: StatusKind) -> Result<f64, Status> {
+        const CALL: &str = "fmi2GetRealStatus";
+        self.require(CALL, STEPPED)?;
+        match kind {
+            StatusKind::LastSuccessfulTime => Ok(self.time),
+            _ => Err(self.discard_status(CALL, kind)),
+        }
+    }
+
+    /// fmi2GetIntegerStatus: the standard defines no integer status.
+    pub fn get_integer_status(&mut self, kind: StatusKind) -> Status {
+        const CALL: &str = "fmi2GetIntegerStatus";
+        if let Err(status) = self.require(CALL, STEPPED) {
+            return status;
+        }
+        self.discard_status(CALL, kind)
+    }
+
+    /// fmi2GetBooleanStatus: `fmi2Terminated` is false: this FMU never asks to stop.
+    pub fn get_boolean_status(&mut self, kind: StatusKind) -> Result<bool, Status> {
+        const CALL: &str = "fmi2GetBooleanStatus";
+        self.require(CALL, STEPPED)?;
+        match kind {
+            StatusKind::Terminated => Ok(false),
+            _ => Err(self.discard_status(CALL, kind)),
+        }
+    }
+
+    /// fmi2GetStringStatus: `fmi2PendingStatus` has nothing to report (no pending step).
+    pub fn get_string_status(&mut self, kind: StatusKind) -> Status {
+        const CALL: &str = "fmi2GetStringStatus";
+        if let Err(status) = self.require(CALL, STEPPED) {
+            return status;
+        }
+        self.discard_status(CALL, kind)
+    }
+
+    /// An unsupported capability: `Error` with the capability flag that says so.
+    pub fn unsupported(&mut self, capability: Unsupported) -> Status {
+        let (call, allowed, flag) = capability.describe();
+        if let Err(status) = self.require(call, allowed) {
+            return status;
+        }
+        self.fail(call, &format!("not supported ({flag} in modelDescription.xml)"))
+    }
+
+    /// An argument the C layer found unusable (a NULL pointer with n > 0, an unknown enum value).
+    pub fn invalid_argument(&mut self, call: &str, reason: &str) -> Status {
+        if let Err(status) = self.require(call, LIVE) {
+            return status;
+        }
+        self.fail(call, reason)
+    }
+}
+
+/// The capabilities this FMU declares false.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unsupported {
+    /// fmi2GetFMUstate, fmi2SetFMUstate, fmi2FreeFMUstate, and the (de)serialisation functions.
+    FmuState(&'static str),
+    DirectionalDerivative,
+    RealInputDerivatives,
+    RealOutputDerivatives,
+}
+
+impl Unsupported {
+    fn describe(self) -> (&'static str, &'static [State], &'static str) {
+        match self {
+            Unsupported::FmuState(call) if call.contains("erializ") => (call, LIVE, "canSerializeFMUstate = false"),
+            Unsupported::FmuState(call) => (call, LIVE, "canGetAndSetFMUstate = false"),
+            Unsupported::DirectionalDerivative => {
+                ("fmi2GetDirectionalDerivative", READABLE, "providesDirectionalDerivative = false")
+            }
+            Unsupported::RealInputDerivatives => {
+                ("fmi2SetRealInputDerivatives", WRITABLE, "canInterpolateInputs = false")
+            }
+            Unsupported::RealOutputDerivatives => {
+                ("fmi2GetRealOutputDerivatives", STEPPED, "maxOutputDerivativeOrder = 0")
+            }
+        }
+    }
+}
+
+fn type_name_of(kind: &Kind) -> &'static str {
+    match kind {
+        Kind::Real { .. } => "Real",
+        Kind::Integer { .. } | Kind::Enumeration { .. } => "Integer",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID};
+    use std::cell::RefCell;
+    use std::rc::Rc;
+
+    type Log = Rc<RefCell<Vec<(Status, String, String)>>>;
+
+    struct Recorder(Log);
+
+    impl LogSink for Recorder {
+        fn log(&mut self, status: Status, category: &str, message: &str) {
+            self.0.borrow_mut().push((status, category.to_owned(), message.to_owned()));
+        }
+    }
+
+    fn arguments(guid: &str) -> InstantiateArguments<'_> {
+        InstantiateArguments {
+            instance_name: "wheel 1",
+            co_simulation: true,
+            guid,
+            resource_location: Some("file:///tmp/resources/"),
+            logging_on: false,
+        }
+    }
+
+    fn new_instance() -> (Instance, Log) {
+        let log = Log::default();
+        let instance = Instance::instantiate(arguments(GUID), Box::new(Recorder(log.clone()))).unwrap();
+        (instance, log)
+    }
+
+    fn last_message(log: &Log) -> String {
+        log.borrow().last().map(|(_, _, m)| m.clone()).unwrap_or_default()
+    }
+
+    /// Instantiated → initialization mode → step mode, with the start values.
+    fn stepping() -> (Instance, Log) {
+        let (mut instance, log) = new_instance();
+        assert_eq!(instance.setup_experiment(0.0, None), Status::Ok);
+        assert_eq!(instance.enter_initialization_mode(), Status::Ok);
+        assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+        (instance, log)
+    }
+
+    fn get(instance: &mut Instance, value_reference: u32) -> f64 {
+        let mut value = [f64::NAN];
+        assert_eq!(instance.get_real(&[value_reference], &mut value), Status::Ok, "{value_reference}");
+        value[0]
+    }
+
+    #[test]
+    fn instantiate_copies_name_and_resources_and_checks_the_guid() {
+        let (instance, _) = new_instance();
+        assert_eq!((instance.name(), instance.resource_location()), ("wheel 1", Some("file:///tmp/resources/")));
+        assert_eq!(instance.state(), Instantiated);
+        for (guid, co_simulation, name, expected) in [
+            ("{wrong}", true, "wheel", "fmi2Instantiate: fmuGUID {wrong} does not match"),
+            (GUID, false, "wheel", "fmi2Instantiate: this FMU supports Co-Simulation only"),
+            (GUID, true, " ", "fmi2Instantiate: instanceName must not be empty"),
+        ] {
+            let log = Log::default();
+            let arguments = InstantiateArguments { co_simulation, instance_name: name, ..arguments(guid) };
+            assert!(Instance::instantiate(arguments, Box::new(Recorder(log.clone()))).is_none());
+            assert!(last_message(&log).starts_with(expected), "{}", last_message(&log));
+            assert_eq!(log.borrow()[0].0, Status::Error);
+        }
+    }
+
+    #[test]
+    fn outputs_follow_the_inputs_set_before_each_step() {
+        let (mut instance, _) = new_instance();
+        instance.setup_experiment(0.5, Some(2.0));
+        instance.enter_initialization_mode();
+        assert_eq!(instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[-2e-3]), Status::Ok);
+        // In initialization mode a Get sees the input just set.
+        let traction = get(&mut instance, vr::FORCE_LONGITUDINAL);
+        assert!(traction > 0.0, "negative creepage gives a positive force: {traction}");
+        assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+        assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), traction);
+        // After the step, not before: the outputs change with DoStep only.
+        instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[2e-3]);
+        assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), traction);
+        assert_eq!(instance.do_step(0.5, 0.25), Status::Ok);
+        assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), -traction, "odd in the creepage");
+        assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.75));
+        // Variable step sizes, each continuing from the end of the last.
+        for (t, h) in [(0.75, 1e-3), (0.751, 0.249), (1.0, 1.0)] {
+            assert_eq!(instance.do_step(t, h), Status::Ok, "t = {t}, h = {h}");
+        }
+    }
+
+    #[test]
+    fn do_step_checks_time_and_step_size() {
+        let (mut instance, log) = new_instance();
+        instance.setup_experiment(0.0, Some(1.0));
+        instance.enter_initialization_mode();
+        instance.exit_initialization_mode();
+        for (t, h, expected) in [
+            (0.0, 0.0, "fmi2DoStep: communicationStepSize = 0 is invalid: must be finite and > 0"),
+            (0.0, -1e-3, "fmi2DoStep: communicationStepSize = -0.001 is invalid: must be finite and > 0"),
+            (0.0, f64::NAN, "fmi2DoStep: communicationStepSize = NaN is invalid: must be finite and > 0"),
+            (0.1, 1e-3, "fmi2DoStep: currentCommunicationPoint = 0.1 is not the instance's time 0"),
+            (f64::NAN, 1e-3, "fmi2DoStep: currentCommunicationPoint = NaN is not the instance's time 0"),
+            (0.0, 1.5, "fmi2DoStep: the step would end at 1.5, after stopTime = 1"),
+        ] {
+            assert_eq!(instance.do_step(t, h), Status::Error);
+            assert_eq!(last_message(&log), expected);
+        }
+        // A master's own rounding of t + h is accepted.
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+        assert_eq!(instance.do_step(0.1 + 1e-15, 0.2), Status::Ok);
+    }
+
+    #[test]
+    fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
+        let (mut instance, log) = stepping();
+        let before = *instance.values();
+        for (value_reference, value, expected) in [
+            (vr::CREEPAGE_LATERAL, f64::NAN, "fmi2DoStep: creepage_lateral = NaN is invalid: must be finite"),
+            (vr::NORMAL_FORCE, f64::INFINITY, "fmi2DoStep: normal_force = inf is invalid: must be finite"),
+            (vr::SEMI_AXIS_A, 0.0, "fmi2DoStep: semi_axis_a = 0 is invalid: must be finite and > 0"),
+            (
+                vr::FRICTION_COEFFICIENT,
+                -0.1,
+                "fmi2DoStep: friction_coefficient = -0.1 is invalid: must be finite and >= 0",
+            ),
+            (vr::SHEAR_MODULUS, -1.0, "fmi2DoStep: shear_modulus = -1 is invalid: must be finite and > 0"),
+            (vr::POISSON_RATIO, 0.6, "fmi2DoStep: poisson_ratio = 0.6 is invalid: must lie in [0, 0.5]"),
+        ] {
+            assert_eq!(instance.set_real(&[value_reference], &[value]), Status::Ok);
+            assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
+            assert_eq!(last_message(&log), expected);
+            assert_eq!(instance.values().outputs, before.outputs, "outputs keep their last valid values");
+            let start = before.real(value_reference).unwrap();
+            instance.set_real(&[value_reference], &[start]);
+        }
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok, "usable again once the values are good");
+        assert_eq!(*instance.values(), before);
+    }
+
+    #[test]
+    fn impossible_measured_curve_is_an_error_at_exit_initialization() {
+        let (mut instance, log) = new_instance();
+        instance.setup_experiment(0.0, None);
+        instance.enter_initialization_mode();
+        instance.set_integer(&[vr::STIFFNESS_SOURCE], &[StiffnessSourceValue::MEASURED]);
+        instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.25]);
+        assert_eq!(instance.exit_initialization_mode(), Status::Error);
+        assert!(last_message(&log).starts_with("fmi2ExitInitializationMode: measured_peak_adhesion = 0.25 is invalid"));
+        assert_eq!(instance.state(), InitializationMode, "the master may correct the value");
+        instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.34]);
+        assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+    }
+
+    struct StiffnessSourceValue;
+    impl StiffnessSourceValue {
+        const MEASURED: i32 = crate::fmi::model_description::StiffnessSource::MeasuredCurve as i32;
+    }
+
+    #[test]
+    fn lift_off_gives_zero_forces_without_error() {
+        let (mut instance, _) = stepping();
+        instance.set_real(&[vr::NORMAL_FORCE], &[-10.0]);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+        let mut outputs = [f64::NAN; 3];
+        instance.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION], &mut outputs);
+        assert_eq!(outputs, [0.0; 3]);
+    }
+
+    #[test]
+    fn set_and_get_check_their_references_and_set_all_or_nothing() {
+        let (mut instance, log) = stepping();
+        let cases: [(u32, &str); 3] = [
+            (999, "fmi2SetReal: unknown value reference 999"),
+            (vr::STIFFNESS_SOURCE, "fmi2SetReal: value reference 102 (stiffness_source) is not a Real"),
+            (vr::FORCE_LATERAL, "fmi2SetReal: force_lateral is an output and cannot be set"),
+        ];
+        for (value_reference, expected) in cases {
+            assert_eq!(instance.set_real(&[vr::CREEPAGE_LATERAL, value_reference], &[1e-3, 1.0]), Status::Error);
+            assert_eq!(last_message(&log), expected);
+            assert_eq!(instance.values().inputs.creepage_lateral, 0.0, "nothing set");
+        }
+        let mut value = [0.0];
+        assert_eq!(instance.get_real(&[1000], &mut value), Status::Error);
+        assert_eq!(last_message(&log), "fmi2GetReal: unknown value reference 1000");
+        let mut source = [0];
+        assert_eq!(instance.get_integer(&[vr::STIFFNESS_SOURCE], &mut source), Status::Ok);
+        assert_eq!(source, [1]);
+        assert_eq!(instance.get_absent_type("fmi2GetBoolean", "Boolean", &[]), Status::Ok);
+        assert_eq!(instance.get_absent_type("fmi2GetBoolean", "Boolean", &[vr::NORMAL_FORCE]), Status::Error);
+        assert_eq!(last_message(&log), "fmi2GetBoolean: value reference 3 (normal_force) is not a Boolean");
+        assert_eq!(instance.set_absent_type("fmi2SetString", "String", &[]), Status::Ok);
+    }
+
+    /// Every call outside the states the standard allows it in is refused, the state unchanged.
+    #[test]
+    fn illegal_calls_are_refused_in_every_state() {
+        type Call = fn(&mut Instance) -> Status;
+        let calls: [(&str, Call, &[State]); 12] = [
+            ("fmi2SetupExperiment", |i| i.setup_experiment(0.0, None), &[Instantiated]),
+            ("fmi2EnterInitializationMode", Instance::enter_initialization_mode, &[Instantiated]),
+            ("fmi2ExitInitializationMode", Instance::exit_initialization_mode, &[InitializationMode]),
+            ("fmi2DoStep", |i| i.do_step(0.0, 1e-3), &[StepComplete]),
+            ("fmi2Terminate", Instance::terminate, &[StepComplete]),
+            ("fmi2CancelStep", Instance::cancel_step, &[]),
+            ("fmi2GetReal", |i| i.get_real(&[0], &mut [0.0]), READABLE),
+            ("fmi2SetReal", |i| i.set_real(&[0], &[0.0]), WRITABLE),
+            ("fmi2GetStatus", |i| i.get_status(StatusKind::DoStepStatus), STEPPED),
+            (
+                "fmi2GetRealStatus",
+                |i| i.get_real_status(StatusKind::LastSuccessfulTime).err().unwrap_or(Status::Ok),
+                STEPPED,
+            ),
+            ("fmi2Reset", Instance::reset, LIVE),
+            ("fmi2GetFMUstate", |i| i.unsupported(Unsupported::FmuState("fmi2GetFMUstate")), LIVE),
+        ];
+        let states: [(State, fn() -> Instance); 4] = [
+            (Instantiated, || new_instance().0),
+            (InitializationMode, || {
+                let mut i = new_instance().0;
+                i.enter_initialization_mode();
+                i
+            }),
+            (StepComplete, || stepping().0),
+            (Terminated, || {
+                let mut i = stepping().0;
+                i.terminate();
+                i
+            }),
+        ];
+        for (state, make) in states {
+            for (name, call, allowed) in &calls {
+                let log = Log::default();
+                let mut instance = make();
+                instance.sink = Box::new(Recorder(log.clone()));
+                let status = call(&mut instance);
+                let message = last_message(&log);
+                if allowed.contains(&state) {
+                    assert!(!message.contains("illegal call"), "{name} in {state:?}: {message}");
+                } else {
+                    assert_eq!(status, Status::Error, "{name} in {state:?}");
+                    assert_eq!(message, format!("{name}: illegal call in state {}", state.name()));
+                    assert_eq!(instance.state(), state);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn reset_returns_to_the_start_values() {
+        let (mut instance, _) = stepping();
+        instance.set_real(&[vr::NORMAL_FORCE, vr::SHEAR_MODULUS], &[50e3, 80e9]);
+        instance.do_step(0.0, 1.0);
+        assert_eq!(instance.reset(), Status::Ok);
+        assert_eq!(instance.state(), Instantiated);
+        assert_eq!(instance.values().inputs, Inputs::default());
+        assert_eq!(instance.values().parameters.shear_modulus, 82e9);
+        // A new run starts from the new start time.
+        instance.setup_experiment(3.0, None);
+        instance.enter_initialization_mode();
+        instance.exit_initialization_mode();
+        assert_eq!(instance.do_step(3.0, 0.5), Status::Ok);
+    }
+
+    #[test]
+    fn status_inquiries_answer_as_specified() {
+        let (mut instance, log) = stepping();
+        instance.do_step(0.0, 0.125);
+        assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.125));
+        assert_eq!(instance.get_boolean_status(StatusKind::Terminated), Ok(false));
+        assert_eq!(instance.get_status(StatusKind::DoStepStatus), Status::Discard);
+        assert!(last_message(&log).starts_with("fmi2GetStatus: no DoStepStatus to report"));
+        assert_eq!(instance.get_integer_status(StatusKind::LastSuccessfulTime), Status::Discard);
+        assert_eq!(instance.get_string_status(StatusKind::PendingStatus), Status::Discard);
+        assert_eq!(instance.get_real_status(StatusKind::Terminated), Err(Status::Discard));
+    }
+
+    #[test]
+    fn unsupported_capabilities_name_their_flag() {
+        let (mut instance, log) = stepping();
+        assert_eq!(instance.unsupported(Unsupported::DirectionalDerivative), Status::Error);
+        let expected = "fmi2GetDirectionalDerivative: not supported (providesDirectionalDerivative = false in modelDescription.xml)";
+        assert_eq!(last_message(&log), expected);
+        instance.unsupported(Unsupported::FmuState("fmi2SerializeFMUstate"));
+        assert!(last_message(&log).contains("canSerializeFMUstate = false"));
+    }
+
+    #[test]
+    fn debug_logging_selects_categories() {
+        let (mut instance, log) = new_instance();
+        // Logging off: status messages only.
+        instance.setup_experiment(0.0, None);
+        instance.do_step(0.0, 1.0);
+        assert_eq!(log.borrow().len(), 1);
+        assert_eq!(log.borrow()[0].1, "logStatusError");
+        // On, all categories: call traces too.
+        assert_eq!(instance.set_debug_logging(true, &[]), Status::Ok);
+        instance.enter_initialization_mode();
+        assert_eq!(last_message(&log), "fmi2EnterInitializationMode");
+        // Only warnings: errors and traces are filtered out.
+        log.borrow_mut().clear();
+        assert_eq!(instance.set_debug_logging(true, &["logStatusWarning"]), Status::Ok);
+        instance.do_step(0.0, 1.0);
+        instance.exit_initialization_mode();
+        assert!(log.borrow().is_empty(), "{:?}", log.borrow());
+        // Only errors.
+        instance.set_debug_logging(true, &["logStatusError"]);
+        instance.exit_initialization_mode();
+        assert_eq!(last_message(&log), "fmi2ExitInitializationMode: illegal call in state stepComplete");
+        assert_eq!(log.borrow().len(), 1);
+        // logAll: everything; an unknown category is a warning.
+        assert_eq!(instance.set_debug_logging(true, &["logAll", "noSuchCategory"]), Status::Warning);
+        assert!(
+            last_message(&log).starts_with("fmi2SetDebugLogging: unknown log categories [\"noSuchCategory\"] ignored")
+        );
+        instance.do_step(0.0, 1.0);
+        assert_eq!(last_message(&log), "fmi2DoStep: currentCommunicationPoint = 0, communicationStepSize = 1");
+    }
+
+    #[test]
+    fn a_panic_becomes_fatal_and_only_freeing_remains() {
+        let (mut instance, log) = stepping();
+        let status = instance.guarded("fmi2DoStep", |_| panic!("a bug"));
+        assert_eq!(status, Status::Fatal);
+        assert_eq!(instance.state(), State::Fatal);
+        let (status, category, message) = log.borrow().last().cloned().unwrap();
+        assert_eq!((status, category.as_str()), (Status::Fatal, "logStatusFatal"));
+        assert_eq!(message, "fmi2DoStep: internal error (a bug); this instance can only be freed");
+        assert_eq!(instance.guarded("fmi2Reset", Instance::reset), Status::Error);
+        assert_eq!(last_message(&log), "fmi2Reset: illegal call in state fatal");
+    }
+}
