@@ -135,6 +135,11 @@ impl Fastsim {
         self.elements
     }
 
+    /// The traction bound.
+    pub fn bound(&self) -> TractionBound {
+        self.bound
+    }
+
     /// Forces, moment and adhesion-area fraction for one contact.
     pub fn evaluate(&self, input: &ContactInput) -> Result<FastsimResult, InvalidInput> {
         input.validate()?;

@@ -90,24 +90,17 @@ pub struct PublishedFastsim {
 
 /// Case 2, CONTACT's FASTSIM results as published.
 pub const FASTSIM_CASE_CONTACT_FASTSIM: [PublishedFastsim; 4] = [
-    PublishedFastsim {
-        bound: TractionBound::Parabolic,
-        elements_in_contact: 40,
-        result: Published { force_lateral_ratio: -0.6118, spin_moment: -39.00 },
-    },
-    PublishedFastsim {
-        bound: TractionBound::Elliptic,
-        elements_in_contact: 40,
-        result: Published { force_lateral_ratio: -0.6016, spin_moment: -48.29 },
-    },
-    PublishedFastsim {
-        bound: TractionBound::Parabolic,
-        elements_in_contact: 200,
-        result: Published { force_lateral_ratio: -0.6359, spin_moment: -37.98 },
-    },
-    PublishedFastsim {
-        bound: TractionBound::Elliptic,
-        elements_in_contact: 200,
-        result: Published { force_lateral_ratio: -0.5956, spin_moment: -45.30 },
-    },
+    contact_fastsim(TractionBound::Parabolic, 40, -0.6118, -39.00),
+    contact_fastsim(TractionBound::Elliptic, 40, -0.6016, -48.29),
+    contact_fastsim(TractionBound::Parabolic, 200, -0.6359, -37.98),
+    contact_fastsim(TractionBound::Elliptic, 200, -0.5956, -45.30),
 ];
+
+const fn contact_fastsim(
+    bound: TractionBound,
+    elements_in_contact: usize,
+    force_lateral_ratio: f64,
+    spin_moment: f64,
+) -> PublishedFastsim {
+    PublishedFastsim { bound, elements_in_contact, result: Published { force_lateral_ratio, spin_moment } }
+}
