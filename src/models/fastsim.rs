@@ -57,7 +57,9 @@ pub enum TractionBound {
 /// How the flexibility L of the simplified theory is chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Flexibility {
-    /// L1, L2, L3 for ξ, η, φ separately.
+    /// L1, L2, L3 for ξ, η, φ separately, never blended (Kalker 1982). With combined creepages
+    /// this is not CONTACT's FASTSIM: on CONTACT's `examples/fastsim` case (η with spin) it gives
+    /// F_y 1.2 % (parabolic bound) larger than [`Self::ThreeBlended`].
     Three,
     /// CONTACT's three flexibilities blended towards one combined flexibility as the creepage
     /// grows (open-source CONTACT, `src/m_hertz.f90`, subroutine `simpflex`, Vollebregt):
