@@ -336,13 +336,19 @@ const CONTACT_LENGTH_UNIT: f64 = 1e-3;
 /// With the weight in mm our converged results meet CONTACT's published ones (see
 /// tests/ladder_contact_case.rs); with φ in 1/m, or with φ·√(ab), an emulation of CONTACT's own
 /// scheme misses its published parabolic-bound results by 2–3 %.
-/// `g_area_per_load` = G ab/(μQ), so that ξ* = 1/(g C11), η* = 1/(g C22), φ* = 1/(g c C23).
+/// `g_area_per_load` = G ab/(μQ), so that ξ* = 1/(g C11), η* = 1/(g C22), φ* = 1/(g c C23),
+/// and f_crp = g |(ξ, η, φ)| / |(1/C11, 1/C22, 1/(c C23))|.
 fn blend_weight(input: &ContactInput, c: &KalkerCoefficients, g_area_per_load: f64) -> f64 {
-    let mean_semi_axis = (input.semi_axis_a * input.semi_axis_b).sqrt();
-    let creepage =
-        norm3(input.creepage_longitudinal, input.creepage_lateral, input.spin_creepage * CONTACT_LENGTH_UNIT);
-    let characteristic_times_g = norm3(1.0 / c.c11, 1.0 / c.c22, CONTACT_LENGTH_UNIT / (mean_semi_axis * c.c23));
-    let weight = g_area_per_load * (creepage / characteristic_times_g) / 3.0;
+    // Squares of creepages clamped to 1e150 cannot overflow; one that underflows is < 1e-154 and
+    // its share of the weight negligible. (1 mm/(c C23))² = (1 mm)²/(ab C23²) needs no root.
+    let square = |value: f64| clamp_rate(value).powi(2);
+    let creepage_sq = square(input.creepage_longitudinal)
+        + square(input.creepage_lateral)
+        + square(input.spin_creepage * CONTACT_LENGTH_UNIT);
+    let spin_characteristic_sq =
+        CONTACT_LENGTH_UNIT * CONTACT_LENGTH_UNIT / (input.semi_axis_a * input.semi_axis_b * c.c23 * c.c23);
+    let characteristic_sq = 1.0 / (c.c11 * c.c11) + 1.0 / (c.c22 * c.c22) + spin_characteristic_sq;
+    let weight = g_area_per_load * (creepage_sq / characteristic_sq).sqrt() / 3.0;
     // A NaN (0 · ∞ from absurd inputs) fails the test and gives the unblended flexibilities.
     if weight > 0.0 {
         weight.min(1.0)
@@ -361,7 +367,8 @@ fn blended(weight: f64, (xi, eta, spin_a): (f64, f64, f64), (k1, k2, k3): (f64, 
         return (k1, k2, k3);
     }
     // 1/L_crss = (ξ²/L1 + η²/L2 + s²/L3) / (ξ² + η² + s²), creepages scaled by the largest.
-    let (x, y, z) = (xi / largest, eta / largest, s / largest);
+    let scale = 1.0 / largest;
+    let (x, y, z) = (xi * scale, eta * scale, s * scale);
     let k_crss = (x * x * k1 + y * y * k2 + z * z * k3) / (x * x + y * y + z * z);
     // 1/k' = (1 − w)/k + w/k_crss, written without dividing by a zero stiffness.
     let mix = |k: f64| {
@@ -376,16 +383,6 @@ fn blended(weight: f64, (xi, eta, spin_a): (f64, f64, f64), (k1, k2, k3): (f64, 
         }
     };
     (mix(k1), mix(k2), mix(k3))
-}
-
-/// √(x² + y² + z²) without overflow or underflow of the squares.
-fn norm3(x: f64, y: f64, z: f64) -> f64 {
-    let largest = x.abs().max(y.abs()).max(z.abs());
-    if largest == 0.0 || !largest.is_finite() {
-        return largest;
-    }
-    let (x, y, z) = (x / largest, y / largest, z / largest);
-    largest * (x * x + y * y + z * z).sqrt()
 }
 
 fn clamp_rate(value: f64) -> f64 {
