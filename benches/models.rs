@@ -31,11 +31,14 @@ fn models(c: &mut Criterion) {
     bench_model(c, "polach", &Polach::default());
     bench_model(c, "kalker_linear", &KalkerLinear);
     bench_model(c, "shen_hedrick_elkins", &ShenHedrickElkins);
+    // CONTACT's blended flexibilities (the default); the unblended 5 × 5 shows the blend's cost.
     for n in [5, 10, 20, 40, 100] {
-        let model = Fastsim::new(n, n, TractionBound::Parabolic, Flexibility::Three).unwrap();
+        let model = Fastsim::new(n, n, TractionBound::Parabolic, Flexibility::ThreeBlended).unwrap();
         bench_model(c, &format!("fastsim_parabolic_{n}x{n}"), &model);
     }
-    let elliptic = Fastsim::new(20, 20, TractionBound::Elliptic, Flexibility::Three).unwrap();
+    let unblended = Fastsim::new(5, 5, TractionBound::Parabolic, Flexibility::Three).unwrap();
+    bench_model(c, "fastsim_parabolic_unblended_5x5", &unblended);
+    let elliptic = Fastsim::new(20, 20, TractionBound::Elliptic, Flexibility::ThreeBlended).unwrap();
     bench_model(c, "fastsim_elliptic_20x20", &elliptic);
 }
 

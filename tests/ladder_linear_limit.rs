@@ -122,3 +122,36 @@ fn fastsim_spin_moment_meets_the_simplified_theory_linear_limit() {
     let got = fastsim(160, TractionBound::Parabolic).creep_forces(&input).unwrap().spin_moment.unwrap();
     assert!((got / expected - 1.0).abs() < 1e-3, "{got} vs {expected}");
 }
+
+#[test]
+fn fastsim_blend_leaves_pure_creepages_unchanged() {
+    // With one creepage CONTACT's combined flexibility L_crss is that creepage's own L_i, so the
+    // blend changes nothing, from the linear range to full slip.
+    let three = Fastsim::new(30, 30, TractionBound::Parabolic, Flexibility::Three).unwrap();
+    let blended = Fastsim::new(30, 30, TractionBound::Parabolic, Flexibility::ThreeBlended).unwrap();
+    for s in [1e-7, 1e-4, 1e-3, 1e-2, 1.0] {
+        for input in [typical_contact(s, 0.0, 0.0), typical_contact(0.0, s, 0.0), typical_contact(0.0, 0.0, 100.0 * s)]
+        {
+            let (t, b) = (three.creep_forces(&input).unwrap(), blended.creep_forces(&input).unwrap());
+            for (x, y) in [(t.force_longitudinal, b.force_longitudinal), (t.force_lateral, b.force_lateral)] {
+                assert!((x - y).abs() <= 1e-12 * x.abs().max(y.abs()), "{input:?}: {x} vs {y}");
+            }
+        }
+    }
+}
+
+#[test]
+fn fastsim_blend_vanishes_linearly_in_the_linear_range() {
+    // Combined η and φ: the blend weight is proportional to the creepage's size (f_crp / 3), so the
+    // blended model meets the unblended one (and hence Kalker's linear theory) to first order.
+    let three = Fastsim::new(40, 40, TractionBound::Elliptic, Flexibility::Three).unwrap();
+    let blended = Fastsim::new(40, 40, TractionBound::Elliptic, Flexibility::ThreeBlended).unwrap();
+    let deviation = |s: f64| {
+        let input = typical_contact(0.0, s, 1000.0 * s);
+        let lateral = |m: &Fastsim| m.creep_forces(&input).unwrap().force_lateral;
+        (lateral(&blended) / lateral(&three) - 1.0).abs()
+    };
+    let (coarse, fine) = (deviation(1e-7), deviation(1e-8));
+    assert!(coarse > 0.0 && (coarse / fine / 10.0 - 1.0).abs() < 0.01, "{coarse} vs {fine}");
+    assert!(coarse < 1e-4, "{coarse}");
+}

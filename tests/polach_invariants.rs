@@ -2,6 +2,7 @@
 
 mod common;
 
+use common::published::{TRACTCURV_CONTACT, TRACTCURV_EXACT};
 use common::{contact, contact_case, relative_difference};
 use std::f64::consts::PI;
 use wheel_rail_contact::{ContactInput, CreepForceModel, CreepForces, Polach};
@@ -157,26 +158,9 @@ fn lift_off_and_no_friction_give_zero_force_continuously() {
 #[test]
 fn eurosprinter_curve_stays_close_to_kalkers_exact_theory() {
     // CONTACT examples/tractcurv (contact_published_cases.md, case 1): exact-theory F_x/(μN).
-    let exact = [
-        (0.001, -0.0070),
-        (0.04, -0.2588),
-        (0.08, -0.4743),
-        (0.12, -0.6481),
-        (0.16, -0.7830),
-        (0.2, -0.8815),
-        (0.28, -0.9832),
-        (0.4, -0.9991),
-        (1.0, -1.0),
-    ];
-    let base = ContactInput {
-        normal_force: 106.7e3,
-        friction_coefficient: 0.33,
-        semi_axis_a: 6.304e-3,
-        semi_axis_b: 12.61e-3,
-        ..contact_case()
-    };
+    let base = TRACTCURV_CONTACT;
     let mut largest_error: f64 = 0.0;
-    for (xi_percent, fx_exact) in exact {
+    for (xi_percent, fx_exact) in TRACTCURV_EXACT {
         let input = ContactInput { creepage_longitudinal: xi_percent / 100.0, ..base };
         let fx = forces(&input).force_longitudinal / input.friction_limit();
         largest_error = largest_error.max((fx - fx_exact).abs());

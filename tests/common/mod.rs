@@ -4,20 +4,13 @@
 use wheel_rail_contact::{ContactInput, Fastsim, Flexibility, ModelChoice, Polach, TractionBound};
 use wheel_rail_contact::{KalkerLinear, ShenHedrickElkins};
 
+#[path = "../data/contact_published_cases.rs"]
+pub mod published;
+
 /// The published CONTACT case 2 contact (a = 8 mm, b = 4 mm, N = 82 kN, G = 82 GPa, ν = 0.28,
 /// μ = 0.3) with no creepage; tests set the creepages they need.
 pub fn contact_case() -> ContactInput {
-    ContactInput {
-        creepage_longitudinal: 0.0,
-        creepage_lateral: 0.0,
-        spin_creepage: 0.0,
-        normal_force: 82e3,
-        semi_axis_a: 8e-3,
-        semi_axis_b: 4e-3,
-        friction_coefficient: 0.3,
-        shear_modulus: 82e9,
-        poisson_ratio: 0.28,
-    }
+    ContactInput { creepage_lateral: 0.0, spin_creepage: 0.0, ..published::FASTSIM_CASE }
 }
 
 /// `contact_case()` with semi-axes for ratio a/b around a fixed area ab = 32 mm², Poisson ratio ν
@@ -61,8 +54,9 @@ pub fn typical_contact(xi: f64, eta: f64, phi: f64) -> ContactInput {
     }
 }
 
+/// FASTSIM on n × n with CONTACT's blended flexibilities (the default).
 pub fn fastsim(n: usize, bound: TractionBound) -> Fastsim {
-    Fastsim::new(n, n, bound, Flexibility::Three).unwrap()
+    Fastsim::new(n, n, bound, Flexibility::ThreeBlended).unwrap()
 }
 
 /// Every saturating model (friction-limited), with a name for messages.
@@ -72,6 +66,7 @@ pub fn saturating_models() -> Vec<ModelChoice> {
         ModelChoice::ShenHedrickElkins(ShenHedrickElkins),
         ModelChoice::Fastsim(fastsim(20, TractionBound::Parabolic)),
         ModelChoice::Fastsim(fastsim(20, TractionBound::Elliptic)),
+        ModelChoice::Fastsim(Fastsim::new(20, 20, TractionBound::Parabolic, Flexibility::Three).unwrap()),
         ModelChoice::Fastsim(Fastsim::new(15, 25, TractionBound::Parabolic, Flexibility::SingleWeighted).unwrap()),
     ]
 }
