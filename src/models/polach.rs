@@ -85,31 +85,31 @@ impl Polach {
             Some(large_creepage) => large_creepage.law(input.friction_coefficient, s_c),
         };
         // μQ formed once: every force below is μQ times a dimensionless factor, so |F| ≤ μQ holds
-        // to rounding even where μQ is subnormal.
+        // to rounding even where μQ is subnormal. (μQ can underflow to 0 for Q, μ > 0: no force.)
         let friction_limit = input.normal_force * friction;
-        // Eq. (24): finite-a/b correction of the spin force.
-        let k_s = (-(-(a / b)).exp() + 1.0) * 6.3 + 1.0;
+        if value(friction_limit) == 0.0 {
+            return CreepForces::zero();
+        }
+        // Reciprocals of quantities known from the inputs alone are formed up front, so that no
+        // division waits for the coefficient lookup (the evaluation is latency-bound).
+        let inverse_quarter_limit = (friction_limit * 4.0).recip();
+        let direction = CreepDirection::new(xi, eta);
+        let (xi_share, eta_share) = (xi / s_c, eta / s_c);
 
-        // ε = κ·s_C (eq. 7) and ε_s = κ_s·|s_yC| (eq. 25); `law_adhesion` is 1/k of eq. (34).
-        let (kappa, kappa_spin, law_adhesion) = match &self.stiffness {
+        // ε = κ·s_C (eq. 7); `law_adhesion` is 1/k of eq. (34).
+        let (kappa, law_adhesion, kalker_c23) = match &self.stiffness {
             StiffnessSource::Kalker => {
                 let c = KalkerCoefficients::at(a / b, value(input.poisson_ratio));
                 // E3: ε = π G a b c_jj s_C / (4 Q f), from eq. (7) with C of eq. (28).
-                let kappa = input.shear_modulus * PI * a * b * direction_weighted_c(xi, eta, c.c11, c.c22)
-                    / (friction_limit * 4.0);
-                // E2: ε_s = (8/3) G b √(ab) c23 |s_yC| / (Q f K_S), eq. (25) with C_s of eq. (32).
-                let kappa_spin =
-                    input.shear_modulus * (8.0 / 3.0) * b * (a * b).sqrt() * c.c23 / (friction_limit * k_s);
-                (kappa, kappa_spin, 1.0)
+                let kappa = input.shear_modulus * PI * a * b * direction.weighted(c.c11, c.c22) * inverse_quarter_limit;
+                (kappa, 1.0, Some(c.c23))
             }
             StiffnessSource::MeasuredCurve(curve) => {
-                let kappa = curve.gradient_per_creepage(friction);
-                (kappa, kappa / k_s, 1.0 / curve.friction_ratio())
+                (curve.gradient_per_creepage(friction), 1.0 / curve.friction_ratio(), None)
             }
         };
         // The cap also maps a NaN (0/0 from underflowing products) to the saturated end.
         let epsilon = capped(kappa * s_c, GRADIENT_MAX);
-        let epsilon_spin = capped(kappa_spin * s_yc.abs(), GRADIENT_MAX);
 
         // One law covers eq. (14) (k_A = k_S = 1, bit for bit), eq. (34) (k_A = 1/k, since
         // kε/(k²+ε²) = (ε/k)/(1+(ε/k)²)) and Polach 2005 (its k_A, k_S; errata E8):
@@ -120,16 +120,33 @@ impl Polach {
         let saturation = (adhesion_gradient / (adhesion_gradient * adhesion_gradient + 1.0)
             + (epsilon * slip_reduction).atan())
             * (2.0 / PI);
-        let force = friction_limit * saturation;
-        // Eq. (3) with the sign convention E4: forces oppose the creepages.
-        let force_longitudinal = -force * (xi / s_c);
-        let force_lateral_creep = -force * (eta / s_c);
-        // Eqs. (23), (24): spin's lateral force, with K_M of eq. (20) in closed form. The factor
-        // a·Φ/s_C is `spin_shift / s_c`, and |a·Φ| ≤ 2·s_C by eq. (21), so it is bounded.
-        let force_lateral_spin =
-            friction_limit * (9.0 / 16.0) * spin_moment_factor(epsilon_spin) * k_s * (spin_shift / s_c);
-        let force_lateral = force_lateral_creep + force_lateral_spin;
-        CreepForces::new(force_longitudinal, force_lateral, None, friction_limit)
+        // Forces as fractions of μQ. Eq. (3) with the sign convention E4: they oppose the creepages.
+        let longitudinal = -saturation * xi_share;
+        let mut lateral = -saturation * eta_share;
+        // Eqs. (23)–(25): spin's lateral force. Without spin it is zero and is skipped (its
+        // derivative in Φ is not zero, so dual numbers always evaluate it).
+        if value(spin_shift) != 0.0 || D::NDERIV > 0 {
+            // Eq. (24): finite-a/b correction K_S of the spin force.
+            let k_s = (-(-(a / b)).exp() + 1.0) * 6.3 + 1.0;
+            let kappa_spin = match kalker_c23 {
+                // E2: ε_s = (8/3) G b √(ab) c23 |s_yC| / (Q f K_S), eq. (25) with C_s of eq. (32).
+                Some(c23) => {
+                    input.shear_modulus * (8.0 / 3.0) * b * (a * b).sqrt() * c23 * inverse_quarter_limit * 4.0 / k_s
+                }
+                // Eq. (25) with the measured curve's C.
+                None => kappa / k_s,
+            };
+            let epsilon_spin = capped(kappa_spin * s_yc.abs(), GRADIENT_MAX);
+            // K_M of eq. (20) in closed form. The factor a·Φ/s_C is `spin_shift / s_c`, and
+            // |a·Φ| ≤ 2·s_C by eq. (21), so it is bounded.
+            lateral += spin_moment_factor(epsilon_spin) * (9.0 / 16.0) * k_s * (spin_shift / s_c);
+        }
+        CreepForces {
+            force_longitudinal: friction_limit * longitudinal,
+            force_lateral: friction_limit * lateral,
+            spin_moment: None,
+            adhesion_utilisation: magnitude(longitudinal, lateral),
+        }
     }
 }
 
@@ -148,16 +165,33 @@ pub fn spin_moment_factor<D: Scalar>(epsilon: D) -> D {
     epsilon / d / d * (-2.0 / 3.0)
 }
 
-/// Eq. (29) as corrected by E1: c_jj = √((c11·s_x/s)² + (c22·s_y/s)²), s = √(s_x² + s_y²).
-/// For s = 0 (pure spin) c_jj only multiplies s_x/s_C = s_y/s_C = 0 (E6): return c22.
-fn direction_weighted_c<D: Scalar>(xi: D, eta: D, c11: D, c22: D) -> D {
-    let largest = value(xi).abs().max(value(eta).abs());
-    if largest == 0.0 {
-        return c22;
+/// The direction of the creepage (ξ, η) without spin, for Kalker's direction-weighted
+/// coefficient: eq. (29) as corrected by E1, c_jj = √((c11·s_x/s)² + (c22·s_y/s)²), s = √(s_x² + s_y²).
+struct CreepDirection<D> {
+    /// (s_x/m)², (s_y/m)² with m = max(|s_x|, |s_y|), so that neither square can underflow.
+    squares: Option<(D, D)>,
+    /// 1/((s_x/m)² + (s_y/m)²), formed before the coefficients are known.
+    inverse_norm: D,
+}
+
+impl<D: Scalar> CreepDirection<D> {
+    fn new(xi: D, eta: D) -> Self {
+        let largest = value(xi).abs().max(value(eta).abs());
+        if largest == 0.0 {
+            return Self { squares: None, inverse_norm: D::from(1.0) };
+        }
+        let (x, y) = (xi / largest, eta / largest);
+        let (x2, y2) = (x * x, y * y);
+        Self { squares: Some((x2, y2)), inverse_norm: (x2 + y2).recip() }
     }
-    // Scaled by the largest component so that neither square can underflow.
-    let (x, y) = (xi / largest, eta / largest);
-    ((c11 * c11 * x * x + c22 * c22 * y * y) / (x * x + y * y)).sqrt()
+
+    /// c_jj. For s = 0 (pure spin) c_jj only multiplies s_x/s_C = s_y/s_C = 0 (E6): c22.
+    fn weighted(&self, c11: D, c22: D) -> D {
+        match self.squares {
+            None => c22,
+            Some((x2, y2)) => ((c11 * c11 * x2 + c22 * c22 * y2) * self.inverse_norm).sqrt(),
+        }
+    }
 }
 
 /// Scales the creepages (ξ, η, aΦ) by one common factor so that none exceeds CREEPAGE_MAX: their
