@@ -14,7 +14,9 @@ fn main() {
         })
         .collect();
     let n: usize = std::env::args().nth(1).map(|s| s.parse().unwrap()).unwrap_or(80);
+    let only: Vec<String> = std::env::args().skip(2).collect();
     for (branch, g, recalled) in rows {
+        if !only.is_empty() && !only.contains(&format!("{branch}={g}")) { continue; }
         let a_over_b = if branch == "a/b" { g } else { 1.0 / g };
         let mut out = vec![];
         for (k, nu) in [0.0, 0.25, 0.5].into_iter().enumerate() {
