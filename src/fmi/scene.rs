@@ -464,3 +464,560 @@ pub fn contact_input(values: &Values) -> ContactInput {
         poisson_ratio: values.parameters.poisson_ratio,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fmi::model_description::{value_reference as vr, Causality, VARIABLES};
+    use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
+
+    fn outputs_of(values: &Values) -> Result<Outputs, String> {
+        compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)
+    }
+
+    fn outputs(values: &Values) -> Outputs {
+        outputs_of(values).unwrap()
+    }
+
+    fn on() -> i32 {
+        Switch::On as i32
+    }
+
+    /// A scene where every input matters: combined creepages with spin, and kinematics that give
+    /// similar creepages.
+    fn rich_scene() -> Values {
+        let mut values = Values::default();
+        values.inputs.creepage_lateral = 0.4e-3;
+        values.inputs.spin_creepage = 0.3;
+        values.inputs.lateral_slip_velocity = 0.008;
+        values.inputs.spin_angular_velocity = 6.0;
+        values
+    }
+
+    #[test]
+    fn default_scene_equals_the_core_with_the_start_values() {
+        let values = Values::default();
+        let input = ContactInput {
+            creepage_longitudinal: 1e-3,
+            creepage_lateral: 0.0,
+            spin_creepage: 0.0,
+            normal_force: 100e3,
+            semi_axis_a: 7.2e-3,
+            semi_axis_b: 5.4e-3,
+            friction_coefficient: 0.3,
+            shear_modulus: 82e9,
+            poisson_ratio: 0.28,
+        };
+        assert_eq!(contact_input(&values), input);
+        let expected = Polach::default().creep_forces(&input).unwrap();
+        let outputs = outputs(&values);
+        assert_eq!(outputs.force_longitudinal, expected.force_longitudinal);
+        assert_eq!(outputs.force_lateral, 0.0);
+        assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation);
+        assert_eq!(outputs.spin_moment, 0.0, "Polach has no spin moment");
+        // A loaded wheel with a small creepage: braking force, partly saturated, well below μQ.
+        assert!(outputs.force_longitudinal < -5e3 && outputs.adhesion_utilisation < 0.9, "{outputs:?}");
+        // The echoes: creepages and ellipse as given, p0 = 3Q/(2πab), μ as given, w = ξ|V|.
+        assert_eq!(outputs.effective_creepage_longitudinal, 1e-3);
+        assert_eq!((outputs.contact_semi_axis_a, outputs.contact_semi_axis_b), (7.2e-3, 5.4e-3));
+        assert_eq!(outputs.max_pressure, 3.0 * 100e3 / (2.0 * PI * 7.2e-3) / 5.4e-3);
+        assert_eq!((outputs.approach, outputs.current_friction_coefficient), (0.0, 0.3));
+        assert!((outputs.slip_velocity - 1e-3 * 20.0).abs() < 1e-18);
+    }
+
+    /// With every option off, the Polach path gives exactly the forces of the core's plain
+    /// `Polach::default()`, as before the options existed.
+    #[test]
+    fn polach_with_options_off_is_bit_identical_to_plain_polach() {
+        let mut cases = 0;
+        for xi in [-2e-2, -1e-3, 0.0, 3e-4, 5e-3] {
+            for eta in [-1e-3, 0.0, 2e-3] {
+                for phi in [-0.5, 0.0, 1.2] {
+                    for (q, a, b, mu) in
+                        [(100e3, 7.2e-3, 5.4e-3, 0.3), (40e3, 3e-3, 9e-3, 0.45), (-5.0, 7e-3, 5e-3, 0.3)]
+                    {
+                        let mut values = Values::default();
+                        let inputs = &mut values.inputs;
+                        (inputs.creepage_longitudinal, inputs.creepage_lateral, inputs.spin_creepage) = (xi, eta, phi);
+                        (inputs.normal_force, inputs.semi_axis_a, inputs.semi_axis_b) = (q, a, b);
+                        inputs.friction_coefficient = mu;
+                        let expected = Polach::default().creep_forces(&contact_input(&values)).unwrap();
+                        let outputs = outputs(&values);
+                        assert_eq!(outputs.force_longitudinal.to_bits(), expected.force_longitudinal.to_bits());
+                        assert_eq!(outputs.force_lateral.to_bits(), expected.force_lateral.to_bits());
+                        assert_eq!(outputs.adhesion_utilisation.to_bits(), expected.adhesion_utilisation.to_bits());
+                        cases += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(cases, 135);
+    }
+
+    /// Every `model` item evaluates the core's model with the grid and options of the parameters.
+    #[test]
+    fn every_model_is_the_cores_model() {
+        let mut values = rich_scene();
+        values.parameters.fastsim_strips = 7;
+        values.parameters.fastsim_elements = 9;
+        values.parameters.fastsim_traction_bound = TractionBoundChoice::Elliptic as i32;
+        values.parameters.fastsim_flexibility = FlexibilityChoice::SingleWeighted as i32;
+        values.parameters.exact_elements_longitudinal = 12;
+        values.parameters.exact_elements_lateral = 10;
+        let input = contact_input(&values);
+        let models = [
+            (Model::Polach, ModelChoice::Polach(Polach::default())),
+            (Model::KalkerLinear, ModelChoice::KalkerLinear(KalkerLinear)),
+            (Model::ShenHedrickElkins, ModelChoice::ShenHedrickElkins(ShenHedrickElkins)),
+            (
+                Model::Fastsim,
+                ModelChoice::Fastsim(Fastsim::new(7, 9, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap()),
+            ),
+            (Model::Exact, ModelChoice::Exact(ExactTheory::new(12, 10))),
+        ];
+        assert_eq!(models.len(), Model::ITEMS.len());
+        let mut spin_moments = Vec::new();
+        for (item, model) in models {
+            values.parameters.model = item as i32;
+            let expected = model.creep_forces(&input).unwrap();
+            let outputs = outputs(&values);
+            assert_eq!(outputs.force_longitudinal, expected.force_longitudinal, "{item:?}");
+            assert_eq!(outputs.force_lateral, expected.force_lateral, "{item:?}");
+            assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation, "{item:?}");
+            assert_eq!(outputs.spin_moment, expected.spin_moment.unwrap_or(0.0), "{item:?}");
+            spin_moments.push(outputs.spin_moment);
+        }
+        // Polach and SHE have none; the others do, and oppose the spin (φ > 0 → M_z < 0 here).
+        assert_eq!((spin_moments[0], spin_moments[2]), (0.0, 0.0));
+        assert!([1, 3, 4].iter().all(|&i| spin_moments[i] < 0.0), "{spin_moments:?}");
+    }
+
+    #[test]
+    fn invalid_parameters_are_named_with_their_value() {
+        type Change = fn(&mut Parameters);
+        let cases: [(Change, &str); 14] = [
+            (|p| p.model = 9, "model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
+            (|p| p.stiffness_source = 7, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)"),
+            (|p| p.hertz_contact = 2, "hertz_contact = 2 is invalid: must be one of 0 (off), 1 (on)"),
+            (
+                |p| {
+                    p.traction_law = TractionLaw::Polach2005User as i32;
+                    p.adhesion_reduction_factor = 0.0;
+                },
+                "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]",
+            ),
+            (
+                |p| {
+                    p.traction_law = TractionLaw::Polach2005User as i32;
+                    p.slip_reduction_factor = 1.5;
+                },
+                "slip_reduction_factor = 1.5 is invalid: k_S must lie in (0, k_A]",
+            ),
+            (
+                |p| {
+                    p.traction_law = TractionLaw::Polach2005User as i32;
+                    p.friction_decay_rate = f64::NAN;
+                },
+                "friction_decay_rate = NaN is invalid: B must be finite and >= 0 [s/m]",
+            ),
+            (
+                |p| {
+                    p.traction_law = TractionLaw::Polach2005Dry as i32;
+                    p.model = Model::Fastsim as i32;
+                },
+                "traction_law = 2 is invalid: Polach 2005 needs model = 1 (polach), not model = 4 (fastsim)",
+            ),
+            (
+                |p| {
+                    p.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
+                    p.model = Model::KalkerLinear as i32;
+                },
+                "stiffness_source = 2 is invalid: a measured curve needs model = 1 (polach), not model = 2 (kalker_linear)",
+            ),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    p.fastsim_strips = 0;
+                },
+                "fastsim_strips = 0 is invalid: must be an integer in 1..=10000",
+            ),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    p.fastsim_elements = -3;
+                },
+                "fastsim_elements = -3 is invalid: must be an integer in 1..=10000",
+            ),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    p.fastsim_flexibility = 0;
+                },
+                "fastsim_flexibility = 0 is invalid: must be one of 1 (three_blended), 2 (three), 3 (single_weighted)",
+            ),
+            (
+                |p| {
+                    p.model = Model::Exact as i32;
+                    p.exact_elements_longitudinal = 0;
+                },
+                "exact_elements_longitudinal = 0 is invalid: must lie in [1, 200]",
+            ),
+            (
+                |p| {
+                    p.model = Model::Exact as i32;
+                    p.exact_elements_lateral = 201;
+                },
+                "exact_elements_lateral = 201 is invalid: must lie in [1, 200]",
+            ),
+            (
+                |p| p.creepages_from_kinematics = -1,
+                "creepages_from_kinematics = -1 is invalid: must be one of 0 (off), 1 (on)",
+            ),
+        ];
+        for (change, expected) in cases {
+            let mut values = Values::default();
+            change(&mut values.parameters);
+            assert_eq!(outputs_of(&values).unwrap_err(), expected);
+        }
+    }
+
+    /// Parameters and inputs of an option that is off are not used, so not checked.
+    #[test]
+    fn options_that_are_off_check_nothing_of_theirs() {
+        let mut values = Values::default();
+        values.parameters.adhesion_reduction_factor = -1.0;
+        values.parameters.fastsim_strips = 0;
+        values.parameters.exact_elements_lateral = 0;
+        values.parameters.regularisation_speed = -1.0;
+        values.parameters.wheel_profile_curvature = f64::NAN;
+        values.parameters.relaxation_length = -1.0;
+        values.inputs.wheel_angular_speed = f64::NAN;
+        values.inputs.wheel_rolling_radius = 0.0;
+        assert_eq!(outputs(&values), outputs(&Values::default()));
+    }
+
+    #[test]
+    fn invalid_option_values_are_named_with_their_value() {
+        type Change = fn(&mut Values);
+        let cases: [(Change, &str); 8] = [
+            (|v| v.inputs.rolling_speed = f64::INFINITY, "rolling_speed = inf is invalid: must be finite"),
+            (
+                |v| {
+                    v.parameters.creepages_from_kinematics = on();
+                    v.parameters.regularisation_speed = -0.01;
+                },
+                "regularisation_speed = -0.01 is invalid: must be finite and > 0",
+            ),
+            (
+                |v| {
+                    v.parameters.creepages_from_kinematics = on();
+                    v.inputs.spin_angular_velocity = f64::NAN;
+                },
+                "spin_angular_velocity = NaN is invalid: must be finite",
+            ),
+            (
+                |v| {
+                    v.parameters.hertz_contact = on();
+                    v.inputs.wheel_rolling_radius = 0.0;
+                },
+                "wheel_rolling_radius = 0 is invalid: must be finite and > 0",
+            ),
+            (
+                |v| {
+                    v.parameters.hertz_contact = on();
+                    v.parameters.rail_profile_curvature = f64::INFINITY;
+                },
+                "rail_profile_curvature = inf is invalid: must be finite",
+            ),
+            (
+                |v| {
+                    // A hollow wheel more curved than the rail head: a conformal, non-Hertzian contact.
+                    v.parameters.hertz_contact = on();
+                    v.parameters.wheel_profile_curvature = -5.0;
+                },
+                "wheel_profile_curvature = -5 is invalid: must leave a convex gap: a concave wheel profile needs \
+                 |radius| > rail_profile_radius",
+            ),
+            (
+                |v| {
+                    v.parameters.hertz_contact = on();
+                    v.parameters.poisson_ratio = 0.7;
+                },
+                "poisson_ratio = 0.7 is invalid: must lie in [0, 0.5]",
+            ),
+            (
+                |v| {
+                    v.parameters.creep_relaxation = on();
+                    v.parameters.relaxation_length = -0.01;
+                },
+                "relaxation_length = -0.01 is invalid: must be finite and >= 0 (0: derived from the contact)",
+            ),
+        ];
+        for (change, expected) in cases {
+            let mut values = Values::default();
+            change(&mut values);
+            let mut cache = ModelCache::default();
+            let mut relaxed = [1.0, 2.0];
+            let result = compute_outputs(&values, &mut cache, &mut relaxed, Evaluation::Step(1e-3));
+            assert_eq!(result.unwrap_err(), expected);
+            assert_eq!(relaxed, [1.0, 2.0], "the state is kept on an error");
+        }
+    }
+
+    #[test]
+    fn hertz_contact_replaces_the_ellipse_inputs() {
+        let mut values = rich_scene();
+        values.parameters.hertz_contact = on();
+        (values.inputs.semi_axis_a, values.inputs.semi_axis_b) = (f64::NAN, -1.0); // ignored
+        let outputs = outputs(&values);
+        // A conical tread (straight) on a 300 mm rail crown, r = 0.46 m: A = 1/(2r), B = 1/(2·0.3 m).
+        let curvature = RelativeCurvature::from_radii(0.46, f64::INFINITY, 0.3).unwrap();
+        let hertz = HertzContact::solve(100e3, &curvature, contact_modulus(82e9, 0.28).unwrap()).unwrap();
+        assert_eq!(outputs.contact_semi_axis_a, hertz.semi_axis_a);
+        assert_eq!(outputs.contact_semi_axis_b, hertz.semi_axis_b);
+        assert_eq!((outputs.max_pressure, outputs.approach), (hertz.max_pressure, hertz.approach));
+        // The default scene's a = 7.2 mm, b = 5.4 mm are this contact's, to the 0.1 mm given.
+        assert!((hertz.semi_axis_a - 7.2e-3).abs() < 1e-4 && (hertz.semi_axis_b - 5.4e-3).abs() < 1e-4, "{hertz:?}");
+        let input =
+            ContactInput { semi_axis_a: hertz.semi_axis_a, semi_axis_b: hertz.semi_axis_b, ..contact_input(&values) };
+        let expected = Polach::default().creep_forces(&input).unwrap();
+        assert_eq!(
+            (outputs.force_longitudinal, outputs.force_lateral),
+            (expected.force_longitudinal, expected.force_lateral)
+        );
+        // Lift-off: zero forces and no contact, no error.
+        values.inputs.normal_force = -10.0;
+        let lifted = super::tests::outputs(&values);
+        assert_eq!([lifted.force_longitudinal, lifted.force_lateral, lifted.adhesion_utilisation], [0.0; 3]);
+        assert_eq!(
+            [lifted.contact_semi_axis_a, lifted.contact_semi_axis_b, lifted.max_pressure, lifted.approach],
+            [0.0; 4]
+        );
+    }
+
+    #[test]
+    fn creepages_from_kinematics_replace_the_creepage_inputs() {
+        let mut values = rich_scene();
+        values.parameters.creepages_from_kinematics = on();
+        values.inputs.creepage_longitudinal = f64::NAN; // ignored
+        let kinematics = WheelKinematics {
+            rolling_speed: 20.0,
+            wheel_angular_speed: values.inputs.wheel_angular_speed,
+            wheel_rolling_radius: 0.46,
+            lateral_slip_velocity: 0.008,
+            spin_angular_velocity: 6.0,
+        };
+        let creepages = kinematics.creepages(DEFAULT_REGULARISATION_SPEED).unwrap();
+        let outputs = outputs(&values);
+        assert_eq!(outputs.effective_creepage_longitudinal, creepages.longitudinal);
+        assert_eq!(outputs.effective_creepage_lateral, creepages.lateral);
+        assert_eq!(outputs.effective_spin_creepage, creepages.spin);
+        // The start values roll with ξ ≈ 0.1 %, η = 0.4e-3, φ ≈ 0.3 /m, like the creepage inputs.
+        assert!((creepages.longitudinal / 1e-3 - 1.0).abs() < 1e-6, "{creepages:?}");
+        let input = ContactInput {
+            creepage_longitudinal: creepages.longitudinal,
+            creepage_lateral: creepages.lateral,
+            spin_creepage: creepages.spin,
+            ..contact_input(&values)
+        };
+        let expected = Polach::default().creep_forces(&input).unwrap();
+        assert_eq!(
+            (outputs.force_longitudinal, outputs.force_lateral),
+            (expected.force_longitudinal, expected.force_lateral)
+        );
+        // Standstill with a spinning wheel: finite, saturated against the slip.
+        values.inputs.rolling_speed = 0.0;
+        let standstill = super::tests::outputs(&values);
+        assert!(standstill.force_longitudinal > 0.0 && standstill.adhesion_utilisation > 0.99, "{standstill:?}");
+        assert_eq!(standstill.effective_spin_creepage, 0.0);
+        let slip = (-values.inputs.wheel_angular_speed * 0.46).hypot(0.008);
+        assert!((standstill.slip_velocity / slip - 1.0).abs() < 1e-12, "w = |(V − ωr, v_y)| at V = 0");
+    }
+
+    /// Polach 2005 with creepages from kinematics: w = s_C·D with D the kinematics' reference
+    /// speed, μ(w) from the core's law, and the forces of Polach's 2005 model at that speed.
+    #[test]
+    fn polach_2005_uses_the_slip_velocity_of_the_kinematics() {
+        for law in [TractionLaw::Polach2005Dry, TractionLaw::Polach2005Wet] {
+            let mut values = rich_scene();
+            values.parameters.traction_law = law as i32;
+            values.parameters.creepages_from_kinematics = on();
+            values.inputs.friction_coefficient = 0.55;
+            values.inputs.wheel_angular_speed = 19.0 / 0.46; // 5 % slip: beyond the peak
+            let outputs = outputs(&values);
+            let creepages = WheelKinematics {
+                rolling_speed: 20.0,
+                wheel_angular_speed: values.inputs.wheel_angular_speed,
+                wheel_rolling_radius: 0.46,
+                lateral_slip_velocity: 0.008,
+                spin_angular_velocity: 6.0,
+            }
+            .creepages(DEFAULT_REGULARISATION_SPEED)
+            .unwrap();
+            let extension = if law == TractionLaw::Polach2005Dry { Polach2005::DRY } else { Polach2005::WET };
+            let eta_c = creepages.lateral + creepages.spin * 7.2e-3;
+            let s_c = creepages.longitudinal.hypot(eta_c);
+            assert!((outputs.slip_velocity / (s_c * creepages.reference_speed) - 1.0).abs() < 1e-14);
+            let friction = extension.friction(0.55, outputs.slip_velocity);
+            assert_eq!(outputs.current_friction_coefficient, friction);
+            assert!(friction < 0.5 && friction > 0.4 * 0.55, "friction falls with slip: {friction}");
+            let model = Polach {
+                large_creepage: Some(LargeCreepage::new(extension, creepages.reference_speed).unwrap()),
+                ..Polach::default()
+            };
+            let input = ContactInput {
+                creepage_longitudinal: creepages.longitudinal,
+                creepage_lateral: creepages.lateral,
+                spin_creepage: creepages.spin,
+                ..contact_input(&values)
+            };
+            let expected = model.creep_forces(&input).unwrap();
+            assert_eq!(outputs.force_longitudinal, expected.force_longitudinal);
+            assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation);
+            // The utilisation is against μ(w)Q: the FMU's μ(w) is the model's to rounding.
+            let magnitude = expected.force_longitudinal.hypot(expected.force_lateral);
+            let model_friction = magnitude / expected.adhesion_utilisation / 100e3;
+            assert!((model_friction / friction - 1.0).abs() < 1e-14, "{model_friction} vs {friction}");
+        }
+    }
+
+    /// The relaxed forces start at the steady state, follow the core's exact update over each
+    /// step, give the same result for one step of h as for two of h/2, and are kept per evaluation.
+    #[test]
+    fn relaxation_advances_the_state_exactly() {
+        let mut values = rich_scene();
+        values.parameters.creep_relaxation = on();
+        let mut cache = ModelCache::default();
+        let mut state = RelaxedForces::default();
+        let initial = compute_outputs(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap();
+        let steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
+        assert_eq!(state, [steady.force_longitudinal, steady.force_lateral]);
+        assert_eq!(
+            (initial.force_longitudinal, initial.adhesion_utilisation),
+            (steady.force_longitudinal, steady.adhesion_utilisation)
+        );
+        // A creepage step: the force relaxes towards the new steady state.
+        let before = state;
+        values.inputs.creepage_longitudinal = 3e-3;
+        let new_steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
+        let lengths = RelaxationLengths::from_contact(7.2e-3, 5.4e-3, 0.28).unwrap();
+        let mut one_step = before;
+        let after = compute_outputs(&values, &mut cache, &mut one_step, Evaluation::Step(4e-4)).unwrap();
+        let steady_forces = [new_steady.force_longitudinal, new_steady.force_lateral];
+        assert_eq!(one_step, lengths.advance(before, steady_forces, 20.0, 4e-4).unwrap());
+        assert_eq!([after.force_longitudinal, after.force_lateral], one_step);
+        // 63 % of the way after travelling L_x (L_x/V = 0.64 ms here: 4e-4 s is 8 mm of 12.8 mm).
+        let progress = (one_step[0] - before[0]) / (steady_forces[0] - before[0]);
+        assert!((progress - (1.0 - (-20.0 * 4e-4 / lengths.longitudinal).exp())).abs() < 1e-12, "{progress}");
+        let mut two_steps = before;
+        compute_outputs(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
+        compute_outputs(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
+        for (one, two) in one_step.iter().zip(two_steps) {
+            assert!((one - two).abs() <= 1e-12 * one.abs(), "{one_step:?} vs {two_steps:?}");
+        }
+        let magnitude = one_step[0].hypot(one_step[1]);
+        assert!((after.adhesion_utilisation - magnitude / (0.3 * 100e3)).abs() < 1e-15);
+        // A given length is used in both directions; lift-off clears the state.
+        values.parameters.relaxation_length = 0.05;
+        let mut state = before;
+        compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
+        let uniform = RelaxationLengths::uniform(0.05).unwrap();
+        assert_eq!(state, uniform.advance(before, steady_forces, 20.0, 1e-3).unwrap());
+        values.inputs.normal_force = 0.0;
+        let lifted = compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
+        assert_eq!((state, lifted.force_longitudinal, lifted.adhesion_utilisation), ([0.0; 2], 0.0, 0.0));
+    }
+
+    #[test]
+    fn the_plan_is_rebuilt_when_a_parameter_changes() {
+        let mut values = Values::default();
+        values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
+        let mut cache = ModelCache::default();
+        let mut state = RelaxedForces::default();
+        let mut evaluate = |values: &Values| compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3));
+        let before = evaluate(&values).unwrap();
+        values.parameters.measured_peak_adhesion = 0.36;
+        let after = evaluate(&values).unwrap();
+        assert_ne!(before, after);
+        assert_eq!(after, outputs(&values));
+        values.parameters.measured_peak_adhesion = 0.29;
+        let message = evaluate(&values).unwrap_err();
+        assert!(message.starts_with("measured_peak_adhesion = 0.29 is invalid"), "{message}");
+        values.parameters.model = Model::KalkerLinear as i32;
+        values.parameters.stiffness_source = StiffnessChoice::Kalker as i32;
+        assert_eq!(evaluate(&values).unwrap(), outputs(&values));
+    }
+
+    /// `<ModelStructure>` declares each output to depend on the inputs that can change it under
+    /// some choice of model and options: perturbing a declared input changes the output in at
+    /// least one of the scenes below, perturbing an undeclared one in none.
+    #[test]
+    fn declared_output_dependencies_are_the_true_ones() {
+        type Configure = fn(&mut Parameters);
+        let scenes: [(Configure, Evaluation); 9] = [
+            (|_| {}, Evaluation::Initialise),
+            (|p| p.hertz_contact = on(), Evaluation::Initialise),
+            (|p| p.creepages_from_kinematics = on(), Evaluation::Initialise),
+            (|p| p.traction_law = TractionLaw::Polach2005Dry as i32, Evaluation::Initialise),
+            (|p| p.creep_relaxation = on(), Evaluation::Step(1e-4)),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    (p.fastsim_strips, p.fastsim_elements) = (6, 6);
+                },
+                Evaluation::Initialise,
+            ),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    (p.fastsim_strips, p.fastsim_elements) = (6, 6);
+                    p.creepages_from_kinematics = on();
+                },
+                Evaluation::Initialise,
+            ),
+            (
+                |p| {
+                    p.model = Model::KalkerLinear as i32;
+                    (p.hertz_contact, p.creepages_from_kinematics, p.creep_relaxation) = (on(), on(), on());
+                },
+                Evaluation::Step(1e-4),
+            ),
+            (
+                |p| {
+                    p.traction_law = TractionLaw::Polach2005Wet as i32;
+                    (p.hertz_contact, p.creepages_from_kinematics, p.creep_relaxation) = (on(), on(), on());
+                },
+                Evaluation::Step(1e-4),
+            ),
+        ];
+        let run = |values: &Values, evaluation| {
+            let mut state = [-2e3, 1e3];
+            let outputs = compute_outputs(values, &mut ModelCache::default(), &mut state, evaluation).unwrap();
+            Values { outputs, ..*values }
+        };
+        let inputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Input).collect();
+        let outputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Output).collect();
+        let mut changed = vec![vec![false; inputs.len()]; outputs.len()];
+        for (configure, evaluation) in scenes {
+            let mut base = rich_scene();
+            configure(&mut base.parameters);
+            let reference = run(&base, evaluation);
+            for (i, input) in inputs.iter().enumerate() {
+                let mut perturbed = base;
+                let value = perturbed.real_mut(input.value_reference).unwrap();
+                *value = *value * 1.01 + 1e-5;
+                let result = run(&perturbed, evaluation);
+                for (o, output) in outputs.iter().enumerate() {
+                    changed[o][i] |= result.real(output.value_reference) != reference.real(output.value_reference);
+                }
+            }
+        }
+        for (o, output) in outputs.iter().enumerate() {
+            for (i, input) in inputs.iter().enumerate() {
+                let declared = output.dependencies.contains(&input.value_reference);
+                assert_eq!(changed[o][i], declared, "{} on {}", output.name, input.name);
+            }
+        }
+        assert_eq!(outputs.iter().find(|o| o.value_reference == vr::APPROACH).unwrap().dependencies.len(), 2);
+    }
+}
