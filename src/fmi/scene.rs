@@ -436,14 +436,11 @@ fn relax_forces(
         return Ok((CreepForces { spin_moment: steady.spin_moment, ..CreepForces::default() }, [0.0; 2]));
     }
     let steady_forces = [steady.force_longitudinal, steady.force_lateral];
+    // Checked at initialisation too, so that a bad length is reported at ExitInitializationMode.
+    let lengths = relaxation_lengths(contact, relaxation_length)?;
     let relaxed = match evaluation {
         Evaluation::Initialise => steady_forces,
-        Evaluation::Step(step) => relaxation_lengths(contact, relaxation_length)?.advance(
-            relaxed_forces,
-            steady_forces,
-            rolling_speed,
-            step,
-        )?,
+        Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, rolling_speed, step)?,
     };
     let friction_limit = contact.normal_force * friction;
     Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
