@@ -100,13 +100,15 @@ def test_every_model_equals_the_core(new_slave, model_description, model, option
 ])
 def test_polach_2005_equals_the_core_and_friction_falls_with_slip(new_slave, model_description, law, mu0, user):
     rows = [{"creepage_longitudinal": xi, "rolling_speed": speed, "friction_coefficient": mu0, "spin_creepage": 0.2}
-            for xi, speed in [(1e-3, 30.0), (5e-3, 30.0), (2e-2, 30.0), (0.1, 30.0), (0.1, -5.0), (0.3, 10.0)]]
+            for xi, speed in [(1e-3, 30.0), (5e-3, 30.0), (2e-2, 30.0), (0.1, 30.0), (0.3, 30.0), (0.1, -5.0)]]
     results, reference = run(new_slave, model_description, {"traction_law": law, **user}, rows, [1e-3] * 5)
     assert_equal_to_core(results, reference)
     friction = [r["current_friction_coefficient"] for r in results]
-    assert friction[0] < mu0 and all(a > b for a, b in zip(friction[:4], friction[1:4])), friction
-    # Beyond the peak the force falls (Polach 2005's point): |F_x| at 10 % slip < at 2 %.
-    assert abs(results[3]["force_longitudinal"]) < abs(results[2]["force_longitudinal"])
+    assert friction[0] < mu0 and all(a > b for a, b in zip(friction[:5], friction[1:5])), friction
+    # Beyond the peak the force falls (Polach 2005's point): |F_x| at 30 % slip < at 10 %.
+    assert abs(results[4]["force_longitudinal"]) < abs(results[3]["force_longitudinal"])
+    # The slower wheel slips less at the same creepage: more friction.
+    assert friction[5] > friction[3]
 
 
 def test_polach_2005_requires_model_polach(new_slave, model_description):
@@ -243,4 +245,6 @@ def test_simulate_fmu_with_kinematics_and_relaxation(fmu_path, model_description
     for row, core in zip(result, expected):
         for name in OUTPUTS:
             assert math.isclose(row[name], core[name], rel_tol=1e-12, abs_tol=0.0), (row["time"], name)
-    assert result["force_longitudinal"].max() > 1e3, "the braking wheel sees a traction-opposing force"
+    # A braking wheel (ωr < V: ξ > 0) gets F_x < 0, built up over the relaxation length.
+    forces = result["force_longitudinal"]
+    assert forces.min() < -3e4 and forces[2] > forces.min(), forces
