@@ -591,88 +591,28 @@ mod tests {
 
     #[test]
     fn invalid_parameters_are_named_with_their_value() {
+        use Model::{Exact, Fastsim as FastsimModel, KalkerLinear as Linear, Polach as PolachModel};
+        use TractionLaw::{Coulomb, Polach2005Dry as Dry, Polach2005User as User};
         type Change = fn(&mut Parameters);
-        let cases: [(Change, &str); 14] = [
-            (|p| p.model = 9, "model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
-            (|p| p.stiffness_source = 7, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)"),
-            (|p| p.hertz_contact = 2, "hertz_contact = 2 is invalid: must be one of 0 (off), 1 (on)"),
-            (
-                |p| {
-                    p.traction_law = TractionLaw::Polach2005User as i32;
-                    p.adhesion_reduction_factor = 0.0;
-                },
-                "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]",
-            ),
-            (
-                |p| {
-                    p.traction_law = TractionLaw::Polach2005User as i32;
-                    p.slip_reduction_factor = 1.5;
-                },
-                "slip_reduction_factor = 1.5 is invalid: k_S must lie in (0, k_A]",
-            ),
-            (
-                |p| {
-                    p.traction_law = TractionLaw::Polach2005User as i32;
-                    p.friction_decay_rate = f64::NAN;
-                },
-                "friction_decay_rate = NaN is invalid: B must be finite and >= 0 [s/m]",
-            ),
-            (
-                |p| {
-                    p.traction_law = TractionLaw::Polach2005Dry as i32;
-                    p.model = Model::Fastsim as i32;
-                },
-                "traction_law = 2 is invalid: Polach 2005 needs model = 1 (polach), not model = 4 (fastsim)",
-            ),
-            (
-                |p| {
-                    p.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
-                    p.model = Model::KalkerLinear as i32;
-                },
-                "stiffness_source = 2 is invalid: a measured curve needs model = 1 (polach), not model = 2 (kalker_linear)",
-            ),
-            (
-                |p| {
-                    p.model = Model::Fastsim as i32;
-                    p.fastsim_strips = 0;
-                },
-                "fastsim_strips = 0 is invalid: must be an integer in 1..=10000",
-            ),
-            (
-                |p| {
-                    p.model = Model::Fastsim as i32;
-                    p.fastsim_elements = -3;
-                },
-                "fastsim_elements = -3 is invalid: must be an integer in 1..=10000",
-            ),
-            (
-                |p| {
-                    p.model = Model::Fastsim as i32;
-                    p.fastsim_flexibility = 0;
-                },
-                "fastsim_flexibility = 0 is invalid: must be one of 1 (three_blended), 2 (three), 3 (single_weighted)",
-            ),
-            (
-                |p| {
-                    p.model = Model::Exact as i32;
-                    p.exact_elements_longitudinal = 0;
-                },
-                "exact_elements_longitudinal = 0 is invalid: must lie in [1, 200]",
-            ),
-            (
-                |p| {
-                    p.model = Model::Exact as i32;
-                    p.exact_elements_lateral = 201;
-                },
-                "exact_elements_lateral = 201 is invalid: must lie in [1, 200]",
-            ),
-            (
-                |p| p.creepages_from_kinematics = -1,
-                "creepages_from_kinematics = -1 is invalid: must be one of 0 (off), 1 (on)",
-            ),
+        let cases: [(Model, TractionLaw, Change, &str); 14] = [
+            (PolachModel, Coulomb, |p| p.model = 9, "model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
+            (PolachModel, Coulomb, |p| p.stiffness_source = 7, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)"),
+            (PolachModel, Coulomb, |p| p.hertz_contact = 2, "hertz_contact = 2 is invalid: must be one of 0 (off), 1 (on)"),
+            (PolachModel, Coulomb, |p| p.creepages_from_kinematics = -1, "creepages_from_kinematics = -1 is invalid: must be one of 0 (off), 1 (on)"),
+            (PolachModel, User, |p| p.adhesion_reduction_factor = 0.0, "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]"),
+            (PolachModel, User, |p| p.slip_reduction_factor = 1.5, "slip_reduction_factor = 1.5 is invalid: k_S must lie in (0, k_A]"),
+            (PolachModel, User, |p| p.friction_decay_rate = f64::NAN, "friction_decay_rate = NaN is invalid: B must be finite and >= 0 [s/m]"),
+            (FastsimModel, Dry, |_| {}, "traction_law = 2 is invalid: Polach 2005 needs model = 1 (polach), not model = 4 (fastsim)"),
+            (Linear, Coulomb, |p| p.stiffness_source = 2, "stiffness_source = 2 is invalid: a measured curve needs model = 1 (polach), not model = 2 (kalker_linear)"),
+            (FastsimModel, Coulomb, |p| p.fastsim_strips = 0, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
+            (FastsimModel, Coulomb, |p| p.fastsim_elements = -3, "fastsim_elements = -3 is invalid: must be an integer in 1..=10000"),
+            (FastsimModel, Coulomb, |p| p.fastsim_flexibility = 0, "fastsim_flexibility = 0 is invalid: must be one of 1 (three_blended), 2 (three), 3 (single_weighted)"),
+            (Exact, Coulomb, |p| p.exact_elements_longitudinal = 0, "exact_elements_longitudinal = 0 is invalid: must lie in [1, 200]"),
+            (Exact, Coulomb, |p| p.exact_elements_lateral = 201, "exact_elements_lateral = 201 is invalid: must lie in [1, 200]"),
         ];
-        for (change, expected) in cases {
+        for (model, law, change, expected) in cases {
             let mut values = Values::default();
+            (values.parameters.model, values.parameters.traction_law) = (model as i32, law as i32);
             change(&mut values.parameters);
             assert_eq!(outputs_of(&values).unwrap_err(), expected);
         }
