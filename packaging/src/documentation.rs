@@ -107,6 +107,130 @@ fn dependencies_text() -> String {
     html
 }
 
+/// The model choice and the scene options: what each does, its variables, equations and sources.
+const OPTIONS_HTML: &str = r#"<h2>Models (parameter <code>model</code>)</h2>
+<p>All models take the same inputs and give the same outputs; the one chosen is built once when the
+parameters are fixed (fmi2ExitInitializationMode) and again only if a parameter changes, so the models not
+chosen cost nothing per step. <code>model</code> and every option switch are <i>fixed</i> parameters: set them
+before fmi2ExitInitializationMode. Their validity is checked there (fmi2Error naming the variable and value);
+parameters of an option that is off, and of models not chosen, are not used and not checked.</p>
+<ul>
+<li><code>polach</code> (default): Polách's method, above. No spin moment: <code>spin_moment</code> = 0.</li>
+<li><code>kalker_linear</code>: Kalker's linear theory (Kalker 1967; 1990, Table E.3): F<sub>x</sub> = −G c² C11 ξ,
+F<sub>y</sub> = −G c² C22 η − G c³ C23 φ, M<sub>z</sub> = G c³ C23 η − G c⁴ C33 φ, c = √(ab). Not friction-limited
+(the theory's definition): the utilisation can exceed 1.</li>
+<li><code>shen_hedrick_elkins</code>: Shen, Hedrick &amp; Elkins (1983): the linear forces scaled so that their
+resultant follows F = μQ(β − β²/3 + β³/27), β = F′/(μQ) &lt; 3, else μQ. No spin moment: <code>spin_moment</code> = 0.</li>
+<li><code>fastsim</code>: Kalker's FASTSIM (VSD 11, 1982) on <code>fastsim_strips</code> × <code>fastsim_elements</code>
+(default 20 × 20, about 3 µs per step); <code>fastsim_traction_bound</code> parabolic (Kalker's choice, default) or
+elliptic (Hertz); <code>fastsim_flexibility</code> <code>three_blended</code> (default: L1 = 8a/(3G C11),
+L2 = 8a/(3G C22), L3 = πa√(a/b)/(4G C23) blended towards one combined flexibility as the creepage grows, as
+CONTACT's <code>simpflex</code> does), <code>three</code> (separately) or <code>single_weighted</code> (Kalker's
+single L). Gives M<sub>z</sub>. First-order in the grid: see docs/trade in the source repository for the error
+against the exact theory per grid.</li>
+<li><code>exact</code>: Kalker's exact theory of steady rolling (Kalker 1990; as in Vollebregt's CONTACT): Love's
+influence coefficients on a rectangular grid of <code>exact_elements_longitudinal</code> ×
+<code>exact_elements_lateral</code> elements over the potential contact area 2.2a × 2.2b, Hertzian pressure,
+Gauss–Seidel solution of the slip equations with Coulomb's law. Gives M<sub>z</sub>. <b>Slow: for offline or
+low-rate use.</b> The cost grows like the fifth power of the elements per axis: about 6 ms per step at the
+default 20 × 20 (≈ 18 × 18 elements inside the ellipse; forces within about 3 % of finer grids: on CONTACT's
+spin case F<sub>y</sub>/(μN) = −0.595 at 22 × 22, −0.610 at 44 × 44, −0.618 at 88 × 88), 0.26 s at CONTACT's
+published 44 × 44 (within 0.4 % of CONTACT), 4 s at 80 × 80. The default is 20 × 20 so that a
+scene switched to <code>exact</code> still runs at a usable rate; raise the grid for accuracy.</li>
+</ul>
+
+<h2>Option: Polach 2005 traction law (parameter <code>traction_law</code>)</h2>
+<p>Polách, “Creep forces in simulations of traction vehicles running on adhesion limit”, Wear 258 (2005)
+992–1000 (project errata E8). Friction falls with the slip velocity and the contact stiffness is reduced:</p>
+<pre>
+μ(w) = μ0 ((1 − A) e^(−B w) + A),      w = s_C · V_s                       (slip velocity)
+F    = (2 Q μ(w) / π) (k_A ε / (1 + (k_A ε)²) + arctan(k_S ε)),   ε with μ(w)
+</pre>
+<p>with 0 &lt; k_S ≤ k_A ≤ 1 and A = μ∞/μ0. <code>coulomb</code> (default) is the constant μ of the method above.
+Presets: <code>polach2005_dry</code> k_A = 1, k_S = 0.4, A = 0.4, B = 0.6 s/m; <code>polach2005_wet</code>
+k_A = 0.3, k_S = 0.1, A = 0.4, B = 0.2 s/m; <code>polach2005_user</code> takes
+<code>adhesion_reduction_factor</code> (k_A), <code>slip_reduction_factor</code> (k_S),
+<code>friction_limit_ratio</code> (A) and <code>friction_decay_rate</code> (B, s/m). <b>With Polach 2005 the input
+<code>friction_coefficient</code> is μ0</b>, the maximum friction at zero slip velocity; Polach recommends
+μ0 = 0.55 with the dry set and μ0 = 0.30 with the wet set (the FMU does not override the input). V<sub>s</sub> is
+|<code>rolling_speed</code>|, or D = √(V² + v_c²) when <code>creepages_from_kinematics</code> = on (then s_C·D is the
+slip velocity exactly, down to standstill). Outputs: <code>current_friction_coefficient</code> = μ(w),
+<code>slip_velocity</code> = w. Polach 2005 extends Polach's method only: with another <code>model</code> a
+Polach 2005 <code>traction_law</code> is rejected with fmi2Error (rather than silently ignored); so is
+<code>stiffness_source</code> = measured_curve.</p>
+
+<h2>Option: Hertz normal contact (parameter <code>hertz_contact</code>)</h2>
+<p>When on, the ellipse is Hertz's, from <code>normal_force</code> Q, the relative curvatures and E* = G/(1 − ν)
+(two bodies of one material: 1/E* = 2(1 − ν²)/E, E = 2G(1 + ν)); the inputs <code>semi_axis_a</code> and
+<code>semi_axis_b</code> are ignored. Curvatures: A = 1/(2r) in the rolling direction (r the input
+<code>wheel_rolling_radius</code>; the rail is straight along the track), B = (κ<sub>w</sub> + κ<sub>r</sub>)/2
+laterally from the parameters <code>wheel_profile_curvature</code> and <code>rail_profile_curvature</code> (signed:
+&gt; 0 convex, &lt; 0 concave, 0 straight such as a conical tread). B must be &gt; 0 (a convex gap). The exact
+elliptic-integral solution (Hertz 1882; Johnson, <i>Contact Mechanics</i>, 1985, ch. 3 and §4.2) with Carlson's
+symmetric integrals:</p>
+<pre>
+A = Q R_D(0, b², a²) / (2π E*),   B = Q R_D(0, a², b²) / (2π E*)      → a, b
+p0 = 3Q / (2π a b),               δ = 3Q R_F(0, a², b²) / (2π E*)
+</pre>
+<p>Outputs <code>contact_semi_axis_a</code>, <code>contact_semi_axis_b</code>, <code>max_pressure</code> p0 and
+<code>approach</code> δ. Q ≤ 0 (lift-off) gives zero forces and a = b = p0 = δ = 0 before any Hertz computation.
+When off, <code>contact_semi_axis_a/b</code> echo the inputs, <code>max_pressure</code> is p0 = 3Q/(2πab) of the
+given ellipse (0 for Q ≤ 0) and <code>approach</code> is 0 (it needs the curvatures). The start values (a conical
+920 mm wheel on a 300 mm rail crown at 100 kN) give a = 7.2 mm, b = 5.4 mm: the default scene.</p>
+
+<h2>Option: creepages from kinematics (parameter <code>creepages_from_kinematics</code>)</h2>
+<p>When on, the creepages come from the inputs <code>rolling_speed</code> V, <code>wheel_angular_speed</code> ω,
+<code>wheel_rolling_radius</code> r, <code>lateral_slip_velocity</code> v<sub>y</sub> and
+<code>spin_angular_velocity</code> ω<sub>z</sub>, and the creepage inputs are ignored:</p>
+<pre>
+ξ = (V − ω r) / D,   η = v_y / D,   φ = ω_z V / D²,     D = √(V² + v_c²)
+</pre>
+<p>Kalker's definitions (creepage = rigid slip velocity / rolling speed, signed so that the forces reverse with the
+direction of travel) with |V| replaced by the smooth D ≥ v_c (parameter <code>regularisation_speed</code>, default
+0.01 m/s): nothing divides by zero at V = 0 or ωr = 0, and the forces are bounded and continuous through
+standstill; for |V| ≫ v_c the creepages are Kalker's to a relative v_c²/(2V²). Below v_c the contact acts as a
+stiff damper; for low-speed transients switch on the relaxation. Outputs: <code>effective_creepage_longitudinal</code>,
+<code>effective_creepage_lateral</code>, <code>effective_spin_creepage</code> (the creepage inputs when off) and
+<code>slip_velocity</code>.</p>
+
+<h2>Option: creep relaxation (parameter <code>creep_relaxation</code>)</h2>
+<p>When on, <code>force_longitudinal</code> and <code>force_lateral</code> build up over a rolling distance
+(first-order relaxation-length model; Pacejka, <i>Tire and Vehicle Dynamics</i>; Knothe &amp; Gross-Thebing,
+VSD 15, 1986):</p>
+<pre>
+dF/dt = (|V| / L) (F_ss − F),     F(t + h) = F_ss + (F(t) − F_ss) e^(−|V| h / L)
+</pre>
+<p>F<sub>ss</sub> is the chosen model's steady-state force for the inputs set before the step and V the input
+<code>rolling_speed</code>, both held over the step (the co-simulation's zero-order hold), so the exact exponential
+update is used: stable for any step size, never overshooting, the same after one step of h as after n steps of
+h/n, frozen at V = 0. The relaxed forces are the FMU's state: set to the steady state at
+fmi2ExitInitializationMode, advanced by every fmi2DoStep, cleared by fmi2Reset, and set to zero at lift-off or
+μ = 0 (no contact, no elastic deformation). <code>relaxation_length</code> L = 0 (default) derives it from the
+contact: L<sub>x</sub> = √(ab) C11 (2 − ν)/4, L<sub>y</sub> = √(ab) C22 (2 − ν)/4 (Kalker's creep stiffness over
+Mindlin's tangential stiffness; ≈ 1.8a and 1.6a for a circle), else L is used for both directions.
+<code>adhesion_utilisation</code> is then that of the relaxed forces; <code>spin_moment</code> is the steady
+state's. After a sudden drop of μQ the relaxed force may exceed the new limit for about L/|V| (utilisation &gt; 1),
+as in any first-order relaxation model.</p>
+
+<h2>Which variables each option uses</h2>
+<table>
+<tr><th>option</th><th>inputs used</th><th>parameters used</th><th>outputs it sets</th></tr>
+<tr><td>every scene</td><td>normal_force, friction_coefficient, rolling_speed (checked finite; for slip_velocity)</td><td>shear_modulus, poisson_ratio, model</td><td>forces, utilisation, spin_moment</td></tr>
+<tr><td>creepages as inputs (default)</td><td>creepage_longitudinal, creepage_lateral, spin_creepage</td><td>—</td><td>effective_* echo them</td></tr>
+<tr><td>ellipse as input (default)</td><td>semi_axis_a, semi_axis_b</td><td>—</td><td>contact_semi_axis_a/b echo them, max_pressure</td></tr>
+<tr><td>model = polach</td><td>—</td><td>stiffness_source, measured_*</td><td>—</td></tr>
+<tr><td>model = fastsim</td><td>—</td><td>fastsim_strips, fastsim_elements, fastsim_traction_bound, fastsim_flexibility</td><td>spin_moment</td></tr>
+<tr><td>model = exact</td><td>—</td><td>exact_elements_longitudinal, exact_elements_lateral</td><td>spin_moment</td></tr>
+<tr><td>traction_law = polach2005_*</td><td>rolling_speed</td><td>traction_law (user: the four factors)</td><td>current_friction_coefficient, slip_velocity</td></tr>
+<tr><td>hertz_contact = on</td><td>wheel_rolling_radius (not semi_axis_a/b)</td><td>wheel_profile_curvature, rail_profile_curvature</td><td>contact_semi_axis_a/b, max_pressure, approach</td></tr>
+<tr><td>creepages_from_kinematics = on</td><td>rolling_speed, wheel_angular_speed, wheel_rolling_radius, lateral_slip_velocity, spin_angular_velocity (not the creepages)</td><td>regularisation_speed</td><td>effective_*, slip_velocity</td></tr>
+<tr><td>creep_relaxation = on</td><td>rolling_speed</td><td>relaxation_length</td><td>force_longitudinal, force_lateral (relaxed)</td></tr>
+</table>
+<p>&lt;ModelStructure&gt; lists, for each output, every input it depends on under some choice of model and options
+(FMI 2.0 asks for every dependency that can exist); a unit test perturbs each input under a set of scenes covering
+every option and model and checks the lists are exactly those. InitialUnknowns list the same inputs and every
+parameter that can change the output at initialization.</p>"#;
+
 const STYLE: &str = "body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.45}\
 table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:0.25em 0.5em;vertical-align:top}\
 pre{background:#f5f5f5;padding:0.5em}";
@@ -127,13 +251,17 @@ pub fn index_html() -> String {
 <h1>wheel_rail_contact: wheel–rail creep forces (FMI 2.0 Co-Simulation)</h1>
 
 <h2>What it computes</h2>
-<p>The tangential forces of one wheel–rail contact patch — the longitudinal creep force F<sub>x</sub>, the lateral
+<p>By default (every option off, <code>model</code> = polach), the tangential forces of one wheel–rail contact patch — the longitudinal creep force F<sub>x</sub>, the lateral
 creep force F<sub>y</sub> and the adhesion utilisation |F|/(μQ) — from the creepages ξ, η, the spin creepage φ,
 the normal force Q, the contact-ellipse semi-axes a (rolling direction) and b (lateral), the friction coefficient
 μ, and the material constants G and ν. The method is Polách's fast analytical solution (O. Polách, “Solution of
 wheel-rail contact forces suitable for calculation of rail vehicle dynamics”), with the contact stiffness either
-from Kalker's linear theory or fitted to a measured creep curve. The outputs are algebraic in the inputs: every
-fmi2DoStep computes them from the inputs set before the step, so any communication step size is exact.</p>
+from Kalker's linear theory or fitted to a measured creep curve. The parameter <code>model</code> selects another
+rung of the speed–accuracy ladder (Kalker's linear theory, Shen–Hedrick–Elkins, FASTSIM, Kalker's exact theory), and
+four options, each off by default, supply what a scene lacks: Polach's 2005 traction law, Hertz's contact ellipse,
+creepages from kinematics, creep relaxation (sections below). Without relaxation the outputs are algebraic in the
+inputs: every fmi2DoStep computes them from the inputs set before the step, so any communication step size is
+exact; with relaxation the exact exponential update keeps that property.</p>
 
 <h2>Sign convention and units</h2>
 <p>Kalker's and CONTACT's convention: x in the rolling direction, y lateral, z the contact normal into the wheel;
@@ -181,10 +309,12 @@ scene's <code>friction_coefficient</code> input still applies</b>: the fitted cu
 and μ scales the force level as in eq. (14); at μ = f_k the FMU reproduces the measured curve (peak F_max at
 s_max).</p>
 
+{options}
+
 <h2>Behaviour</h2>
 <ul>
 <li>Invalid values (NaN, ±Inf, a or b ≤ 0, μ &lt; 0, G ≤ 0, ν outside [0, 0.5], an impossible measured curve, an
-unknown stiffness_source) are reported where outputs are computed — fmi2ExitInitializationMode, fmi2DoStep, and
+unknown Enumeration value, an invalid option parameter) are reported where outputs are computed — fmi2ExitInitializationMode, fmi2DoStep, and
 fmi2GetReal of an output in initialization mode — as fmi2Error with a message naming the variable and its value.
 The instance keeps its state and last valid outputs; once the master sets a good value it continues.</li>
 <li>Calls outside the states the standard allows return fmi2Error and log “fmi2XXX: illegal call in state YYY”.</li>
@@ -202,6 +332,7 @@ be freed. Instances are independent; there is no global state.</li>
 </body></html>
 "#,
         table = variables_table(),
+        options = OPTIONS_HTML,
         dependencies = dependencies_text(),
         q = scene.normal_force / 1e3,
         a = scene.semi_axis_a * 1e3,

@@ -11,8 +11,8 @@ const USAGE: &str = "usage: cargo fmu [COMMAND]
   package    build the release library and write target/fmu/wheel_rail_contact.fmu
   scene      run the default scene (a creepage sweep) through target/fmu/wheel_rail_contact.fmu:
              prints a table, writes target/fmu/default_scene.csv and .svg
-  reference  read CSV of inputs (header: the nine ContactInput names) on stdin, write the core
-             library's forces as CSV on stdout";
+  reference  read CSV of FMU inputs and parameters (header: their names; optional step_size for
+             creep relaxation) on stdin, write the core library's outputs as CSV on stdout";
 
 fn out_dir() -> PathBuf {
     workspace_root().join("target").join("fmu")
@@ -44,7 +44,7 @@ fn main() -> ExitCode {
         "all" => run_package().and_then(|()| run_scene()),
         "package" => run_package(),
         "scene" => run_scene(),
-        "reference" => reference::forces_csv(std::io::stdin().lock(), std::io::stdout().lock()),
+        "reference" => reference::outputs_csv(std::io::stdin().lock(), std::io::stdout().lock()),
         _ => Err(USAGE.to_owned()),
     };
     match result {

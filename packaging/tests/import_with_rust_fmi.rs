@@ -27,7 +27,10 @@ fn rust_fmi_imports_the_fmu_and_runs_scenes_equal_to_the_core() {
     let names: Vec<&str> = description.model_variables.variables.iter().map(|v| v.name.as_str()).collect();
     assert_eq!(names, VARIABLES.iter().map(|v| v.name).collect::<Vec<_>>());
     let outputs = description.model_variables.variables.iter().filter(|v| v.causality == Causality::Output).count();
-    assert_eq!(outputs, 3);
+    assert_eq!(
+        outputs, 13,
+        "forces, utilisation, spin moment, friction, slip velocity, 3 creepages, a, b, p0, approach"
+    );
 
     // The default scene's creepage sweep (the README's first command).
     let rows = sweep(&fmu, &default_creepages()).unwrap();

@@ -16,7 +16,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use super::model_description::{self, variable, Causality, Kind, Values, Variability, LOG_CATEGORIES};
-use super::scene::{compute_outputs, MeasuredCurveFit};
+use super::scene::{compute_outputs, Evaluation, ModelCache, RelaxedForces};
 
 /// What an FMI call returns (`fmi2Status` without `fmi2Pending`: every call is synchronous).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -127,7 +127,10 @@ pub struct Instance {
     values: Values,
     time: f64,
     stop_time: Option<f64>,
-    measured_curve: MeasuredCurveFit,
+    /// The model the parameters select, built when they change (derived data, not FMU state).
+    model: ModelCache,
+    /// The FMU's one state: the relaxed creep forces [F_x, F_y] [N] (creep_relaxation = on).
+    relaxed_forces: RelaxedForces,
     log_filter: LogFilter,
     sink: Box<dyn LogSink>,
 }
@@ -169,7 +172,8 @@ impl Instance {
             values: Values::default(),
             time: 0.0,
             stop_time: None,
-            measured_curve: MeasuredCurveFit::default(),
+            model: ModelCache::default(),
+            relaxed_forces: RelaxedForces::default(),
             log_filter: LogFilter { debug_logging: logging_on, categories: None },
             sink,
         };
@@ -307,7 +311,7 @@ impl Instance {
             return status;
         }
         self.trace(|| CALL.to_owned());
-        if let Err(status) = self.update_outputs(CALL) {
+        if let Err(status) = self.update_outputs(CALL, Evaluation::Initialise) {
             return status;
         }
         self.state = StepComplete;
@@ -334,13 +338,14 @@ impl Instance {
         self.values = Values::default();
         self.time = 0.0;
         self.stop_time = None;
-        self.measured_curve = MeasuredCurveFit::default();
+        self.model = ModelCache::default();
+        self.relaxed_forces = RelaxedForces::default();
         self.state = Instantiated;
         Status::Ok
     }
 
-    fn update_outputs(&mut self, call: &str) -> Result<(), Status> {
-        match compute_outputs(&self.values, &mut self.measured_curve) {
+    fn update_outputs(&mut self, call: &str, evaluation: Evaluation) -> Result<(), Status> {
+        match compute_outputs(&self.values, &mut self.model, &mut self.relaxed_forces, evaluation) {
             Ok(outputs) => {
                 self.values.outputs = outputs;
                 Ok(())
@@ -400,7 +405,7 @@ impl Instance {
         let reads_output =
             || value_references.iter().any(|&r| variable(r).is_some_and(|v| v.causality == Causality::Output));
         if self.state == InitializationMode && reads_output() {
-            self.update_outputs(call)?;
+            self.update_outputs(call, Evaluation::Initialise)?;
         }
         Ok(())
     }
@@ -491,7 +496,7 @@ impl Instance {
         if let Some(stop) = self.stop_time.filter(|stop| end > stop + tolerance) {
             return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
         }
-        if let Err(status) = self.update_outputs(CALL) {
+        if let Err(status) = self.update_outputs(CALL, Evaluation::Step(h)) {
             return status;
         }
         self.time = end;

@@ -1,42 +1,333 @@
-//! One scene: the instance's values → the core's input and model → the outputs.
+//! One scene: the instance's values → the options a scene switches on → the core's model → the
+//! outputs.
+//!
+//! Per evaluation, in order (each option only when its parameter is `on`; an option that is off
+//! costs a branch and nothing else, and its inputs and parameters are not checked):
+//! 1. creepages: the inputs, or from the kinematics ([`crate::scene::kinematics`]);
+//! 2. contact ellipse: the inputs, or Hertz's ([`crate::scene::hertz`]; Q ≤ 0 is lift-off and
+//!    gives zero forces before any Hertz computation);
+//! 3. forces: the model the parameters select ([`ModelChoice`]), built once by [`ModelCache`]
+//!    when the parameters change, with Polach's 2005 traction law applied at this step's speed;
+//! 4. relaxation ([`crate::scene::relaxation`]): the relaxed forces, the instance's only state,
+//!    advanced exactly over the step from the steady-state forces of step 3.
 //!
 //! Inputs and parameters are destructured without `..` (unused fields bound to `_` explicitly)
-//! and the outputs are built with a struct literal, so a variable added to or removed from `modelDescription.xml` stops the build here
-//! until it is mapped.
+//! and the outputs are built with a struct literal, so a variable added to or removed from
+//! `modelDescription.xml` stops the build here until it is mapped.
 
-use super::model_description::{Inputs, Outputs, Parameters, StiffnessSource as StiffnessChoice, Values};
-use crate::{ContactInput, CreepForceModel, MeasuredCurve, MeasuredCurveError, Polach, StiffnessSource};
+use std::f64::consts::PI;
 
-/// The measured curve fitted to the last parameter values it was asked for: the fit (a root
-/// search) runs once when the parameters are first needed (ExitInitializationMode) and again
-/// only when they change, not at every step.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct MeasuredCurveFit {
-    fitted: Option<([u64; 3], Result<MeasuredCurve, MeasuredCurveError>)>,
+use super::model_description::{
+    Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters, StiffnessSource as StiffnessChoice, Switch,
+    TractionBound as TractionBoundChoice, TractionLaw, Values,
+};
+use crate::numerics::magnitude;
+use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use crate::scene::kinematics::WheelKinematics;
+use crate::scene::relaxation::RelaxationLengths;
+use crate::{
+    ContactInput, CreepForceModel, CreepForces, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear,
+    LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
+};
+
+/// The relaxed forces [F_x, F_y] [N]: the FMU's one state (used when `creep_relaxation = on`),
+/// in the layout of [`RelaxationLengths::advance`].
+pub type RelaxedForces = [f64; 2];
+
+/// What an evaluation is for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Evaluation {
+    /// Initialization mode (ExitInitializationMode, GetReal of an output): the relaxed forces
+    /// start at the steady state.
+    Initialise,
+    /// fmi2DoStep of this size [s] (> 0): the relaxed forces advance over it.
+    Step(f64),
 }
 
-impl MeasuredCurveFit {
-    fn get(
-        &mut self,
-        peak_adhesion: f64,
-        creepage_at_peak: f64,
-        kinetic_friction: f64,
-    ) -> Result<MeasuredCurve, MeasuredCurveError> {
-        // Compared bit for bit, so that a NaN parameter never matches and is always reported.
-        let key = [peak_adhesion.to_bits(), creepage_at_peak.to_bits(), kinetic_friction.to_bits()];
-        match self.fitted {
-            Some((fitted_key, result)) if fitted_key == key => result,
+/// What the parameters select, validated: the model and the options that are on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Plan {
+    model: ModelChoice,
+    /// Polach 2005 (only with model = polach); the rolling speed is applied per evaluation.
+    traction: Option<Polach2005>,
+    hertz_contact: bool,
+    creepages_from_kinematics: bool,
+    creep_relaxation: bool,
+}
+
+/// The plan for the last parameter values it was asked for: built (the measured-curve fit, FASTSIM's
+/// load normalisation, every check of the parameters) once when the parameters are first needed
+/// and again only when one changes, not at every step. Derived from the parameters alone, so it
+/// is not part of the FMU's state.
+#[derive(Debug, Clone, Default)]
+pub struct ModelCache {
+    built: Option<(Parameters, Result<Plan, String>)>,
+}
+
+impl ModelCache {
+    fn plan(&mut self, parameters: &Parameters) -> Result<Plan, String> {
+        // A NaN parameter never equals itself, so it is rebuilt and reported every time.
+        match &self.built {
+            Some((built_for, plan)) if built_for == parameters => plan.clone(),
             _ => {
-                let result = MeasuredCurve::from_peak(peak_adhesion, creepage_at_peak, kinetic_friction);
-                self.fitted = Some((key, result));
-                result
+                let plan = build_plan(parameters);
+                self.built = Some((*parameters, plan.clone()));
+                plan
             }
         }
     }
 }
 
-/// The core's input for the instance's values.
-pub fn contact_input(values: &Values) -> ContactInput {
+/// "name = value is invalid: must be one of 1 (a), 2 (b)".
+fn enumeration<T>(
+    name: &str,
+    value: i32,
+    from_value: fn(i32) -> Option<T>,
+    items: &[(&str, i32, &str)],
+) -> Result<T, String> {
+    from_value(value).ok_or_else(|| {
+        let items: Vec<String> = items.iter().map(|(item, value, _)| format!("{value} ({item})")).collect();
+        format!("{name} = {value} is invalid: must be one of {}", items.join(", "))
+    })
+}
+
+fn switch(name: &str, value: i32) -> Result<bool, String> {
+    enumeration(name, value, Switch::from_value, Switch::ITEMS).map(|switch| switch == Switch::On)
+}
+
+/// An Integer parameter as a count: a negative value becomes 0, which every count rejects, and
+/// [`reported`] puts the original value back into the message.
+fn count(value: i32) -> usize {
+    usize::try_from(value).unwrap_or(0)
+}
+
+/// The core's error for one of `counts`, renamed to the FMU's variable and with its value.
+fn reported(error: InvalidInput, counts: &[(&'static str, &'static str, i32)]) -> String {
+    match counts.iter().find(|(core_name, _, _)| *core_name == error.variable) {
+        Some(&(_, variable, value)) => InvalidInput { variable, value: value as f64, ..error }.to_string(),
+        None => error.to_string(),
+    }
+}
+
+fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
+    let Parameters {
+        shear_modulus: _,
+        poisson_ratio: _,
+        stiffness_source,
+        measured_peak_adhesion,
+        measured_creepage_at_peak,
+        measured_kinetic_friction,
+        model,
+        fastsim_strips,
+        fastsim_elements,
+        fastsim_traction_bound,
+        fastsim_flexibility,
+        exact_elements_longitudinal,
+        exact_elements_lateral,
+        traction_law,
+        adhesion_reduction_factor,
+        slip_reduction_factor,
+        friction_limit_ratio,
+        friction_decay_rate,
+        hertz_contact,
+        wheel_profile_curvature: _,
+        rail_profile_curvature: _,
+        creepages_from_kinematics,
+        regularisation_speed: _,
+        creep_relaxation,
+        relaxation_length: _,
+    } = *parameters;
+    let selected = enumeration("model", model, Model::from_value, Model::ITEMS)?;
+    let stiffness =
+        match enumeration("stiffness_source", stiffness_source, StiffnessChoice::from_value, StiffnessChoice::ITEMS)? {
+            StiffnessChoice::Kalker => StiffnessSource::Kalker,
+            StiffnessChoice::MeasuredCurve => {
+                MeasuredCurve::from_peak(measured_peak_adhesion, measured_creepage_at_peak, measured_kinetic_friction)
+                    .map(StiffnessSource::MeasuredCurve)
+                    .map_err(|e| e.to_string())?
+            }
+        };
+    let traction = match enumeration("traction_law", traction_law, TractionLaw::from_value, TractionLaw::ITEMS)? {
+        TractionLaw::Coulomb => None,
+        TractionLaw::Polach2005Dry => Some(Polach2005::DRY),
+        TractionLaw::Polach2005Wet => Some(Polach2005::WET),
+        TractionLaw::Polach2005User => Some(
+            Polach2005::new(
+                adhesion_reduction_factor,
+                slip_reduction_factor,
+                friction_limit_ratio,
+                friction_decay_rate,
+            )
+            .map_err(|e| e.to_string())?,
+        ),
+    };
+    // Both are Polach's: rejected rather than silently ignored with another model.
+    if selected != Model::Polach {
+        let name = Model::ITEMS.iter().find(|(_, value, _)| *value == model).map_or("?", |(name, _, _)| name);
+        let model_text = format!("model = {model} ({name})");
+        if traction.is_some() {
+            return Err(format!(
+                "traction_law = {traction_law} is invalid: Polach 2005 needs model = 1 (polach), not {model_text}"
+            ));
+        }
+        if stiffness != StiffnessSource::Kalker {
+            return Err(format!(
+                "stiffness_source = {stiffness_source} is invalid: a measured curve needs model = 1 (polach), not {model_text}"
+            ));
+        }
+    }
+    let model = match selected {
+        Model::Polach => ModelChoice::Polach(Polach { stiffness, large_creepage: None }),
+        Model::KalkerLinear => ModelChoice::KalkerLinear(KalkerLinear),
+        Model::ShenHedrickElkins => ModelChoice::ShenHedrickElkins(ShenHedrickElkins),
+        Model::Fastsim => {
+            let bound = match enumeration(
+                "fastsim_traction_bound",
+                fastsim_traction_bound,
+                TractionBoundChoice::from_value,
+                TractionBoundChoice::ITEMS,
+            )? {
+                TractionBoundChoice::Parabolic => TractionBound::Parabolic,
+                TractionBoundChoice::Elliptic => TractionBound::Elliptic,
+            };
+            let flexibility = match enumeration(
+                "fastsim_flexibility",
+                fastsim_flexibility,
+                FlexibilityChoice::from_value,
+                FlexibilityChoice::ITEMS,
+            )? {
+                FlexibilityChoice::ThreeBlended => Flexibility::ThreeBlended,
+                FlexibilityChoice::Three => Flexibility::Three,
+                FlexibilityChoice::SingleWeighted => Flexibility::SingleWeighted,
+            };
+            let counts = [
+                ("fastsim_strips", "fastsim_strips", fastsim_strips),
+                ("fastsim_elements", "fastsim_elements", fastsim_elements),
+            ];
+            Fastsim::new(count(fastsim_strips), count(fastsim_elements), bound, flexibility)
+                .map(ModelChoice::Fastsim)
+                .map_err(|e| reported(e, &counts))?
+        }
+        Model::Exact => {
+            let exact = ExactTheory::new(count(exact_elements_longitudinal), count(exact_elements_lateral));
+            let counts = [
+                ("grid_elements_longitudinal", "exact_elements_longitudinal", exact_elements_longitudinal),
+                ("grid_elements_lateral", "exact_elements_lateral", exact_elements_lateral),
+            ];
+            exact.validate().map_err(|e| reported(e, &counts))?;
+            ModelChoice::Exact(exact)
+        }
+    };
+    Ok(Plan {
+        model,
+        traction,
+        hertz_contact: switch("hertz_contact", hertz_contact)?,
+        creepages_from_kinematics: switch("creepages_from_kinematics", creepages_from_kinematics)?,
+        creep_relaxation: switch("creep_relaxation", creep_relaxation)?,
+    })
+}
+
+/// The creepages the model uses and the speed that turns creepage into slip velocity.
+struct Creepages {
+    longitudinal: f64,
+    lateral: f64,
+    spin: f64,
+    /// |V|, or D = √(V² + v_c²) from the kinematics (ξ·D is then the slip velocity exactly).
+    speed: f64,
+}
+
+fn from_kinematics(kinematics: &WheelKinematics, regularisation_speed: f64) -> Result<Creepages, InvalidInput> {
+    let computed = kinematics.creepages(regularisation_speed)?;
+    Ok(Creepages {
+        longitudinal: computed.longitudinal,
+        lateral: computed.lateral,
+        spin: computed.spin,
+        speed: computed.reference_speed,
+    })
+}
+
+/// The relative curvatures from the FMU's signed profile curvatures (0 = straight), with errors
+/// named after the FMU's variables.
+fn relative_curvature(wheel_rolling_radius: f64, parameters: &Parameters) -> Result<RelativeCurvature, InvalidInput> {
+    let curvatures = [
+        ("wheel_profile_curvature", parameters.wheel_profile_curvature),
+        ("rail_profile_curvature", parameters.rail_profile_curvature),
+    ];
+    for (variable, value) in curvatures {
+        if !value.is_finite() {
+            return Err(InvalidInput::new(variable, value, "must be finite"));
+        }
+    }
+    // 1/0 = ∞: a straight profile, as `from_radii` takes it.
+    let [(_, wheel), (_, rail)] = curvatures;
+    RelativeCurvature::from_radii(wheel_rolling_radius, 1.0 / wheel, 1.0 / rail).map_err(|e| match e.variable {
+        "wheel_profile_radius" => InvalidInput { variable: "wheel_profile_curvature", value: wheel, ..e },
+        "rail_profile_radius" => InvalidInput { variable: "rail_profile_curvature", value: rail, ..e },
+        _ => e,
+    })
+}
+
+/// Hertz's ellipse for normal force Q > 0 (Johnson 1985, ch. 3 and §4.2; see
+/// [`crate::scene::hertz`]).
+fn hertz_ellipse(
+    normal_force: f64,
+    wheel_rolling_radius: f64,
+    parameters: &Parameters,
+) -> Result<HertzContact, InvalidInput> {
+    let curvature = relative_curvature(wheel_rolling_radius, parameters)?;
+    let modulus = contact_modulus(parameters.shear_modulus, parameters.poisson_ratio)?;
+    HertzContact::solve(normal_force, &curvature, modulus)
+}
+
+/// The given ellipse with Hertz's p0 = 3Q/(2πab) (0 for Q ≤ 0); no approach without curvatures.
+fn given_ellipse(normal_force: f64, semi_axis_a: f64, semi_axis_b: f64) -> HertzContact {
+    let max_pressure = if normal_force > 0.0 {
+        (3.0 * normal_force / (2.0 * PI * semi_axis_a) / semi_axis_b).min(f64::MAX)
+    } else {
+        0.0
+    };
+    HertzContact { semi_axis_a, semi_axis_b, max_pressure, approach: 0.0 }
+}
+
+/// Polach's resulting creepage s_C (eqs. 21, 22): spin counts towards the lateral creepage only
+/// where it enlarges it. The slip velocity of his 2005 friction law is s_C times the speed.
+fn resulting_creepage(creepages: &Creepages, semi_axis_a: f64) -> f64 {
+    let eta_with_spin = creepages.lateral + creepages.spin * semi_axis_a;
+    let lateral = if eta_with_spin.abs() > creepages.lateral.abs() { eta_with_spin } else { creepages.lateral };
+    magnitude(creepages.longitudinal, lateral)
+}
+
+/// The relaxation lengths: the parameter, or (0) the module's default from the contact.
+fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationLengths, InvalidInput> {
+    if length == 0.0 {
+        RelaxationLengths::from_contact(contact.semi_axis_a, contact.semi_axis_b, contact.poisson_ratio)
+    } else if length > 0.0 {
+        RelaxationLengths::uniform(length)
+    } else {
+        Err(InvalidInput::new("relaxation_length", length, "must be finite and >= 0 (0: derived from the contact)"))
+    }
+}
+
+/// The outputs for `values`, or the reason they cannot be computed (names the variable and
+/// value). `relaxed_forces` is read and, on success only, advanced (or initialised).
+pub(crate) fn compute_outputs(
+    values: &Values,
+    cache: &mut ModelCache,
+    relaxed_forces: &mut RelaxedForces,
+    evaluation: Evaluation,
+) -> Result<Outputs, String> {
+    let plan = cache.plan(&values.parameters)?;
+    let (outputs, relaxed) = evaluate(values, &plan, *relaxed_forces, evaluation).map_err(|e| e.to_string())?;
+    *relaxed_forces = relaxed;
+    Ok(outputs)
+}
+
+fn evaluate(
+    values: &Values,
+    plan: &Plan,
+    relaxed_forces: RelaxedForces,
+    evaluation: Evaluation,
+) -> Result<(Outputs, RelaxedForces), InvalidInput> {
     let Inputs {
         creepage_longitudinal,
         creepage_lateral,
@@ -45,62 +336,159 @@ pub fn contact_input(values: &Values) -> ContactInput {
         semi_axis_a,
         semi_axis_b,
         friction_coefficient,
+        rolling_speed,
+        wheel_angular_speed,
+        wheel_rolling_radius,
+        lateral_slip_velocity,
+        spin_angular_velocity,
     } = values.inputs;
-    ContactInput {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
+    let parameters = &values.parameters;
+    if !rolling_speed.is_finite() {
+        return Err(InvalidInput::new("rolling_speed", rolling_speed, "must be finite"));
+    }
+    let creepages = if plan.creepages_from_kinematics {
+        let kinematics = WheelKinematics {
+            rolling_speed,
+            wheel_angular_speed,
+            wheel_rolling_radius,
+            lateral_slip_velocity,
+            spin_angular_velocity,
+        };
+        from_kinematics(&kinematics, parameters.regularisation_speed)?
+    } else {
+        let speed = rolling_speed.abs();
+        Creepages { longitudinal: creepage_longitudinal, lateral: creepage_lateral, spin: spin_creepage, speed }
+    };
+    // Lift-off with Hertz on: no contact, zero forces, and nothing of Hertz's is computed.
+    let hertz_lift_off = plan.hertz_contact && normal_force <= 0.0;
+    let ellipse = if hertz_lift_off {
+        HertzContact { semi_axis_a: 0.0, semi_axis_b: 0.0, max_pressure: 0.0, approach: 0.0 }
+    } else if plan.hertz_contact {
+        hertz_ellipse(normal_force, wheel_rolling_radius, parameters)?
+    } else {
+        given_ellipse(normal_force, semi_axis_a, semi_axis_b)
+    };
+    let contact = ContactInput {
+        creepage_longitudinal: creepages.longitudinal,
+        creepage_lateral: creepages.lateral,
+        spin_creepage: creepages.spin,
         normal_force,
-        semi_axis_a,
-        semi_axis_b,
+        // After a Hertzian lift-off any valid ellipse will do: every model checks the other
+        // values and returns zero force for Q ≤ 0 before using the ellipse.
+        semi_axis_a: if hertz_lift_off { 1.0 } else { ellipse.semi_axis_a },
+        semi_axis_b: if hertz_lift_off { 1.0 } else { ellipse.semi_axis_b },
         friction_coefficient,
-        shear_modulus: values.parameters.shear_modulus,
-        poisson_ratio: values.parameters.poisson_ratio,
-    }
-}
-
-/// The stiffness source the parameters select (the measured curve fitted if needed).
-fn stiffness(parameters: &Parameters, fit: &mut MeasuredCurveFit) -> Result<StiffnessSource, String> {
-    let Parameters {
-        shear_modulus: _,
-        poisson_ratio: _,
-        stiffness_source,
-        measured_peak_adhesion,
-        measured_creepage_at_peak,
-        measured_kinetic_friction,
-    } = *parameters;
-    match StiffnessChoice::from_value(stiffness_source) {
-        Some(StiffnessChoice::Kalker) => Ok(StiffnessSource::Kalker),
-        Some(StiffnessChoice::MeasuredCurve) => fit
-            .get(measured_peak_adhesion, measured_creepage_at_peak, measured_kinetic_friction)
-            .map(StiffnessSource::MeasuredCurve)
-            .map_err(|e| e.to_string()),
-        None => {
-            let items: Vec<String> =
-                StiffnessChoice::ITEMS.iter().map(|(name, value, _)| format!("{value} ({name})")).collect();
-            Err(format!("stiffness_source = {stiffness_source} is invalid: must be one of {}", items.join(", ")))
+        shear_modulus: parameters.shear_modulus,
+        poisson_ratio: parameters.poisson_ratio,
+    };
+    let slip_velocity = resulting_creepage(&creepages, ellipse.semi_axis_a) * creepages.speed;
+    let (steady, friction) = match (plan.traction, plan.model) {
+        (Some(extension), ModelChoice::Polach(polach)) => {
+            let model = Polach { large_creepage: Some(LargeCreepage::new(extension, creepages.speed)?), ..polach };
+            (model.creep_forces(&contact)?, extension.friction(friction_coefficient, slip_velocity))
         }
-    }
-}
-
-/// The outputs for `values`, or the reason they cannot be computed (names the variable and value).
-pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Result<Outputs, String> {
-    let model = Polach { stiffness: stiffness(&values.parameters, fit)?, ..Polach::default() };
-    let forces = model.creep_forces(&contact_input(values)).map_err(|e| e.to_string())?;
-    Ok(Outputs {
+        _ => (plan.model.creep_forces(&contact)?, friction_coefficient),
+    };
+    let (forces, relaxed) = if plan.creep_relaxation {
+        relax_forces(
+            &contact,
+            &steady,
+            friction,
+            relaxed_forces,
+            rolling_speed,
+            parameters.relaxation_length,
+            evaluation,
+        )?
+    } else {
+        (steady, relaxed_forces)
+    };
+    let outputs = Outputs {
         force_longitudinal: forces.force_longitudinal,
         force_lateral: forces.force_lateral,
         adhesion_utilisation: forces.adhesion_utilisation,
-    })
+        spin_moment: forces.spin_moment.unwrap_or(0.0),
+        current_friction_coefficient: friction,
+        slip_velocity,
+        effective_creepage_longitudinal: creepages.longitudinal,
+        effective_creepage_lateral: creepages.lateral,
+        effective_spin_creepage: creepages.spin,
+        contact_semi_axis_a: ellipse.semi_axis_a,
+        contact_semi_axis_b: ellipse.semi_axis_b,
+        max_pressure: ellipse.max_pressure,
+        approach: ellipse.approach,
+    };
+    Ok((outputs, relaxed))
+}
+
+/// The relaxed forces at the end of this evaluation, and the output forces from them: F_x and
+/// F_y relaxed, M_z the steady state's, the utilisation against the friction `friction` applied.
+fn relax_forces(
+    contact: &ContactInput,
+    steady: &CreepForces,
+    friction: f64,
+    relaxed_forces: RelaxedForces,
+    rolling_speed: f64,
+    relaxation_length: f64,
+    evaluation: Evaluation,
+) -> Result<(CreepForces, RelaxedForces), InvalidInput> {
+    if contact.transmits_no_force() {
+        // Lift-off or no friction: the contact holds no elastic deformation to relax.
+        return Ok((CreepForces { spin_moment: steady.spin_moment, ..CreepForces::default() }, [0.0; 2]));
+    }
+    let steady_forces = [steady.force_longitudinal, steady.force_lateral];
+    // Checked at initialisation too, so that a bad length is reported at ExitInitializationMode.
+    let lengths = relaxation_lengths(contact, relaxation_length)?;
+    let relaxed = match evaluation {
+        Evaluation::Initialise => steady_forces,
+        Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, rolling_speed, step)?,
+    };
+    let friction_limit = contact.normal_force * friction;
+    Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
+}
+
+/// The core's input for the instance's values with every option off (the creepage and ellipse
+/// inputs as given): the default scene of the documentation.
+pub fn contact_input(values: &Values) -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: values.inputs.creepage_longitudinal,
+        creepage_lateral: values.inputs.creepage_lateral,
+        spin_creepage: values.inputs.spin_creepage,
+        normal_force: values.inputs.normal_force,
+        semi_axis_a: values.inputs.semi_axis_a,
+        semi_axis_b: values.inputs.semi_axis_b,
+        friction_coefficient: values.inputs.friction_coefficient,
+        shear_modulus: values.parameters.shear_modulus,
+        poisson_ratio: values.parameters.poisson_ratio,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::fmi::model_description::{value_reference as vr, Causality, VARIABLES};
+    use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 
-    fn default_outputs(values: &Values) -> Outputs {
-        compute_outputs(values, &mut MeasuredCurveFit::default()).unwrap()
+    fn outputs_of(values: &Values) -> Result<Outputs, String> {
+        compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)
+    }
+
+    fn outputs(values: &Values) -> Outputs {
+        outputs_of(values).unwrap()
+    }
+
+    fn on() -> i32 {
+        Switch::On as i32
+    }
+
+    /// A scene where every input matters: combined creepages with spin, and kinematics that give
+    /// similar creepages.
+    fn rich_scene() -> Values {
+        let mut values = Values::default();
+        values.inputs.creepage_lateral = 0.4e-3;
+        values.inputs.spin_creepage = 0.3;
+        values.inputs.lateral_slip_velocity = 0.008;
+        values.inputs.spin_angular_velocity = 6.0;
+        values
     }
 
     #[test]
@@ -117,77 +505,456 @@ mod tests {
             shear_modulus: 82e9,
             poisson_ratio: 0.28,
         };
+        assert_eq!(contact_input(&values), input);
         let expected = Polach::default().creep_forces(&input).unwrap();
-        let outputs = default_outputs(&values);
+        let outputs = outputs(&values);
         assert_eq!(outputs.force_longitudinal, expected.force_longitudinal);
         assert_eq!(outputs.force_lateral, 0.0);
         assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation);
+        assert_eq!(outputs.spin_moment, 0.0, "Polach has no spin moment");
         // A loaded wheel with a small creepage: braking force, partly saturated, well below μQ.
         assert!(outputs.force_longitudinal < -5e3 && outputs.adhesion_utilisation < 0.9, "{outputs:?}");
+        // The echoes: creepages and ellipse as given, p0 = 3Q/(2πab), μ as given, w = ξ|V|.
+        assert_eq!(outputs.effective_creepage_longitudinal, 1e-3);
+        assert_eq!((outputs.contact_semi_axis_a, outputs.contact_semi_axis_b), (7.2e-3, 5.4e-3));
+        assert_eq!(outputs.max_pressure, 3.0 * 100e3 / (2.0 * PI * 7.2e-3) / 5.4e-3);
+        assert_eq!((outputs.approach, outputs.current_friction_coefficient), (0.0, 0.3));
+        assert!((outputs.slip_velocity - 1e-3 * 20.0).abs() < 1e-18);
     }
 
-    /// `<ModelStructure>` declares every output to depend on exactly the inputs it lists: at a
-    /// scene where every input matters, perturbing a declared input changes the output and
-    /// perturbing anything else does not.
+    /// With every option off, the Polach path gives exactly the forces of the core's plain
+    /// `Polach::default()`, as before the options existed.
     #[test]
-    fn declared_output_dependencies_are_the_true_ones() {
-        let mut base = Values::default();
-        base.inputs.creepage_lateral = 0.4e-3;
-        base.inputs.spin_creepage = 0.3;
-        let reference = Values { outputs: default_outputs(&base), ..base };
-        let inputs = VARIABLES.iter().filter(|v| v.causality == Causality::Input);
-        for input in inputs {
-            let mut perturbed = base;
-            let value = perturbed.real_mut(input.value_reference).unwrap();
-            *value = *value * 1.01 + 1e-5;
-            let outputs = Values { outputs: default_outputs(&perturbed), ..perturbed };
-            for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
-                let changed = outputs.real(output.value_reference) != reference.real(output.value_reference);
-                let declared = output.dependencies.contains(&input.value_reference);
-                assert_eq!(changed, declared, "{} on {}", output.name, input.name);
+    fn polach_with_options_off_is_bit_identical_to_plain_polach() {
+        let mut cases = 0;
+        for xi in [-2e-2, -1e-3, 0.0, 3e-4, 5e-3] {
+            for eta in [-1e-3, 0.0, 2e-3] {
+                for phi in [-0.5, 0.0, 1.2] {
+                    for (q, a, b, mu) in
+                        [(100e3, 7.2e-3, 5.4e-3, 0.3), (40e3, 3e-3, 9e-3, 0.45), (-5.0, 7e-3, 5e-3, 0.3)]
+                    {
+                        let mut values = Values::default();
+                        let inputs = &mut values.inputs;
+                        (inputs.creepage_longitudinal, inputs.creepage_lateral, inputs.spin_creepage) = (xi, eta, phi);
+                        (inputs.normal_force, inputs.semi_axis_a, inputs.semi_axis_b) = (q, a, b);
+                        inputs.friction_coefficient = mu;
+                        let expected = Polach::default().creep_forces(&contact_input(&values)).unwrap();
+                        let outputs = outputs(&values);
+                        assert_eq!(outputs.force_longitudinal.to_bits(), expected.force_longitudinal.to_bits());
+                        assert_eq!(outputs.force_lateral.to_bits(), expected.force_lateral.to_bits());
+                        assert_eq!(outputs.adhesion_utilisation.to_bits(), expected.adhesion_utilisation.to_bits());
+                        cases += 1;
+                    }
+                }
             }
         }
+        assert_eq!(cases, 135);
+    }
+
+    /// Every `model` item evaluates the core's model with the grid and options of the parameters.
+    #[test]
+    fn every_model_is_the_cores_model() {
+        let mut values = rich_scene();
+        values.parameters.fastsim_strips = 7;
+        values.parameters.fastsim_elements = 9;
+        values.parameters.fastsim_traction_bound = TractionBoundChoice::Elliptic as i32;
+        values.parameters.fastsim_flexibility = FlexibilityChoice::SingleWeighted as i32;
+        values.parameters.exact_elements_longitudinal = 12;
+        values.parameters.exact_elements_lateral = 10;
+        let input = contact_input(&values);
+        let models = [
+            (Model::Polach, ModelChoice::Polach(Polach::default())),
+            (Model::KalkerLinear, ModelChoice::KalkerLinear(KalkerLinear)),
+            (Model::ShenHedrickElkins, ModelChoice::ShenHedrickElkins(ShenHedrickElkins)),
+            (
+                Model::Fastsim,
+                ModelChoice::Fastsim(Fastsim::new(7, 9, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap()),
+            ),
+            (Model::Exact, ModelChoice::Exact(ExactTheory::new(12, 10))),
+        ];
+        assert_eq!(models.len(), Model::ITEMS.len());
+        let mut spin_moments = Vec::new();
+        for (item, model) in models {
+            values.parameters.model = item as i32;
+            let expected = model.creep_forces(&input).unwrap();
+            let outputs = outputs(&values);
+            assert_eq!(outputs.force_longitudinal, expected.force_longitudinal, "{item:?}");
+            assert_eq!(outputs.force_lateral, expected.force_lateral, "{item:?}");
+            assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation, "{item:?}");
+            assert_eq!(outputs.spin_moment, expected.spin_moment.unwrap_or(0.0), "{item:?}");
+            spin_moments.push(outputs.spin_moment);
+        }
+        // Polach and SHE have none; the others do, and oppose the spin (φ > 0 → M_z < 0 here).
+        assert_eq!((spin_moments[0], spin_moments[2]), (0.0, 0.0));
+        assert!([1, 3, 4].iter().all(|&i| spin_moments[i] < 0.0), "{spin_moments:?}");
     }
 
     #[test]
-    fn invalid_values_are_named_with_their_value() {
+    fn invalid_parameters_are_named_with_their_value() {
+        use Model::{Exact, Fastsim as FastsimModel, KalkerLinear as Linear, Polach as PolachModel};
+        use TractionLaw::{Coulomb, Polach2005Dry as Dry, Polach2005User as User};
+        type Change = fn(&mut Parameters);
+        let cases: [(Model, TractionLaw, Change, &str); 14] = [
+            (PolachModel, Coulomb, |p| p.model = 9, "model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
+            (PolachModel, Coulomb, |p| p.stiffness_source = 7, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)"),
+            (PolachModel, Coulomb, |p| p.hertz_contact = 2, "hertz_contact = 2 is invalid: must be one of 0 (off), 1 (on)"),
+            (PolachModel, Coulomb, |p| p.creepages_from_kinematics = -1, "creepages_from_kinematics = -1 is invalid: must be one of 0 (off), 1 (on)"),
+            (PolachModel, User, |p| p.adhesion_reduction_factor = 0.0, "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]"),
+            (PolachModel, User, |p| p.slip_reduction_factor = 1.5, "slip_reduction_factor = 1.5 is invalid: k_S must lie in (0, k_A]"),
+            (PolachModel, User, |p| p.friction_decay_rate = f64::NAN, "friction_decay_rate = NaN is invalid: B must be finite and >= 0 [s/m]"),
+            (FastsimModel, Dry, |_| {}, "traction_law = 2 is invalid: Polach 2005 needs model = 1 (polach), not model = 4 (fastsim)"),
+            (Linear, Coulomb, |p| p.stiffness_source = 2, "stiffness_source = 2 is invalid: a measured curve needs model = 1 (polach), not model = 2 (kalker_linear)"),
+            (FastsimModel, Coulomb, |p| p.fastsim_strips = 0, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
+            (FastsimModel, Coulomb, |p| p.fastsim_elements = -3, "fastsim_elements = -3 is invalid: must be an integer in 1..=10000"),
+            (FastsimModel, Coulomb, |p| p.fastsim_flexibility = 0, "fastsim_flexibility = 0 is invalid: must be one of 1 (three_blended), 2 (three), 3 (single_weighted)"),
+            (Exact, Coulomb, |p| p.exact_elements_longitudinal = 0, "exact_elements_longitudinal = 0 is invalid: must lie in [1, 200]"),
+            (Exact, Coulomb, |p| p.exact_elements_lateral = 201, "exact_elements_lateral = 201 is invalid: must lie in [1, 200]"),
+        ];
+        for (model, law, change, expected) in cases {
+            let mut values = Values::default();
+            (values.parameters.model, values.parameters.traction_law) = (model as i32, law as i32);
+            change(&mut values.parameters);
+            assert_eq!(outputs_of(&values).unwrap_err(), expected);
+        }
+    }
+
+    /// Parameters and inputs of an option that is off are not used, so not checked.
+    #[test]
+    fn options_that_are_off_check_nothing_of_theirs() {
         let mut values = Values::default();
-        values.inputs.semi_axis_a = f64::NAN;
-        let message = compute_outputs(&values, &mut MeasuredCurveFit::default()).unwrap_err();
-        assert_eq!(message, "semi_axis_a = NaN is invalid: must be finite and > 0");
-        let mut values = Values::default();
-        values.parameters.stiffness_source = 7;
-        let message = compute_outputs(&values, &mut MeasuredCurveFit::default()).unwrap_err();
-        assert_eq!(message, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)");
+        values.parameters.adhesion_reduction_factor = -1.0;
+        values.parameters.fastsim_strips = 0;
+        values.parameters.exact_elements_lateral = 0;
+        values.parameters.regularisation_speed = -1.0;
+        values.parameters.wheel_profile_curvature = f64::NAN;
+        values.parameters.relaxation_length = -1.0;
+        values.inputs.wheel_angular_speed = f64::NAN;
+        values.inputs.wheel_rolling_radius = 0.0;
+        assert_eq!(outputs(&values), outputs(&Values::default()));
     }
 
     #[test]
-    fn measured_curve_reproduces_its_peak_at_the_kinetic_friction() {
-        let mut values = Values::default();
-        values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
-        values.inputs.friction_coefficient = values.parameters.measured_kinetic_friction;
-        values.inputs.creepage_longitudinal = values.parameters.measured_creepage_at_peak;
-        let at_peak = default_outputs(&values);
-        let peak = values.parameters.measured_peak_adhesion * values.inputs.normal_force;
-        assert!((at_peak.force_longitudinal + peak).abs() < 1e-9 * peak, "{at_peak:?}");
-        for factor in [0.9, 1.1] {
-            values.inputs.creepage_longitudinal = values.parameters.measured_creepage_at_peak * factor;
-            assert!(default_outputs(&values).force_longitudinal.abs() < peak);
+    fn invalid_option_values_are_named_with_their_value() {
+        type Change = fn(&mut Values);
+        let cases: [(Change, &str); 8] = [
+            (|v| v.inputs.rolling_speed = f64::INFINITY, "rolling_speed = inf is invalid: must be finite"),
+            (
+                |v| {
+                    v.parameters.creepages_from_kinematics = on();
+                    v.parameters.regularisation_speed = -0.01;
+                },
+                "regularisation_speed = -0.01 is invalid: must be finite and > 0",
+            ),
+            (
+                |v| {
+                    v.parameters.creepages_from_kinematics = on();
+                    v.inputs.spin_angular_velocity = f64::NAN;
+                },
+                "spin_angular_velocity = NaN is invalid: must be finite",
+            ),
+            (
+                |v| {
+                    v.parameters.hertz_contact = on();
+                    v.inputs.wheel_rolling_radius = 0.0;
+                },
+                "wheel_rolling_radius = 0 is invalid: must be finite and > 0",
+            ),
+            (
+                |v| {
+                    v.parameters.hertz_contact = on();
+                    v.parameters.rail_profile_curvature = f64::INFINITY;
+                },
+                "rail_profile_curvature = inf is invalid: must be finite",
+            ),
+            (
+                |v| {
+                    // A hollow wheel more curved than the rail head: a conformal, non-Hertzian contact.
+                    v.parameters.hertz_contact = on();
+                    v.parameters.wheel_profile_curvature = -5.0;
+                },
+                "wheel_profile_curvature = -5 is invalid: must leave a convex gap: a concave wheel profile needs \
+                 |radius| > rail_profile_radius",
+            ),
+            (
+                |v| {
+                    v.parameters.hertz_contact = on();
+                    v.parameters.poisson_ratio = 0.7;
+                },
+                "poisson_ratio = 0.7 is invalid: must lie in [0, 0.5]",
+            ),
+            (
+                |v| {
+                    v.parameters.creep_relaxation = on();
+                    v.parameters.relaxation_length = -0.01;
+                },
+                "relaxation_length = -0.01 is invalid: must be finite and >= 0 (0: derived from the contact)",
+            ),
+        ];
+        for (change, expected) in cases {
+            let mut values = Values::default();
+            change(&mut values);
+            let mut cache = ModelCache::default();
+            let mut relaxed = [1.0, 2.0];
+            let result = compute_outputs(&values, &mut cache, &mut relaxed, Evaluation::Step(1e-3));
+            assert_eq!(result.unwrap_err(), expected);
+            assert_eq!(relaxed, [1.0, 2.0], "the state is kept on an error");
         }
     }
 
     #[test]
-    fn measured_curve_is_refitted_when_its_parameters_change() {
+    fn hertz_contact_replaces_the_ellipse_inputs() {
+        let mut values = rich_scene();
+        values.parameters.hertz_contact = on();
+        (values.inputs.semi_axis_a, values.inputs.semi_axis_b) = (f64::NAN, -1.0); // ignored
+        let outputs = outputs(&values);
+        // A conical tread (straight) on a 300 mm rail crown, r = 0.46 m: A = 1/(2r), B = 1/(2·0.3 m).
+        let curvature = RelativeCurvature::from_radii(0.46, f64::INFINITY, 0.3).unwrap();
+        let hertz = HertzContact::solve(100e3, &curvature, contact_modulus(82e9, 0.28).unwrap()).unwrap();
+        assert_eq!(outputs.contact_semi_axis_a, hertz.semi_axis_a);
+        assert_eq!(outputs.contact_semi_axis_b, hertz.semi_axis_b);
+        assert_eq!((outputs.max_pressure, outputs.approach), (hertz.max_pressure, hertz.approach));
+        // The default scene's a = 7.2 mm, b = 5.4 mm are this contact's, to the 0.1 mm given.
+        assert!((hertz.semi_axis_a - 7.2e-3).abs() < 1e-4 && (hertz.semi_axis_b - 5.4e-3).abs() < 1e-4, "{hertz:?}");
+        let input =
+            ContactInput { semi_axis_a: hertz.semi_axis_a, semi_axis_b: hertz.semi_axis_b, ..contact_input(&values) };
+        let expected = Polach::default().creep_forces(&input).unwrap();
+        assert_eq!(
+            (outputs.force_longitudinal, outputs.force_lateral),
+            (expected.force_longitudinal, expected.force_lateral)
+        );
+        // Lift-off: zero forces and no contact, no error.
+        values.inputs.normal_force = -10.0;
+        let lifted = super::tests::outputs(&values);
+        assert_eq!([lifted.force_longitudinal, lifted.force_lateral, lifted.adhesion_utilisation], [0.0; 3]);
+        assert_eq!(
+            [lifted.contact_semi_axis_a, lifted.contact_semi_axis_b, lifted.max_pressure, lifted.approach],
+            [0.0; 4]
+        );
+    }
+
+    #[test]
+    fn creepages_from_kinematics_replace_the_creepage_inputs() {
+        let mut values = rich_scene();
+        values.parameters.creepages_from_kinematics = on();
+        values.inputs.creepage_longitudinal = f64::NAN; // ignored
+        let kinematics = WheelKinematics {
+            rolling_speed: 20.0,
+            wheel_angular_speed: values.inputs.wheel_angular_speed,
+            wheel_rolling_radius: 0.46,
+            lateral_slip_velocity: 0.008,
+            spin_angular_velocity: 6.0,
+        };
+        let creepages = kinematics.creepages(DEFAULT_REGULARISATION_SPEED).unwrap();
+        let outputs = outputs(&values);
+        assert_eq!(outputs.effective_creepage_longitudinal, creepages.longitudinal);
+        assert_eq!(outputs.effective_creepage_lateral, creepages.lateral);
+        assert_eq!(outputs.effective_spin_creepage, creepages.spin);
+        // The start values roll with ξ ≈ 0.1 %, η = 0.4e-3, φ ≈ 0.3 /m, like the creepage inputs.
+        assert!((creepages.longitudinal / 1e-3 - 1.0).abs() < 1e-6, "{creepages:?}");
+        let input = ContactInput {
+            creepage_longitudinal: creepages.longitudinal,
+            creepage_lateral: creepages.lateral,
+            spin_creepage: creepages.spin,
+            ..contact_input(&values)
+        };
+        let expected = Polach::default().creep_forces(&input).unwrap();
+        assert_eq!(
+            (outputs.force_longitudinal, outputs.force_lateral),
+            (expected.force_longitudinal, expected.force_lateral)
+        );
+        // Standstill with a spinning wheel: finite, saturated against the slip.
+        values.inputs.rolling_speed = 0.0;
+        let standstill = super::tests::outputs(&values);
+        assert!(standstill.force_longitudinal > 0.0 && standstill.adhesion_utilisation > 0.99, "{standstill:?}");
+        assert_eq!(standstill.effective_spin_creepage, 0.0);
+        let slip = (-values.inputs.wheel_angular_speed * 0.46).hypot(0.008);
+        assert!((standstill.slip_velocity / slip - 1.0).abs() < 1e-12, "w = |(V − ωr, v_y)| at V = 0");
+    }
+
+    /// Polach 2005 with creepages from kinematics: w = s_C·D with D the kinematics' reference
+    /// speed, μ(w) from the core's law, and the forces of Polach's 2005 model at that speed.
+    #[test]
+    fn polach_2005_uses_the_slip_velocity_of_the_kinematics() {
+        for law in [TractionLaw::Polach2005Dry, TractionLaw::Polach2005Wet] {
+            let mut values = rich_scene();
+            values.parameters.traction_law = law as i32;
+            values.parameters.creepages_from_kinematics = on();
+            values.inputs.friction_coefficient = 0.55;
+            values.inputs.wheel_angular_speed = 19.0 / 0.46; // 5 % slip: beyond the peak
+            let outputs = outputs(&values);
+            let creepages = WheelKinematics {
+                rolling_speed: 20.0,
+                wheel_angular_speed: values.inputs.wheel_angular_speed,
+                wheel_rolling_radius: 0.46,
+                lateral_slip_velocity: 0.008,
+                spin_angular_velocity: 6.0,
+            }
+            .creepages(DEFAULT_REGULARISATION_SPEED)
+            .unwrap();
+            let extension = if law == TractionLaw::Polach2005Dry { Polach2005::DRY } else { Polach2005::WET };
+            let eta_c = creepages.lateral + creepages.spin * 7.2e-3;
+            let s_c = creepages.longitudinal.hypot(eta_c);
+            assert!((outputs.slip_velocity / (s_c * creepages.reference_speed) - 1.0).abs() < 1e-14);
+            let friction = extension.friction(0.55, outputs.slip_velocity);
+            assert_eq!(outputs.current_friction_coefficient, friction);
+            assert!(friction < 0.5 && friction > 0.4 * 0.55, "friction falls with slip: {friction}");
+            let model = Polach {
+                large_creepage: Some(LargeCreepage::new(extension, creepages.reference_speed).unwrap()),
+                ..Polach::default()
+            };
+            let input = ContactInput {
+                creepage_longitudinal: creepages.longitudinal,
+                creepage_lateral: creepages.lateral,
+                spin_creepage: creepages.spin,
+                ..contact_input(&values)
+            };
+            let expected = model.creep_forces(&input).unwrap();
+            assert_eq!(outputs.force_longitudinal, expected.force_longitudinal);
+            assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation);
+            // The utilisation is against μ(w)Q: the FMU's μ(w) is the model's to rounding.
+            let magnitude = expected.force_longitudinal.hypot(expected.force_lateral);
+            let model_friction = magnitude / expected.adhesion_utilisation / 100e3;
+            assert!((model_friction / friction - 1.0).abs() < 1e-14, "{model_friction} vs {friction}");
+        }
+    }
+
+    /// The relaxed forces start at the steady state, follow the core's exact update over each
+    /// step, give the same result for one step of h as for two of h/2, and are kept per evaluation.
+    #[test]
+    fn relaxation_advances_the_state_exactly() {
+        let mut values = rich_scene();
+        values.parameters.creep_relaxation = on();
+        let mut cache = ModelCache::default();
+        let mut state = RelaxedForces::default();
+        let initial = compute_outputs(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap();
+        let steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
+        assert_eq!(state, [steady.force_longitudinal, steady.force_lateral]);
+        assert_eq!(
+            (initial.force_longitudinal, initial.adhesion_utilisation),
+            (steady.force_longitudinal, steady.adhesion_utilisation)
+        );
+        // A creepage step: the force relaxes towards the new steady state.
+        let before = state;
+        values.inputs.creepage_longitudinal = 3e-3;
+        let new_steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
+        let lengths = RelaxationLengths::from_contact(7.2e-3, 5.4e-3, 0.28).unwrap();
+        let mut one_step = before;
+        let after = compute_outputs(&values, &mut cache, &mut one_step, Evaluation::Step(4e-4)).unwrap();
+        let steady_forces = [new_steady.force_longitudinal, new_steady.force_lateral];
+        assert_eq!(one_step, lengths.advance(before, steady_forces, 20.0, 4e-4).unwrap());
+        assert_eq!([after.force_longitudinal, after.force_lateral], one_step);
+        // 63 % of the way after travelling L_x (L_x/V = 0.64 ms here: 4e-4 s is 8 mm of 12.8 mm).
+        let progress = (one_step[0] - before[0]) / (steady_forces[0] - before[0]);
+        assert!((progress - (1.0 - (-20.0 * 4e-4 / lengths.longitudinal).exp())).abs() < 1e-12, "{progress}");
+        let mut two_steps = before;
+        compute_outputs(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
+        compute_outputs(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
+        for (one, two) in one_step.iter().zip(two_steps) {
+            assert!((one - two).abs() <= 1e-12 * one.abs(), "{one_step:?} vs {two_steps:?}");
+        }
+        let magnitude = one_step[0].hypot(one_step[1]);
+        assert!((after.adhesion_utilisation - magnitude / (0.3 * 100e3)).abs() < 1e-15);
+        // A given length is used in both directions; lift-off clears the state.
+        values.parameters.relaxation_length = 0.05;
+        let mut state = before;
+        compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
+        let uniform = RelaxationLengths::uniform(0.05).unwrap();
+        assert_eq!(state, uniform.advance(before, steady_forces, 20.0, 1e-3).unwrap());
+        values.inputs.normal_force = 0.0;
+        let lifted = compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
+        assert_eq!((state, lifted.force_longitudinal, lifted.adhesion_utilisation), ([0.0; 2], 0.0, 0.0));
+    }
+
+    #[test]
+    fn the_plan_is_rebuilt_when_a_parameter_changes() {
         let mut values = Values::default();
         values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
-        let mut fit = MeasuredCurveFit::default();
-        let before = compute_outputs(&values, &mut fit).unwrap();
-        *values.real_mut(vr::MEASURED_PEAK_ADHESION).unwrap() = 0.36;
-        let after = compute_outputs(&values, &mut fit).unwrap();
+        let mut cache = ModelCache::default();
+        let mut state = RelaxedForces::default();
+        let mut evaluate = |values: &Values| compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3));
+        let before = evaluate(&values).unwrap();
+        values.parameters.measured_peak_adhesion = 0.36;
+        let after = evaluate(&values).unwrap();
         assert_ne!(before, after);
-        assert_eq!(after, compute_outputs(&values, &mut MeasuredCurveFit::default()).unwrap());
+        assert_eq!(after, outputs(&values));
         values.parameters.measured_peak_adhesion = 0.29;
-        let message = compute_outputs(&values, &mut fit).unwrap_err();
+        let message = evaluate(&values).unwrap_err();
         assert!(message.starts_with("measured_peak_adhesion = 0.29 is invalid"), "{message}");
+        values.parameters.model = Model::KalkerLinear as i32;
+        values.parameters.stiffness_source = StiffnessChoice::Kalker as i32;
+        assert_eq!(evaluate(&values).unwrap(), outputs(&values));
+    }
+
+    /// `<ModelStructure>` declares each output to depend on the inputs that can change it under
+    /// some choice of model and options: perturbing a declared input changes the output in at
+    /// least one of the scenes below, perturbing an undeclared one in none.
+    #[test]
+    fn declared_output_dependencies_are_the_true_ones() {
+        type Configure = fn(&mut Parameters);
+        let scenes: [(Configure, Evaluation); 9] = [
+            (|_| {}, Evaluation::Initialise),
+            (|p| p.hertz_contact = on(), Evaluation::Initialise),
+            (|p| p.creepages_from_kinematics = on(), Evaluation::Initialise),
+            (|p| p.traction_law = TractionLaw::Polach2005Dry as i32, Evaluation::Initialise),
+            (|p| p.creep_relaxation = on(), Evaluation::Step(1e-4)),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    (p.fastsim_strips, p.fastsim_elements) = (6, 6);
+                },
+                Evaluation::Initialise,
+            ),
+            (
+                |p| {
+                    p.model = Model::Fastsim as i32;
+                    (p.fastsim_strips, p.fastsim_elements) = (6, 6);
+                    p.creepages_from_kinematics = on();
+                },
+                Evaluation::Initialise,
+            ),
+            (
+                |p| {
+                    p.model = Model::KalkerLinear as i32;
+                    (p.hertz_contact, p.creepages_from_kinematics, p.creep_relaxation) = (on(), on(), on());
+                },
+                Evaluation::Step(1e-4),
+            ),
+            (
+                |p| {
+                    p.traction_law = TractionLaw::Polach2005Wet as i32;
+                    (p.hertz_contact, p.creepages_from_kinematics, p.creep_relaxation) = (on(), on(), on());
+                },
+                Evaluation::Step(1e-4),
+            ),
+        ];
+        let run = |values: &Values, evaluation| {
+            let mut state = [-2e3, 1e3];
+            let outputs = compute_outputs(values, &mut ModelCache::default(), &mut state, evaluation).unwrap();
+            Values { outputs, ..*values }
+        };
+        let inputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Input).collect();
+        let outputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Output).collect();
+        let mut changed = vec![vec![false; inputs.len()]; outputs.len()];
+        for (configure, evaluation) in scenes {
+            let mut base = rich_scene();
+            configure(&mut base.parameters);
+            let reference = run(&base, evaluation);
+            for (i, input) in inputs.iter().enumerate() {
+                let mut perturbed = base;
+                let value = perturbed.real_mut(input.value_reference).unwrap();
+                *value = *value * 1.01 + 1e-5;
+                let result = run(&perturbed, evaluation);
+                for (o, output) in outputs.iter().enumerate() {
+                    changed[o][i] |= result.real(output.value_reference) != reference.real(output.value_reference);
+                }
+            }
+        }
+        for (o, output) in outputs.iter().enumerate() {
+            for (i, input) in inputs.iter().enumerate() {
+                let declared = output.dependencies.contains(&input.value_reference);
+                assert_eq!(changed[o][i], declared, "{} on {}", output.name, input.name);
+            }
+        }
+        assert_eq!(outputs.iter().find(|o| o.value_reference == vr::APPROACH).unwrap().dependencies.len(), 2);
     }
 }

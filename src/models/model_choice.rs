@@ -1,6 +1,7 @@
 //! One type for "whichever rung of the ladder the user picked": enum dispatch, so a caller (the
 //! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
 
+use crate::models::exact::ExactTheory;
 use crate::models::fastsim::Fastsim;
 use crate::models::kalker_linear::KalkerLinear;
 use crate::models::shen_hedrick_elkins::ShenHedrickElkins;
@@ -17,6 +18,8 @@ pub enum ModelChoice {
     ShenHedrickElkins(ShenHedrickElkins),
     /// Kalker's FASTSIM with its grid and options.
     Fastsim(Fastsim),
+    /// Kalker's exact theory on its grid (slow: offline or low-rate use; see [`ExactTheory`]).
+    Exact(ExactTheory),
 }
 
 impl ModelChoice {
@@ -27,6 +30,7 @@ impl ModelChoice {
             Self::KalkerLinear(_) => "kalker_linear",
             Self::ShenHedrickElkins(_) => "shen_hedrick_elkins",
             Self::Fastsim(_) => "fastsim",
+            Self::Exact(_) => "exact",
         }
     }
 }
@@ -39,6 +43,7 @@ impl CreepForceModel for ModelChoice {
             Self::KalkerLinear(model) => model.creep_forces(input),
             Self::ShenHedrickElkins(model) => model.creep_forces(input),
             Self::Fastsim(model) => model.creep_forces(input),
+            Self::Exact(model) => model.creep_forces(input),
         }
     }
 }

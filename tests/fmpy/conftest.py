@@ -83,4 +83,28 @@ def core_forces(rows):
     for row in rows:
         writer.writerow([repr(float(row[name])) for name in CONTACT_INPUTS])
     output = cargo("fmu", "reference", stdin=text.getvalue())
-    return [tuple(float(x) for x in line.split(",")) for line in output.strip().splitlines()[1:]]
+    return [tuple(float(x) for x in line.split(",")[:3]) for line in output.strip().splitlines()[1:]]
+
+
+def settable_start_values(model_description):
+    """Start value of every input and parameter: float for Real, int for Integer and Enumeration."""
+    values = {}
+    for v in model_description.modelVariables:
+        if v.causality in ("input", "parameter"):
+            values[v.name] = float(v.start) if v.type == "Real" else int(v.start)
+    return values
+
+
+def core_outputs(rows):
+    """The core library's outputs (dicts keyed by output name) for a sequence of rows, each a dict
+    of input and parameter values plus an optional `step_size` (creep relaxation: 0 initialises
+    the relaxed force, h > 0 advances it from the previous row's over a step h)."""
+    columns = sorted({name for row in rows for name in row})
+    text = io.StringIO()
+    writer = csv.writer(text)
+    writer.writerow(columns)
+    for row in rows:
+        writer.writerow([repr(float(row[name])) for name in columns])
+    lines = cargo("fmu", "reference", stdin=text.getvalue()).strip().splitlines()
+    names = lines[0].split(",")
+    return [dict(zip(names, (float(x) for x in line.split(",")))) for line in lines[1:]]
