@@ -35,7 +35,9 @@ fn main() {
     let [n1, n2] = [grids.first().copied().unwrap_or(80), grids.get(1).copied().unwrap_or(120)];
     let rows: Vec<&String> = args.iter().skip(2).collect();
     println!("row          nu    table   n={n1:<4}  n={n2:<4}  extrapolated  table vs extrapolated");
-    for line in include_str!("../data/kalker_c33.csv").lines().filter(|l| !l.starts_with('#') && !l.starts_with("branch")) {
+    for line in
+        include_str!("../data/kalker_c33.csv").lines().filter(|l| !l.starts_with('#') && !l.starts_with("branch"))
+    {
         let fields: Vec<&str> = line.split(',').collect();
         let (branch, g) = (fields[0], fields[1]);
         if !rows.is_empty() && !rows.iter().any(|r| **r == format!("{branch}={g}")) {

@@ -21,7 +21,6 @@ use super::model_description::{
     Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters, StiffnessSource as StiffnessChoice, Switch,
     TractionBound as TractionBoundChoice, TractionLaw, Values,
 };
-use crate::numerics::magnitude;
 use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use crate::scene::kinematics::WheelKinematics;
 use crate::scene::relaxation::RelaxationLengths;
@@ -289,14 +288,6 @@ fn given_ellipse(normal_force: f64, semi_axis_a: f64, semi_axis_b: f64) -> Hertz
     HertzContact { semi_axis_a, semi_axis_b, max_pressure, approach: 0.0 }
 }
 
-/// Polach's resulting creepage s_C (eqs. 21, 22): spin counts towards the lateral creepage only
-/// where it enlarges it. The slip velocity of his 2005 friction law is s_C times the speed.
-fn resulting_creepage(creepages: &Creepages, semi_axis_a: f64) -> f64 {
-    let eta_with_spin = creepages.lateral + creepages.spin * semi_axis_a;
-    let lateral = if eta_with_spin.abs() > creepages.lateral.abs() { eta_with_spin } else { creepages.lateral };
-    magnitude(creepages.longitudinal, lateral)
-}
-
 /// The relaxation lengths: the parameter, or (0) the module's default from the contact.
 fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationLengths, InvalidInput> {
     if length == 0.0 {
@@ -381,7 +372,10 @@ fn evaluate(
         shear_modulus: parameters.shear_modulus,
         poisson_ratio: parameters.poisson_ratio,
     };
-    let slip_velocity = resulting_creepage(&creepages, ellipse.semi_axis_a) * creepages.speed;
+    // Polach 2005's slip velocity: the resulting creepage s_C times the speed.
+    let s_c =
+        Polach::resulting_creepage(creepages.longitudinal, creepages.lateral, creepages.spin, ellipse.semi_axis_a);
+    let slip_velocity = s_c * creepages.speed;
     let (steady, friction) = match (plan.traction, plan.model) {
         (Some(extension), ModelChoice::Polach(polach)) => {
             let model = Polach { large_creepage: Some(LargeCreepage::new(extension, creepages.speed)?), ..polach };

@@ -58,6 +58,19 @@ impl CreepForceModel for Polach {
 }
 
 impl Polach {
+    /// Polach's resulting creepage s_C [1] of eqs. (21), (22), for creepages ξ, η [1], spin
+    /// φ [1/m] and semi-axis a [m]: the spin counts towards the lateral creepage only where it
+    /// enlarges it. Polach 2005's slip velocity is s_C·|V|. (Creepages beyond 1e150 are scaled
+    /// down together, as in the force evaluation.)
+    pub fn resulting_creepage(
+        creepage_longitudinal: f64,
+        creepage_lateral: f64,
+        spin_creepage: f64,
+        semi_axis_a: f64,
+    ) -> f64 {
+        ResultingCreepage::new(creepage_longitudinal, creepage_lateral, spin_creepage, semi_axis_a).s_c
+    }
+
     /// The forces for a validated input, over any [`Scalar`]: `f64` for values, a dual number
     /// for their exact derivative. Branches look at values only.
     fn forces<D: Scalar>(&self, input: &ContactInput<D>) -> CreepForces<D> {
@@ -66,16 +79,8 @@ impl Polach {
         }
         let a = input.semi_axis_a;
         let b = input.semi_axis_b;
-        // Spin as a creepage, aΦ (eq. 21); its product can overflow, so it is clamped first.
-        let spin_shift = clamp_value(input.spin_creepage * a, CREEPAGE_MAX);
-        let [xi, eta, spin_shift] =
-            bounded_creepages([input.creepage_longitudinal, input.creepage_lateral, spin_shift]);
-
-        // Eq. (21): spin counts towards the lateral creepage only where it enlarges it.
-        let eta_with_spin = eta + spin_shift;
-        let s_yc = if value(eta_with_spin).abs() > value(eta).abs() { eta_with_spin } else { eta };
-        // Eq. (22): resulting creepage.
-        let s_c = magnitude(xi, s_yc);
+        let ResultingCreepage { xi, eta, spin_shift, s_yc, s_c } =
+            ResultingCreepage::new(input.creepage_longitudinal, input.creepage_lateral, input.spin_creepage, a);
         if value(s_c) == 0.0 {
             return CreepForces::zero(); // E6: no creepage, no force.
         }
@@ -191,6 +196,31 @@ impl<D: Scalar> CreepDirection<D> {
             None => c22,
             Some((x2, y2)) => ((c11 * c11 * x2 + c22 * c22 * y2) * self.inverse_norm).sqrt(),
         }
+    }
+}
+
+/// The creepages of eqs. (21), (22) after the overflow guard.
+struct ResultingCreepage<D> {
+    xi: D,
+    eta: D,
+    /// aΦ, the spin as a lateral creepage.
+    spin_shift: D,
+    /// s_yC of eq. (21).
+    s_yc: D,
+    /// s_C of eq. (22).
+    s_c: D,
+}
+
+impl<D: Scalar> ResultingCreepage<D> {
+    fn new(xi: D, eta: D, spin: D, semi_axis_a: D) -> Self {
+        // Spin as a creepage, aΦ (eq. 21); its product can overflow, so it is clamped first.
+        let spin_shift = clamp_value(spin * semi_axis_a, CREEPAGE_MAX);
+        let [xi, eta, spin_shift] = bounded_creepages([xi, eta, spin_shift]);
+        // Eq. (21): spin counts towards the lateral creepage only where it enlarges it.
+        let eta_with_spin = eta + spin_shift;
+        let s_yc = if value(eta_with_spin).abs() > value(eta).abs() { eta_with_spin } else { eta };
+        // Eq. (22): resulting creepage.
+        Self { xi, eta, spin_shift, s_yc, s_c: magnitude(xi, s_yc) }
     }
 }
 
