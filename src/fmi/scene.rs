@@ -5,7 +5,7 @@
 //! until it is mapped.
 
 use super::model_description::{Inputs, Outputs, Parameters, StiffnessSource as StiffnessChoice, Values};
-use crate::{ContactInput, CreepForceModel, MeasuredCurve, MeasuredCurveError, Polach, StiffnessSource};
+use crate::{ContactInput, CreepForceModel, CreepForces, MeasuredCurve, MeasuredCurveError, Polach, StiffnessSource};
 
 /// The measured curve fitted to the last parameter values it was asked for: the fit (a root
 /// search) runs once when the parameters are first needed (ExitInitializationMode) and again
@@ -83,16 +83,35 @@ fn stiffness(parameters: &Parameters, fit: &mut MeasuredCurveFit) -> Result<Stif
     }
 }
 
-/// The outputs for `values`, or the reason they cannot be computed (names the variable and value).
-pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Result<Outputs, String> {
-    let model = Polach { stiffness: stiffness(&values.parameters, fit)?, ..Polach::default() };
-    let forces = model.creep_forces(&contact_input(values)).map_err(|e| e.to_string())?;
-    Ok(Outputs {
+/// The creep-force model the parameters select (also what fmi2GetDirectionalDerivative
+/// differentiates).
+pub(crate) fn creep_force_model(parameters: &Parameters, fit: &mut MeasuredCurveFit) -> Result<Polach, String> {
+    Ok(Polach { stiffness: stiffness(parameters, fit)?, ..Polach::default() })
+}
+
+/// The outputs holding `forces` (or their rates, for directional derivatives).
+pub(crate) fn outputs(forces: &CreepForces) -> Outputs {
+    Outputs {
         force_longitudinal: forces.force_longitudinal,
         force_lateral: forces.force_lateral,
         adhesion_utilisation: forces.adhesion_utilisation,
-    })
+    }
 }
+
+/// The outputs for `values`, or the reason they cannot be computed (names the variable and value).
+pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Result<Outputs, String> {
+    let forces = creep_force_model(&values.parameters, fit)?.creep_forces(&contact_input(values));
+    Ok(outputs(&forces.map_err(|e| e.to_string())?))
+}
+
+// --- FMU state (fmu-master branch): the model's internal state, saved with the FMU state ---
+
+/// State the model carries from one step to the next (e.g. creep relaxation), held by the
+/// instance and saved and restored whole with the FMU state (`fmi::fmu_state::RunState`) and
+/// reset to `Default` by fmi2Reset. Plain values only (no pointers), serde-serialisable. Empty
+/// while the scene is algebraic.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct ModelState {}
 
 #[cfg(test)]
 mod tests {
