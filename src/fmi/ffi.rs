@@ -135,6 +135,7 @@ unsafe fn slice_mut<'a, T>(pointer: *mut T, n: usize) -> Option<&'a mut [T]> {
 
 /// Runs `body` on the instance behind `c` (NULL: `fmi2Error`, nothing to log to).
 /// SAFETY: `c` is NULL or a live instance from [`fmi2Instantiate`].
+#[inline]
 unsafe fn with_instance(c: fmi2Component, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> fmi2Status {
     // SAFETY: by the caller's contract; the master does not call into one instance concurrently.
     match unsafe { c.cast::<Instance>().as_mut() } {

@@ -261,21 +261,25 @@ impl Instance {
     /// logged, and leaves the instance in the `fatal` state, where every call but
     /// fmi2FreeInstance is refused. `AssertUnwindSafe` is sound for that reason: nothing reads
     /// the values a panic may have left half-updated.
+    #[inline]
     pub fn guarded(&mut self, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> Status {
         match catch_unwind(AssertUnwindSafe(|| body(self))) {
             Ok(status) => status,
-            Err(payload) => {
-                self.run.mode = State::Fatal;
-                let reason = payload
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| payload.downcast_ref::<String>().cloned())
-                    .unwrap_or_else(|| "unknown panic".to_owned());
-                let message = format!("{call}: internal error ({reason}); this instance can only be freed");
-                self.emit(Status::Fatal, &message);
-                Status::Fatal
-            }
+            Err(payload) => self.panicked(call, payload.as_ref()),
         }
+    }
+
+    #[cold]
+    fn panicked(&mut self, call: &str, payload: &(dyn std::any::Any + Send)) -> Status {
+        self.run.mode = State::Fatal;
+        let reason = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".to_owned());
+        let message = format!("{call}: internal error ({reason}); this instance can only be freed");
+        self.emit(Status::Fatal, &message);
+        Status::Fatal
     }
 
     fn emit(&mut self, status: Status, message: &str) {
@@ -401,6 +405,7 @@ impl Instance {
         Status::Ok
     }
 
+    #[inline]
     fn update_outputs(&mut self, call: &str) -> Result<(), Status> {
         match compute_outputs(&self.run.values, &mut self.measured_curve) {
             Ok(outputs) => {
@@ -480,6 +485,7 @@ impl Instance {
         Ok(())
     }
 
+    #[inline]
     pub fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
         if let Err(status) = self.prepare_set("fmi2SetReal", value_references, ValueType::Real) {
             return status;
@@ -493,6 +499,7 @@ impl Instance {
         Status::Ok
     }
 
+    #[inline]
     pub fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
         if let Err(status) = self.prepare_get("fmi2GetReal", value_references, ValueType::Real) {
             return status;
@@ -546,6 +553,7 @@ impl Instance {
     }
 
     /// fmi2DoStep: outputs at t + h from the inputs set before the step (the model is algebraic).
+    #[inline]
     pub fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
         const CALL: &str = "fmi2DoStep";
         if let Err(status) = self.require(CALL, States::of(&[StepComplete])) {

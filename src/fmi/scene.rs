@@ -85,11 +85,13 @@ fn stiffness(parameters: &Parameters, fit: &mut MeasuredCurveFit) -> Result<Stif
 
 /// The creep-force model the parameters select (also what fmi2GetDirectionalDerivative
 /// differentiates).
+#[inline]
 pub(crate) fn creep_force_model(parameters: &Parameters, fit: &mut MeasuredCurveFit) -> Result<Polach, String> {
     Ok(Polach { stiffness: stiffness(parameters, fit)?, ..Polach::default() })
 }
 
 /// The outputs holding `forces` (or their rates, for directional derivatives).
+#[inline]
 pub(crate) fn outputs(forces: &CreepForces) -> Outputs {
     Outputs {
         force_longitudinal: forces.force_longitudinal,
@@ -99,6 +101,7 @@ pub(crate) fn outputs(forces: &CreepForces) -> Outputs {
 }
 
 /// The outputs for `values`, or the reason they cannot be computed (names the variable and value).
+#[inline]
 pub(crate) fn compute_outputs(values: &Values, fit: &mut MeasuredCurveFit) -> Result<Outputs, String> {
     let forces = creep_force_model(&values.parameters, fit)?.creep_forces(&contact_input(values));
     Ok(outputs(&forces.map_err(|e| e.to_string())?))
