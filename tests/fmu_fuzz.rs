@@ -7,12 +7,13 @@
 //! process), outputs read after a successful step are finite, and every log message is
 //! well-formed (see `c_abi::count_message`).
 //!
-//! Budget: `FMU_FUZZ_CALLS` calls (default 100 000, well under 10 s in CI) from seed
+//! Budget: `FMU_FUZZ_CALLS` calls (default 1 000 000, about a second) from seed
 //! `FMU_FUZZ_SEED` (default fixed, so CI is reproducible). A failure prints the seed and the
 //! call number; rerun with that seed to reproduce. Longer runs: see the README.
 
 mod c_abi;
 
+use std::collections::BTreeMap;
 use std::ffi::{c_char, CString};
 use std::ptr::{null, null_mut};
 
@@ -24,7 +25,7 @@ use wheel_rail_contact::fmi::ffi::*;
 use wheel_rail_contact::fmi::model_description::{Causality, GUID, VARIABLES};
 
 const DEFAULT_SEED: u64 = 0x5EED_2026_0006;
-const DEFAULT_CALLS: usize = 100_000;
+const DEFAULT_CALLS: usize = 1_000_000;
 
 fn env_or<T: std::str::FromStr>(name: &str, default: T) -> T {
     std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
@@ -53,7 +54,8 @@ const SPECIAL: [f64; 16] = [
 struct Fuzzer {
     rng: StdRng,
     calls: usize,
-    statuses: [usize; 5],
+    /// Per function: how often it answered each status (OK, Warning, Discard, Error, Fatal).
+    statuses: BTreeMap<&'static str, [usize; 5]>,
     counter: Box<LogCounter>,
     instances: Vec<fmi2Component>,
     states: Vec<fmi2FMUstate>,
@@ -105,14 +107,14 @@ impl Fuzzer {
         self.pointer(values).cast_mut()
     }
 
-    fn check(&mut self, status: fmi2Status, call: &str) {
+    fn check(&mut self, status: fmi2Status, call: &'static str) {
         self.calls += 1;
         assert!(
             (fmi2Status_fmi2OK..=fmi2Status_fmi2Error).contains(&status),
             "call {} ({call}) returned status {status}",
             self.calls
         );
-        self.statuses[status as usize] += 1;
+        self.statuses.entry(call).or_default()[status as usize] += 1;
     }
 
     fn instantiate(&mut self) {
@@ -176,8 +178,9 @@ impl Fuzzer {
                     let text = c"x".as_ptr();
                     let strings = vec![text; references.len()];
                     let r = self.pointer(&references);
-                    self.check(fmi2SetBoolean(c, r, references.len(), self.pointer(&flags)), "fmi2SetBoolean");
-                    self.check(fmi2SetString(c, r, references.len(), self.pointer(&strings)), "fmi2SetString");
+                    let (f, s) = (self.pointer(&flags), self.pointer(&strings));
+                    self.check(fmi2SetBoolean(c, r, references.len(), f), "fmi2SetBoolean");
+                    self.check(fmi2SetString(c, r, references.len(), s), "fmi2SetString");
                     let (mut flags, mut strings) = (flags, strings);
                     let (f, s) = (self.pointer_mut(&mut flags), self.pointer_mut(&mut strings));
                     self.check(fmi2GetBoolean(c, r, references.len(), f), "fmi2GetBoolean");
@@ -187,7 +190,8 @@ impl Fuzzer {
                     let time = self.current_time(c);
                     let step = if self.rng.random_bool(0.8) { self.rng.random_range(1e-6..0.1) } else { self.real() };
                     let at = if self.rng.random_bool(0.9) { time } else { self.real() };
-                    self.check(fmi2DoStep(c, at, step, self.rng.random_range(0..2)), "fmi2DoStep");
+                    let no_set_prior = self.rng.random_range(0..2);
+                    self.check(fmi2DoStep(c, at, step, no_set_prior), "fmi2DoStep");
                 }
                 16 => {
                     let (start, stop) = (self.real(), self.real());
@@ -202,15 +206,21 @@ impl Fuzzer {
                     _ => self.check(fmi2CancelStep(c), "fmi2CancelStep"),
                 },
                 20 => {
-                    let kind = [0, 1, 2, 3, 17, -1][self.rng.random_range(0..6)];
+                    let kind = [0, 1, 2, 3, 17, u32::MAX][self.rng.random_range(0..6)];
                     let (mut status, mut real, mut integer, mut boolean, mut string) = (0, 0.0, 0, 0, null());
                     let null_value = self.rng.random_bool(0.2);
-                    let pick = |p: *mut _| if null_value { null_mut() } else { p };
-                    self.check(fmi2GetStatus(c, kind, pick(&mut status)), "fmi2GetStatus");
-                    self.check(fmi2GetRealStatus(c, kind, pick(&mut real).cast()), "fmi2GetRealStatus");
-                    self.check(fmi2GetIntegerStatus(c, kind, pick(&mut integer).cast()), "fmi2GetIntegerStatus");
-                    self.check(fmi2GetBooleanStatus(c, kind, pick(&mut boolean).cast()), "fmi2GetBooleanStatus");
-                    self.check(fmi2GetStringStatus(c, kind, pick(&mut string).cast()), "fmi2GetStringStatus");
+                    fn pick<T>(null_value: bool, p: &mut T) -> *mut T {
+                        if null_value {
+                            null_mut()
+                        } else {
+                            p
+                        }
+                    }
+                    self.check(fmi2GetStatus(c, kind, pick(null_value, &mut status)), "fmi2GetStatus");
+                    self.check(fmi2GetRealStatus(c, kind, pick(null_value, &mut real)), "fmi2GetRealStatus");
+                    self.check(fmi2GetIntegerStatus(c, kind, pick(null_value, &mut integer)), "fmi2GetIntegerStatus");
+                    self.check(fmi2GetBooleanStatus(c, kind, pick(null_value, &mut boolean)), "fmi2GetBooleanStatus");
+                    self.check(fmi2GetStringStatus(c, kind, pick(null_value, &mut string)), "fmi2GetStringStatus");
                 }
                 21 => {
                     let names = [c"logAll", c"logStatusError", c"logCalls", c"noSuchCategory", c""];
@@ -218,7 +228,8 @@ impl Fuzzer {
                     let categories: Vec<fmi2String> =
                         (0..n).map(|_| names[self.rng.random_range(0..names.len())].as_ptr()).collect();
                     let p = self.pointer(&categories);
-                    self.check(fmi2SetDebugLogging(c, self.rng.random_range(0..2), n, p), "fmi2SetDebugLogging");
+                    let logging_on = self.rng.random_range(0..2);
+                    self.check(fmi2SetDebugLogging(c, logging_on, n, p), "fmi2SetDebugLogging");
                 }
                 22..=23 => {
                     let mut slot: fmi2FMUstate = null_mut();
@@ -372,7 +383,7 @@ fn random_call_sequences_through_the_c_abi_never_crash_and_always_answer_a_valid
     let mut fuzzer = Fuzzer {
         rng: StdRng::seed_from_u64(seed),
         calls: 0,
-        statuses: [0; 5],
+        statuses: BTreeMap::new(),
         counter: Box::new(LogCounter(0.into())),
         instances: Vec::new(),
         states: Vec::new(),
@@ -392,16 +403,32 @@ fn random_call_sequences_through_the_c_abi_never_crash_and_always_answer_a_valid
         fuzzer.finish_episode();
     }
     let messages = fuzzer.counter.0.load(std::sync::atomic::Ordering::Relaxed);
+    let total = fuzzer.statuses.values().fold([0; 5], |sum, s| std::array::from_fn(|k| sum[k] + s[k]));
     println!(
         "fuzz: seed {seed:#x}, {episodes} episodes, {} calls; status OK {}, Warning {}, Discard {}, Error {}, \
          Fatal {}; {messages} log messages",
-        fuzzer.calls,
-        fuzzer.statuses[0],
-        fuzzer.statuses[1],
-        fuzzer.statuses[2],
-        fuzzer.statuses[3],
-        fuzzer.statuses[4],
+        fuzzer.calls, total[0], total[1], total[2], total[3], total[4],
     );
-    // The harness reaches the interesting paths: successes, refusals and logging all occur.
-    assert!(fuzzer.statuses[0] > budget / 10 && fuzzer.statuses[3] > budget / 10 && messages > budget / 20);
+    for (call, [ok, warning, discard, error, fatal]) in &fuzzer.statuses {
+        println!("  {call:32} OK {ok:7} Warning {warning:5} Discard {discard:5} Error {error:7} Fatal {fatal}");
+    }
+    // The harness reaches the interesting paths: every export is called often, the central
+    // ones both succeed and refuse, and messages reach the logger.
+    assert_eq!(fuzzer.statuses.len(), 30, "every export but Instantiate/FreeInstance/GetVersion/GetTypesPlatform");
+    for (call, counts) in &fuzzer.statuses {
+        assert!(counts.iter().sum::<usize>() > budget / 200, "{call} called too rarely: {counts:?}");
+    }
+    for call in [
+        "fmi2SetReal",
+        "fmi2DoStep",
+        "fmi2GetReal",
+        "fmi2GetDirectionalDerivative",
+        "fmi2SetFMUstate",
+        "fmi2SerializeFMUstate",
+        "fmi2DeSerializeFMUstate",
+    ] {
+        let [ok, _, _, error, _] = fuzzer.statuses[call];
+        assert!(ok > 0 && error > 0, "{call} was not exercised both ways");
+    }
+    assert!(messages > budget / 20, "{messages} log messages");
 }

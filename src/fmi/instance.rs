@@ -407,7 +407,9 @@ impl Instance {
 
     #[inline]
     fn update_outputs(&mut self, call: &str) -> Result<(), Status> {
-        match compute_outputs(&self.run.values, &mut self.measured_curve) {
+        let outputs = compute_outputs(&self.run.values, &mut self.measured_curve)
+            .and_then(|outputs| finite(Values { outputs, ..self.run.values }).map(|_| outputs));
+        match outputs {
             Ok(outputs) => {
                 self.run.values.outputs = outputs;
                 Ok(())
@@ -754,9 +756,10 @@ impl Instance {
             };
             return self.fail(CALL, &reason);
         }
-        match directional_derivative(&self.run.values, &mut self.measured_curve, &rates.inputs) {
+        let derivative = directional_derivative(&self.run.values, &mut self.measured_curve, &rates.inputs)
+            .and_then(|outputs| finite(Values { outputs, ..rates }));
+        match derivative {
             Ok(derivative) => {
-                let derivative = Values { outputs: derivative, ..rates };
                 for (&value_reference, slot) in unknowns.iter().zip(unknown_rates.iter_mut()) {
                     *slot = derivative.real(value_reference).unwrap_or(f64::NAN);
                 }
@@ -801,6 +804,24 @@ impl Unsupported {
                 ("fmi2GetRealOutputDerivatives", STEPPED, "maxOutputDerivativeOrder = 0")
             }
         }
+    }
+}
+
+/// `values` if every output is finite, else why not: the last guard of "never NaN or Inf out",
+/// for finite inputs so large that the model's arithmetic overflows (e.g. μ = 1.8e308 makes
+/// μQ infinite).
+fn finite(values: Values) -> Result<Values, String> {
+    let outputs = model_description::VARIABLES.iter().filter(|v| v.causality == Causality::Output);
+    let overflowing: Vec<String> = outputs
+        .filter_map(|v| values.real(v.value_reference).filter(|x| !x.is_finite()).map(|x| format!("{} = {x}", v.name)))
+        .collect();
+    if overflowing.is_empty() {
+        Ok(values)
+    } else {
+        Err(format!(
+            "{} for these values: an input or parameter is too large for the model's floating-point range",
+            overflowing.join(", ")
+        ))
     }
 }
 
