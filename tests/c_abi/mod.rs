@@ -44,7 +44,7 @@ extern "C" fn count_message(
     // SAFETY: the environment is the `LogCounter` given at instantiation; the FMU passes
     // NUL-terminated strings.
     unsafe {
-        assert!(status >= fmi2Status_fmi2OK && status <= fmi2Status_fmi2Fatal, "status {status}");
+        assert!(status <= fmi2Status_fmi2Fatal, "status {status}");
         assert_eq!(CStr::from_ptr(format), c"%s");
         for text in [instance_name, category, text] {
             assert!(!text.is_null());
