@@ -60,7 +60,9 @@ struct Fuzzer {
     instances: Vec<fmi2Component>,
     states: Vec<fmi2FMUstate>,
     blobs: Vec<Vec<u8>>,
-    /// Keeps the callbacks structures alive for the instances.
+    /// Keeps the callbacks structures alive for the instances, at fixed addresses (FMI 2.0 lets
+    /// an FMU keep the pointer it was given, so a master must not move them).
+    #[allow(clippy::vec_box)]
     callbacks: Vec<Box<fmi2CallbackFunctions>>,
 }
 
