@@ -833,7 +833,7 @@ fn is_known(causality: Causality, variability: Variability, kind: &Kind) -> bool
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID};
+    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID, VARIABLES};
     use std::cell::RefCell;
     use std::rc::Rc;
 
@@ -1163,6 +1163,175 @@ mod tests {
         );
         instance.do_step(0.0, 1.0);
         assert_eq!(last_message(&log), "fmi2DoStep: currentCommunicationPoint = 0, communicationStepSize = 1");
+    }
+
+    /// A point where every input matters: combined creepage with spin, partly saturated.
+    fn at_a_general_point() -> (Instance, Log) {
+        let (mut instance, log) = stepping();
+        instance.set_real(&[vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE], &[-0.6e-3, 0.3]);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+        (instance, log)
+    }
+
+    const OUTPUTS: [u32; 3] = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION];
+
+    #[test]
+    fn directional_derivative_is_the_core_models_along_the_given_rates() {
+        let (mut instance, _) = at_a_general_point();
+        let knowns = [vr::CREEPAGE_LONGITUDINAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE, vr::CREEPAGE_LONGITUDINAL];
+        let rates = [1.0, -0.5, 2e3, 0.25];
+        let mut derivative = [f64::NAN; 3];
+        assert_eq!(instance.get_directional_derivative(&OUTPUTS, &knowns, &rates, &mut derivative), Status::Ok);
+        let input = crate::fmi::scene::contact_input(instance.values());
+        let direction = crate::ContactInput {
+            creepage_longitudinal: 1.25, // a known given twice adds its rates
+            creepage_lateral: 0.0,
+            spin_creepage: -0.5,
+            normal_force: 2e3,
+            semi_axis_a: 0.0,
+            semi_axis_b: 0.0,
+            friction_coefficient: 0.0,
+            shear_modulus: 0.0,
+            poisson_ratio: 0.0,
+        };
+        use crate::CreepForceModel;
+        let expected = crate::Polach::default().directional_derivative(&input, &direction).unwrap();
+        assert_eq!(derivative, [expected.force_longitudinal, expected.force_lateral, expected.adhesion_utilisation]);
+        // Unknowns in any order and subset.
+        let mut lateral = [f64::NAN];
+        instance.get_directional_derivative(&[vr::FORCE_LATERAL], &knowns, &rates, &mut lateral);
+        assert_eq!(lateral[0], derivative[1]);
+        // No knowns: zero.
+        instance.get_directional_derivative(&OUTPUTS, &[], &[], &mut derivative);
+        assert_eq!(derivative, [0.0; 3]);
+    }
+
+    #[test]
+    fn directional_derivative_refuses_parameters_outputs_and_bad_rates_by_name() {
+        let (mut instance, log) = at_a_general_point();
+        let mut out = [0.0];
+        let cases: [(&[u32], &[u32], f64, &str); 5] = [
+            (
+                &[vr::FORCE_LATERAL],
+                &[vr::SHEAR_MODULUS],
+                1.0,
+                "fmi2GetDirectionalDerivative: shear_modulus (value reference 100) cannot be a known: derivatives are \
+                 taken with respect to the continuous Real inputs only",
+            ),
+            (
+                &[vr::FORCE_LATERAL],
+                &[vr::FORCE_LONGITUDINAL],
+                1.0,
+                "fmi2GetDirectionalDerivative: force_longitudinal (value reference 200) cannot be a known: \
+                 derivatives are taken with respect to the continuous Real inputs only",
+            ),
+            (
+                &[vr::NORMAL_FORCE],
+                &[vr::SEMI_AXIS_A],
+                1.0,
+                "fmi2GetDirectionalDerivative: normal_force (value reference 3) cannot be an unknown: not an output",
+            ),
+            (
+                &[vr::FORCE_LATERAL],
+                &[vr::SEMI_AXIS_A],
+                f64::INFINITY,
+                "fmi2GetDirectionalDerivative: dvKnown = inf for semi_axis_a is invalid: must be finite",
+            ),
+            (&[999], &[vr::SEMI_AXIS_A], 1.0, "fmi2GetDirectionalDerivative: unknown value reference 999"),
+        ];
+        for (unknowns, knowns, rate, expected) in cases {
+            assert_eq!(instance.get_directional_derivative(unknowns, knowns, &[rate], &mut out), Status::Error);
+            assert_eq!(last_message(&log), expected);
+        }
+        // At an invalid point the variable is named, as for DoStep.
+        instance.set_real(&[vr::SEMI_AXIS_B], &[-1.0]);
+        assert_eq!(
+            instance.get_directional_derivative(&OUTPUTS[..1], &[vr::SEMI_AXIS_A], &[1.0], &mut out),
+            Status::Error
+        );
+        assert_eq!(
+            last_message(&log),
+            "fmi2GetDirectionalDerivative: semi_axis_b = -1 is invalid: must be finite and > 0"
+        );
+    }
+
+    /// `<ModelStructure>` dependencies and the Jacobian agree: at a general point each output's
+    /// derivative along an input is non-zero exactly when the input is a declared dependency.
+    #[test]
+    fn model_structure_dependencies_are_the_non_zero_derivatives() {
+        let (mut instance, _) = at_a_general_point();
+        for input in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
+            for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
+                let mut derivative = [f64::NAN];
+                let status = instance.get_directional_derivative(
+                    &[output.value_reference],
+                    &[input.value_reference],
+                    &[1.0],
+                    &mut derivative,
+                );
+                assert_eq!(status, Status::Ok);
+                let declared = output.dependencies.contains(&input.value_reference);
+                assert_eq!(derivative[0] != 0.0, declared, "d {} / d {}", output.name, input.name);
+            }
+        }
+    }
+
+    #[test]
+    fn an_fmu_state_restores_mode_time_and_every_value() {
+        let (mut instance, _) = at_a_general_point();
+        let saved = instance.get_fmu_state().unwrap();
+        let before = (instance.state(), *instance.values(), instance.get_real_status(StatusKind::LastSuccessfulTime));
+        instance.set_real(&[vr::NORMAL_FORCE, vr::SHEAR_MODULUS], &[20e3, 70e9]);
+        instance.set_integer(&[vr::STIFFNESS_SOURCE], &[StiffnessSourceValue::MEASURED]);
+        instance.do_step(0.1, 0.2);
+        instance.terminate();
+        assert_eq!(instance.set_fmu_state(&saved), Status::Ok);
+        let after = (instance.state(), *instance.values(), instance.get_real_status(StatusKind::LastSuccessfulTime));
+        assert_eq!(after, before);
+        // Through bytes, into an instance in another mode: the same.
+        let mut bytes = vec![0; instance.serialized_fmu_state_size(&saved).unwrap()];
+        assert_eq!(instance.serialize_fmu_state(&saved, &mut bytes), Status::Ok);
+        let (mut fresh, _) = new_instance();
+        let restored = fresh.deserialize_fmu_state(&bytes).unwrap();
+        assert_eq!(restored, saved);
+        fresh.set_fmu_state(&restored);
+        assert_eq!((fresh.state(), *fresh.values()), (before.0, before.1));
+        // The master's settings are not part of the state.
+        assert_eq!(fresh.name(), "wheel 1");
+    }
+
+    #[test]
+    fn serialisation_checks_sizes_and_rejects_bad_bytes_by_reason() {
+        let (mut instance, log) = stepping();
+        let state = instance.get_fmu_state().unwrap();
+        let size = instance.serialized_fmu_state_size(&state).unwrap();
+        assert_eq!(instance.serialize_fmu_state(&state, &mut vec![0; size + 1]), Status::Error);
+        let expected = format!(
+            "fmi2SerializeFMUstate: size = {} is not the serialized size {size} (see fmi2SerializedFMUstateSize)",
+            size + 1
+        );
+        assert_eq!(last_message(&log), expected);
+        assert_eq!(instance.deserialize_fmu_state(b"WRCst").unwrap_err(), Status::Error);
+        let expected =
+            "fmi2DeSerializeFMUstate: serializedState rejected: truncated: 5 bytes, the state needs at least 11";
+        assert_eq!(last_message(&log), expected);
+    }
+
+    #[test]
+    fn outputs_that_overflow_are_errors_and_keep_the_last_valid_values() {
+        let (mut instance, log) = stepping();
+        let before = instance.values().outputs;
+        instance.set_real(&[vr::FRICTION_COEFFICIENT], &[f64::MAX]);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
+        assert!(
+            last_message(&log).starts_with("fmi2DoStep: force_longitudinal = NaN")
+                && last_message(&log).ends_with(
+                    "for these values: an input or parameter is too large for the model's floating-point range"
+                ),
+            "{}",
+            last_message(&log)
+        );
+        assert_eq!(instance.values().outputs, before);
     }
 
     #[test]
