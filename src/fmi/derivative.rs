@@ -8,7 +8,7 @@
 //! (an element switching between adhesion and slip inside a step is a kink), so its derivative
 //! is a secant slope: documented tolerance 1e-2 relative on each output's scale against a
 //! central difference with a 100 times larger step, on 10² to 100² grids away from zero
-//! creepages (measured worst 4e-3, tests/model_choice_derivatives.rs).
+//! creepages (measured worst 4e-3, tests/derivatives.rs).
 
 use super::model_description::{Inputs, Outputs, Parameters, Values};
 use super::scene::{contact_input, creep_force_model, outputs, MeasuredCurveFit};
