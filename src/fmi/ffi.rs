@@ -6,8 +6,9 @@
 //! [`Instance`] method inside [`Instance::guarded`], which catches panics (`fmi2Fatal`).
 //!
 //! Contract with the master (FMI 2.0): `c` is NULL or a pointer returned by [`fmi2Instantiate`]
-//! and not yet given to [`fmi2FreeInstance`]; array pointers are valid for their n elements;
-//! strings are NUL-terminated. Calls on one instance are not concurrent; different instances may
+//! and not yet given to [`fmi2FreeInstance`]; an `fmi2FMUstate` is NULL or one this FMU returned
+//! (fmi2GetFMUstate, fmi2DeSerializeFMUstate) and not yet given to [`fmi2FreeFMUstate`]; array
+//! pointers are valid for their n elements; strings are NUL-terminated. Calls on one instance are not concurrent; different instances may
 //! run on different threads (there is no global mutable state).
 #![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc)]
 #![deny(unsafe_op_in_unsafe_fn)]
