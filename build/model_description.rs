@@ -365,7 +365,12 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         ("Outputs", Causality::Output, "The outputs (causality = output), as last computed."),
     ];
     for (struct_name, causality, doc) in groups {
-        writeln!(source, "/// {doc}\n#[derive(Debug, Clone, Copy, PartialEq)]\npub struct {struct_name} {{").unwrap();
+        writeln!(
+            source,
+            "/// {doc}\n#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]\npub struct \
+             {struct_name} {{"
+        )
+        .unwrap();
         for v in variables.iter().filter(|v| v.causality == causality) {
             let unit = v.unit.as_deref().map(|u| format!(" [{u}]")).unwrap_or_default();
             writeln!(source, "    /// {}{unit}\n    pub {}: {},", v.description, v.name, rust_type(v)).unwrap();
@@ -385,7 +390,8 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         writeln!(source, "        }}\n    }}\n}}\n").unwrap();
     }
     writeln!(source, "/// Every value of one instance: plain data, no pointers.").unwrap();
-    writeln!(source, "#[derive(Debug, Clone, Copy, PartialEq, Default)]").unwrap();
+    writeln!(source, "#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]")
+        .unwrap();
     writeln!(source, "pub struct Values {{\n    pub inputs: Inputs,\n    pub parameters: Parameters,\n    pub outputs: Outputs,\n}}\n")
         .unwrap();
 }
@@ -406,6 +412,7 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
         let rust = if kind == "real" { "f64" } else { "i32" };
         let matching: Vec<&Variable> = variables.iter().filter(|v| types.contains(&v.base_type)).collect();
         writeln!(source, "    /// The field behind a {kind} value reference.").unwrap();
+        writeln!(source, "    #[inline]").unwrap();
         writeln!(source, "    pub fn {kind}(&self, value_reference: u32) -> Option<{rust}> {{").unwrap();
         writeln!(source, "        match value_reference {{").unwrap();
         for v in &matching {
@@ -419,6 +426,7 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
         }
         writeln!(source, "            _ => None,\n        }}\n    }}\n").unwrap();
         writeln!(source, "    /// The field behind a {kind} value reference, for writing.").unwrap();
+        writeln!(source, "    #[inline]").unwrap();
         writeln!(source, "    pub fn {kind}_mut(&mut self, value_reference: u32) -> Option<&mut {rust}> {{").unwrap();
         writeln!(source, "        match value_reference {{").unwrap();
         for v in &matching {
@@ -473,18 +481,24 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
         .unwrap();
     }
     writeln!(source, "];\n").unwrap();
-    writeln!(
-        source,
-        "/// The variable with this value reference (a jump table, not a search: it runs on every Get/Set)."
-    )
-    .unwrap();
-    writeln!(
-        source,
-        "pub fn variable(value_reference: u32) -> Option<&'static Variable> {{\n    match value_reference {{"
-    )
-    .unwrap();
-    for (position, v) in variables.iter().enumerate() {
-        writeln!(source, "        {} => Some(&VARIABLES[{position}]),", v.value_reference).unwrap();
+    // A dense table by value reference: every Get/Set looks its references up here, so the
+    // lookup is one bounds check and one indexed load (no search, no string compare).
+    let largest = variables.iter().map(|v| v.value_reference).max().unwrap_or(0);
+    if largest > 4095 || variables.len() >= usize::from(u16::MAX) {
+        fail(format!("value references up to 4095 keep the lookup table small; {largest} is too large"));
     }
-    writeln!(source, "        _ => None,\n    }}\n}}").unwrap();
+    let mut positions = vec![u16::MAX; largest as usize + 1];
+    for (position, v) in variables.iter().enumerate() {
+        positions[v.value_reference as usize] = position as u16;
+    }
+    writeln!(source, "/// Position in [`VARIABLES`] by value reference (`u16::MAX`: no such variable).").unwrap();
+    writeln!(source, "const POSITION_BY_VALUE_REFERENCE: [u16; {}] = {positions:?};\n", positions.len()).unwrap();
+    writeln!(
+        source,
+        "/// The variable with this value reference: one indexed load in a dense table (it runs on every \
+         Get/Set).\n#[inline]\npub fn variable(value_reference: u32) -> Option<&'static Variable> {{\n    \
+         let position = POSITION_BY_VALUE_REFERENCE.get(usize::try_from(value_reference).ok()?)?;\n    \
+         VARIABLES.get(usize::from(*position))\n}}"
+    )
+    .unwrap();
 }

@@ -50,7 +50,14 @@ impl ContactInput {
             (0.0..=f64::MAX).contains(&self.friction_coefficient),
             "must be finite and >= 0",
         )?;
-        check("poisson_ratio", self.poisson_ratio, (0.0..=0.5).contains(&self.poisson_ratio), "must lie in [0, 0.5]")
+        check("poisson_ratio", self.poisson_ratio, (0.0..=0.5).contains(&self.poisson_ratio), "must lie in [0, 0.5]")?;
+        // Each finite, yet μQ could overflow: the Coulomb limit itself must be a number.
+        check(
+            "friction_coefficient",
+            self.friction_coefficient,
+            self.normal_force <= 0.0 || self.friction_coefficient * self.normal_force <= f64::MAX,
+            "times normal_force (the Coulomb limit μQ) must be finite",
+        )
     }
 }
 

@@ -2,10 +2,10 @@
 
 mod common;
 
-use common::{contact, contact_case, relative_difference};
+use common::{all_models, contact, contact_case, fastsim, relative_difference};
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, CreepForces, KalkerCoefficients, KalkerLinear, LargeCreepage, MeasuredCurve, Polach,
-    Polach2005, ShenHedrickElkins, StiffnessSource,
+    ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, KalkerLinear, LargeCreepage,
+    MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
 /// The input moved by `t` along `direction`.
@@ -221,4 +221,90 @@ fn bad_directions_are_named() {
     assert_eq!(Polach::default().directional_derivative(&x, &nan_rate).unwrap_err().variable, "creepage_lateral");
     let poisson_rate = ContactInput { poisson_ratio: 1.0, ..x };
     assert_eq!(Polach::default().directional_derivative(&x, &poisson_rate).unwrap_err().variable, "poisson_ratio");
+}
+
+/// The direction of [`unit_directions`] that moves every input but ν.
+fn all_inputs_direction(x: &ContactInput) -> ContactInput {
+    unit_directions(x).pop().expect("the last direction moves all inputs").1
+}
+
+#[test]
+fn model_choice_gives_the_chosen_models_own_derivative_bit_for_bit() {
+    let x = contact(1.07, 0.28, 2e-3, -1e-3, 0.3);
+    let d = all_inputs_direction(&x);
+    for choice in all_models() {
+        let inner: &dyn CreepForceModel = match &choice {
+            ModelChoice::Polach(model) => model,
+            ModelChoice::KalkerLinear(model) => model,
+            ModelChoice::ShenHedrickElkins(model) => model,
+            ModelChoice::Fastsim(model) => model,
+            ModelChoice::Exact(model) => model,
+        };
+        let through_choice = choice.directional_derivative(&x, &d).unwrap();
+        assert_eq!(through_choice, inner.directional_derivative(&x, &d).unwrap(), "{}", choice.name());
+    }
+    // The smooth models' derivatives are the exact ones, not the trait's default difference
+    // quotient (which differs from them in the last digits).
+    for model in [
+        ModelChoice::Polach(Polach::default()),
+        ModelChoice::KalkerLinear(KalkerLinear),
+        ModelChoice::ShenHedrickElkins(ShenHedrickElkins),
+    ] {
+        struct DefaultOnly(ModelChoice);
+        impl CreepForceModel for DefaultOnly {
+            fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
+                self.0.creep_forces(input)
+            }
+        }
+        let exact = model.directional_derivative(&x, &d).unwrap();
+        let difference = DefaultOnly(model).directional_derivative(&x, &d).unwrap();
+        assert_ne!(exact, difference, "{}", model.name());
+        assert!(
+            (exact.force_longitudinal - difference.force_longitudinal).abs() < 1e-5 * exact.force_longitudinal.abs()
+        );
+    }
+}
+
+/// FASTSIM's derivative (a central difference moving the inputs by 1e-6 of their size) against
+/// a central difference with a 100 times larger step, on 10², 30² and 100² grids, away from
+/// zero creepages (where the blended flexibilities have kinks): both see FASTSIM's piecewise-
+/// smooth forces, so they agree only as far as the forces are smooth on that scale.
+#[test]
+fn fastsim_derivative_agrees_with_finite_differences_to_its_documented_tolerance() {
+    let mut worst: f64 = 0.0;
+    for (bound, n) in
+        [TractionBound::Parabolic, TractionBound::Elliptic].into_iter().flat_map(|b| [(b, 10), (b, 30), (b, 100)])
+    {
+        let model = ModelChoice::Fastsim(fastsim(n, bound));
+        for a_over_b in [0.3, 1.07, 3.3] {
+            for (xi, eta, phi) in [(1e-4, 2e-5, 0.01), (2e-3, -1e-3, 0.1), (5e-4, 1e-3, 0.3), (8e-3, 4e-3, 0.5)] {
+                let x = contact(a_over_b, 0.28, xi, eta, phi);
+                let d = all_inputs_direction(&x);
+                let derivative = outputs(&model.directional_derivative(&x, &d).unwrap());
+                // Moves every input by at most 1e-4 of its size: 100 times FASTSIM's own step.
+                let sizes = [
+                    (x.creepage_longitudinal, d.creepage_longitudinal),
+                    (x.creepage_lateral, d.creepage_lateral),
+                    (x.spin_creepage, d.spin_creepage),
+                    (x.normal_force, d.normal_force),
+                ];
+                let t = sizes.iter().map(|(value, rate)| 1e-4 * value.abs() / rate.abs()).fold(f64::INFINITY, f64::min);
+                let at = |s: f64| outputs(&model.creep_forces(&moved(&x, &d, s)).unwrap());
+                let (plus, minus, value) = (at(t), at(-t), at(0.0));
+                for k in 0..4 {
+                    let difference = (plus[k] - minus[k]) / (2.0 * t);
+                    // Each output on its own scale: the direction moves the inputs by ~1e-3 of
+                    // their size per unit, so the output's own size times 1e-3 is its natural rate.
+                    let scale = derivative[k].abs().max(1e-3 * value[k].abs());
+                    if scale > 0.0 {
+                        worst = worst.max((derivative[k] - difference).abs() / scale);
+                    }
+                }
+            }
+        }
+    }
+    // Measured worst: 4e-3 (30 × 30, elliptic bound, a/b = 0.3): an element switching between
+    // adhesion and slip inside the larger step. The documented tolerance is 1e-2.
+    println!("FASTSIM: worst relative difference {worst:e}");
+    assert!(worst < 1e-2, "{worst}");
 }

@@ -114,6 +114,10 @@ fn invalid_inputs_name_the_variable_and_value() {
         (ContactInput { poisson_ratio: 0.51, ..valid }, "poisson_ratio", 0.51),
         (ContactInput { poisson_ratio: f64::NAN, ..valid }, "poisson_ratio", f64::NAN),
     ];
+    // Finite values whose Coulomb limit μQ overflows (found by the FMU's fuzz harness).
+    let overflow = ContactInput { friction_coefficient: f64::MAX, normal_force: 1e5, ..valid };
+    let error = Polach::default().creep_forces(&overflow).unwrap_err();
+    assert_eq!((error.variable, error.value), ("friction_coefficient", f64::MAX));
     for (input, variable, value) in cases {
         let error = Polach::default().creep_forces(&input).unwrap_err();
         assert_eq!(error.variable, variable);

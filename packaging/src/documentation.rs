@@ -320,8 +320,16 @@ The instance keeps its state and last valid outputs; once the master sets a good
 <li>Calls outside the states the standard allows return fmi2Error and log “fmi2XXX: illegal call in state YYY”.</li>
 <li>fmi2DoStep requires h &gt; 0 and currentCommunicationPoint equal to the end of the previous step (relative
 tolerance 1e-9); with a stop time, no step may end after it. canHandleVariableCommunicationStepSize is true.</li>
-<li>Not supported (declared false; the functions return fmi2Error saying so): FMU state, directional derivatives,
-input interpolation, output derivatives, asynchronous steps.</li>
+<li>FMU state (canGetAndSetFMUstate, canSerializeFMUstate): fmi2GetFMUstate/SetFMUstate copy the instance's mode,
+time, every variable's value and the model's internal state; fmi2SerializeFMUstate writes a versioned byte string
+(magic “WRCstate”, format version, this FMU's GUID, length, CRC-32, then the state), exactly
+fmi2SerializedFMUstateSize bytes. fmi2DeSerializeFMUstate rejects truncated, corrupted, foreign or other-version
+byte strings with fmi2Error and the reason, changing nothing.</li>
+<li>Directional derivatives (providesDirectionalDerivative): J·v of the outputs with respect to the continuous
+inputs at the current values — exact (forward-mode dual numbers) for Polach; a parameter as a known is fmi2Error
+naming it.</li>
+<li>Not supported (declared false; the functions return fmi2Error saying so): input interpolation, output
+derivatives, asynchronous steps.</li>
 <li>Logging: messages go to the master's logger as "%s" plus text, with its componentEnvironment. With debug
 logging off, only warnings, discards, errors and fatal errors are sent; fmi2SetDebugLogging(true, categories)
 selects categories (logStatusWarning, logStatusDiscard, logStatusError, logStatusFatal, logCalls; logAll or no

@@ -6,8 +6,9 @@
 //! [`Instance`] method inside [`Instance::guarded`], which catches panics (`fmi2Fatal`).
 //!
 //! Contract with the master (FMI 2.0): `c` is NULL or a pointer returned by [`fmi2Instantiate`]
-//! and not yet given to [`fmi2FreeInstance`]; array pointers are valid for their n elements;
-//! strings are NUL-terminated. Calls on one instance are not concurrent; different instances may
+//! and not yet given to [`fmi2FreeInstance`]; an `fmi2FMUstate` is NULL or one this FMU returned
+//! (fmi2GetFMUstate, fmi2DeSerializeFMUstate) and not yet given to [`fmi2FreeFMUstate`]; array
+//! pointers are valid for their n elements; strings are NUL-terminated. Calls on one instance are not concurrent; different instances may
 //! run on different threads (there is no global mutable state).
 #![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc)]
 #![deny(unsafe_op_in_unsafe_fn)]
@@ -18,7 +19,8 @@ use std::ptr::null_mut;
 
 use fmi_sys::fmi2::*;
 
-use super::instance::{Instance, InstantiateArguments, LogSink, Status, StatusKind, Unsupported};
+use super::fmu_state::FmuState;
+use super::instance::{Instance, InstantiateArguments, LogSink, Status, StatusKind, Unsupported, ValueType};
 
 #[cfg(not(panic = "unwind"))]
 compile_error!("the FMU must be built with panic = \"unwind\": every export turns a panic into fmi2Fatal");
@@ -134,6 +136,7 @@ unsafe fn slice_mut<'a, T>(pointer: *mut T, n: usize) -> Option<&'a mut [T]> {
 
 /// Runs `body` on the instance behind `c` (NULL: `fmi2Error`, nothing to log to).
 /// SAFETY: `c` is NULL or a live instance from [`fmi2Instantiate`].
+#[inline]
 unsafe fn with_instance(c: fmi2Component, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> fmi2Status {
     // SAFETY: by the caller's contract; the master does not call into one instance concurrently.
     match unsafe { c.cast::<Instance>().as_mut() } {
@@ -330,7 +333,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
-            (Some(vr), Some(_)) => instance.get_absent_type(CALL, "Boolean", vr),
+            (Some(vr), Some(_)) => instance.get_absent_type(CALL, ValueType::Boolean, vr),
             _ => instance.invalid_argument(CALL, NULL_ARRAY),
         })
     }
@@ -347,7 +350,7 @@ pub unsafe extern "C" fn fmi2GetString(
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
-            (Some(vr), Some(_)) => instance.get_absent_type(CALL, "String", vr),
+            (Some(vr), Some(_)) => instance.get_absent_type(CALL, ValueType::String, vr),
             _ => instance.invalid_argument(CALL, NULL_ARRAY),
         })
     }
@@ -398,7 +401,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
-            (Some(vr), Some(_)) => instance.set_absent_type(CALL, "Boolean", vr),
+            (Some(vr), Some(_)) => instance.set_absent_type(CALL, ValueType::Boolean, vr),
             _ => instance.invalid_argument(CALL, NULL_ARRAY),
         })
     }
@@ -415,7 +418,7 @@ pub unsafe extern "C" fn fmi2SetString(
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
-            (Some(vr), Some(_)) => instance.set_absent_type(CALL, "String", vr),
+            (Some(vr), Some(_)) => instance.set_absent_type(CALL, ValueType::String, vr),
             _ => instance.invalid_argument(CALL, NULL_ARRAY),
         })
     }
@@ -427,74 +430,164 @@ unsafe fn unsupported(c: fmi2Component, capability: Unsupported, call: &str) -> 
     unsafe { with_instance(c, call, |instance| instance.unsupported(capability)) }
 }
 
-#[no_mangle]
-pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, _FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2GetFMUstate";
-    // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::FmuState(CALL), CALL) }
+/// The FMU state behind an `fmi2FMUstate` the master got from this FMU (NULL: `None`).
+/// SAFETY: `state` is NULL or from [`fmi2GetFMUstate`]/[`fmi2DeSerializeFMUstate`] and not freed.
+unsafe fn fmu_state<'a>(state: fmi2FMUstate) -> Option<&'a mut FmuState> {
+    // SAFETY: by the caller's contract.
+    unsafe { state.cast::<FmuState>().as_mut() }
+}
+
+/// Stores `state` in `*slot`: into the FMU state already there (the standard lets the master
+/// pass one back for reuse) or a new allocation.
+/// SAFETY: `*slot` is NULL or an FMU state of this FMU that has not been freed.
+unsafe fn store_fmu_state(slot: &mut fmi2FMUstate, state: FmuState) {
+    // SAFETY: by the caller's contract.
+    match unsafe { fmu_state(*slot) } {
+        Some(existing) => *existing = state,
+        None => *slot = Box::into_raw(Box::new(state)).cast(),
+    }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, _FMUstate: fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+    const CALL: &str = "fmi2GetFMUstate";
+    // SAFETY: see the module's contract; `FMUstate` is NULL or points to the master's slot.
+    unsafe {
+        with_instance(c, CALL, |instance| match FMUstate.as_mut() {
+            None => instance.invalid_argument(CALL, "FMUstate is NULL"),
+            Some(slot) => match instance.get_fmu_state() {
+                Ok(state) => {
+                    store_fmu_state(slot, state);
+                    Status::Ok
+                }
+                Err(status) => status,
+            },
+        })
+    }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
     const CALL: &str = "fmi2SetFMUstate";
     // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::FmuState(CALL), CALL) }
+    unsafe {
+        with_instance(c, CALL, |instance| match fmu_state(FMUstate) {
+            None => instance.invalid_argument(CALL, "FMUstate is NULL"),
+            Some(state) => instance.set_fmu_state(state),
+        })
+    }
 }
 
 #[no_mangle]
-pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, _FMUstate: *mut fmi2FMUstate) -> fmi2Status {
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
     const CALL: &str = "fmi2FreeFMUstate";
-    // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::FmuState(CALL), CALL) }
+    // SAFETY: see the module's contract; `*FMUstate` came from Box::into_raw in this file and is
+    // released once: the slot is set to NULL.
+    unsafe {
+        with_instance(c, CALL, |instance| {
+            let status = instance.free_fmu_state();
+            if status == Status::Ok {
+                if let Some(slot) = FMUstate.as_mut() {
+                    if !slot.is_null() {
+                        drop(Box::from_raw(slot.cast::<FmuState>()));
+                        *slot = null_mut();
+                    }
+                }
+            }
+            status
+        })
+    }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     c: fmi2Component,
-    _FMUstate: fmi2FMUstate,
-    _size: *mut usize,
+    FMUstate: fmi2FMUstate,
+    size: *mut usize,
 ) -> fmi2Status {
     const CALL: &str = "fmi2SerializedFMUstateSize";
-    // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::FmuState(CALL), CALL) }
+    // SAFETY: see the module's contract; `size` is NULL or writable.
+    unsafe {
+        with_instance(c, CALL, |instance| match (fmu_state(FMUstate), size.as_mut()) {
+            (Some(state), Some(size)) => match instance.serialized_fmu_state_size(state) {
+                Ok(bytes) => {
+                    *size = bytes;
+                    Status::Ok
+                }
+                Err(status) => status,
+            },
+            _ => instance.invalid_argument(CALL, "FMUstate or size is NULL"),
+        })
+    }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SerializeFMUstate(
     c: fmi2Component,
-    _FMUstate: fmi2FMUstate,
-    _serializedState: *mut fmi2Byte,
-    _size: usize,
+    FMUstate: fmi2FMUstate,
+    serializedState: *mut fmi2Byte,
+    size: usize,
 ) -> fmi2Status {
     const CALL: &str = "fmi2SerializeFMUstate";
-    // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::FmuState(CALL), CALL) }
+    // SAFETY: see the module's contract; `serializedState` is valid for `size` writes.
+    unsafe {
+        with_instance(c, CALL, |instance| match (fmu_state(FMUstate), slice_mut(serializedState.cast::<u8>(), size)) {
+            (Some(state), Some(bytes)) => instance.serialize_fmu_state(state, bytes),
+            (None, _) => instance.invalid_argument(CALL, "FMUstate is NULL"),
+            (_, None) => instance.invalid_argument(CALL, NULL_ARRAY),
+        })
+    }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     c: fmi2Component,
-    _serializedState: *const fmi2Byte,
-    _size: usize,
-    _FMUstate: *mut fmi2FMUstate,
+    serializedState: *const fmi2Byte,
+    size: usize,
+    FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
     const CALL: &str = "fmi2DeSerializeFMUstate";
-    // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::FmuState(CALL), CALL) }
+    // SAFETY: see the module's contract; `serializedState` is valid for `size` reads, `FMUstate`
+    // is NULL or points to the master's slot (NULL or an FMU state of this FMU).
+    unsafe {
+        with_instance(c, CALL, |instance| match (slice(serializedState.cast::<u8>(), size), FMUstate.as_mut()) {
+            (Some(bytes), Some(slot)) => match instance.deserialize_fmu_state(bytes) {
+                Ok(state) => {
+                    store_fmu_state(slot, state);
+                    Status::Ok
+                }
+                Err(status) => status,
+            },
+            (None, _) => instance.invalid_argument(CALL, NULL_ARRAY),
+            (_, None) => instance.invalid_argument(CALL, "FMUstate is NULL"),
+        })
+    }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     c: fmi2Component,
-    _vUnknown_ref: *const fmi2ValueReference,
-    _nUnknown: usize,
-    _vKnown_ref: *const fmi2ValueReference,
-    _nKnown: usize,
-    _dvKnown: *const fmi2Real,
-    _dvUnknown: *mut fmi2Real,
+    vUnknown_ref: *const fmi2ValueReference,
+    nUnknown: usize,
+    vKnown_ref: *const fmi2ValueReference,
+    nKnown: usize,
+    dvKnown: *const fmi2Real,
+    dvUnknown: *mut fmi2Real,
 ) -> fmi2Status {
+    const CALL: &str = "fmi2GetDirectionalDerivative";
     // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::DirectionalDerivative, "fmi2GetDirectionalDerivative") }
+    unsafe {
+        with_instance(c, CALL, |instance| {
+            let unknowns = (slice(vUnknown_ref, nUnknown), slice_mut(dvUnknown, nUnknown));
+            let knowns = (slice(vKnown_ref, nKnown), slice(dvKnown, nKnown));
+            match (unknowns, knowns) {
+                ((Some(unknowns), Some(rates)), (Some(knowns), Some(known_rates))) => {
+                    instance.get_directional_derivative(unknowns, knowns, known_rates, rates)
+                }
+                _ => instance.invalid_argument(CALL, NULL_ARRAY),
+            }
+        })
+    }
 }
 
 #[no_mangle]

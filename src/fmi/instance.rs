@@ -12,11 +12,19 @@
 //!   value and carry on (this FMU never enters the standard's `error` state);
 //! - a panic inside a call (a bug) is caught by [`Instance::guarded`]: `Fatal`, logged, and the
 //!   instance accepts nothing but fmi2FreeInstance afterwards.
+//!
+//! The hot path (fmi2SetReal/DoStep/GetReal) does no allocation, no string comparison and no
+//! search: one dense-table lookup per value reference, a bit test for the state, and a log
+//! filter decided once per fmi2SetDebugLogging.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+use serde::{Deserialize, Serialize};
+
+use super::derivative::directional_derivative;
+use super::fmu_state::{decode, encode, FmuState, RunState};
 use super::model_description::{self, variable, Causality, Kind, Values, Variability, LOG_CATEGORIES};
-use super::scene::{compute_outputs, Evaluation, ModelCache, RelaxedForces};
+use super::scene::{compute_outputs, Evaluation, ModelCache};
 
 /// What an FMI call returns (`fmi2Status` without `fmi2Pending`: every call is synchronous).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,7 +37,7 @@ pub enum Status {
 }
 
 /// The states of the Co-Simulation state machine that this FMU can be in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum State {
     Instantiated,
     InitializationMode,
@@ -53,14 +61,64 @@ impl State {
 
 use State::{InitializationMode, Instantiated, StepComplete, Terminated};
 
+/// A set of states as a bit mask: membership is one bit test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct States(u8);
+
+impl States {
+    const fn of(states: &[State]) -> States {
+        let mut mask = 0;
+        let mut i = 0;
+        while i < states.len() {
+            mask |= 1 << states[i] as u8;
+            i += 1;
+        }
+        States(mask)
+    }
+
+    #[inline]
+    pub fn contains(self, state: State) -> bool {
+        self.0 & (1 << state as u8) != 0
+    }
+}
+
 /// Where SetDebugLogging, Reset and the FMU-state functions are allowed.
-const LIVE: &[State] = &[Instantiated, InitializationMode, StepComplete, Terminated];
-/// Where values may be read.
-const READABLE: &[State] = &[InitializationMode, StepComplete, Terminated];
+const LIVE: States = States::of(&[Instantiated, InitializationMode, StepComplete, Terminated]);
+/// Where values may be read (and directional derivatives taken).
+const READABLE: States = States::of(&[InitializationMode, StepComplete, Terminated]);
 /// Where values may be written (which ones: see [`Instance::check_settable`]).
-const WRITABLE: &[State] = &[Instantiated, InitializationMode, StepComplete];
+const WRITABLE: States = States::of(&[Instantiated, InitializationMode, StepComplete]);
 /// Where the step status may be inquired.
-const STEPPED: &[State] = &[StepComplete, Terminated];
+const STEPPED: States = States::of(&[StepComplete, Terminated]);
+/// Nowhere.
+const NEVER: States = States::of(&[]);
+
+/// The FMI base types of the Get/Set functions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ValueType {
+    Real,
+    Integer,
+    Boolean,
+    String,
+}
+
+impl ValueType {
+    fn of(kind: &Kind) -> ValueType {
+        match kind {
+            Kind::Real { .. } => ValueType::Real,
+            Kind::Integer { .. } | Kind::Enumeration { .. } => ValueType::Integer,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            ValueType::Real => "Real",
+            ValueType::Integer => "Integer",
+            ValueType::Boolean => "Boolean",
+            ValueType::String => "String",
+        }
+    }
+}
 
 /// `fmi2StatusKind`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -76,29 +134,36 @@ pub trait LogSink {
     fn log(&mut self, status: Status, category: &str, message: &str);
 }
 
-/// Which messages reach the logger.
+/// Which messages reach the logger: one flag per status (each status has one category),
+/// decided when the selection changes, so a call checks one bool.
 ///
 /// With debug logging off, only messages with a non-OK status (warnings, discards, errors,
 /// fatal): the standard's status descriptions say the FMU calls the logger for those, and leaves
 /// it to the logger whether to show them. With debug logging on, all categories, or only those
 /// given to fmi2SetDebugLogging (`logAll` selects all).
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct LogFilter {
-    debug_logging: bool,
-    categories: Option<Vec<&'static str>>,
+    passes: [bool; 5],
 }
 
 impl LogFilter {
-    fn passes(&self, status: Status, category: &str) -> bool {
-        if !self.debug_logging {
-            return status != Status::Ok;
-        }
-        match &self.categories {
-            None => true,
-            Some(selected) => selected.iter().any(|c| *c == category || *c == "logAll"),
-        }
+    fn new(debug_logging: bool, categories: Option<&[&str]>) -> LogFilter {
+        let passes = |status: Status| match (debug_logging, categories) {
+            (false, _) => status != Status::Ok,
+            (true, None) => true,
+            (true, Some(selected)) => selected.iter().any(|c| *c == status_category(status) || *c == "logAll"),
+        };
+        LogFilter { passes: STATUSES.map(passes) }
+    }
+
+    #[inline]
+    fn passes(&self, status: Status) -> bool {
+        self.passes[status as usize]
     }
 }
+
+/// Every status, in the order of their discriminants.
+const STATUSES: [Status; 5] = [Status::Ok, Status::Warning, Status::Discard, Status::Error, Status::Fatal];
 
 fn status_category(status: Status) -> &'static str {
     match status {
@@ -123,14 +188,10 @@ pub(crate) const PANIC_CATEGORY_FOR_TESTS: &str = "panicForTests";
 pub struct Instance {
     name: String,
     resource_location: Option<String>,
-    state: State,
-    values: Values,
-    time: f64,
-    stop_time: Option<f64>,
-    /// The model the parameters select, built when they change (derived data, not FMU state).
+    /// Mode, time, values and model state: exactly what an FMU state saves and restores.
+    run: RunState,
+    /// A cache derived from the parameters (not state: it is refitted whenever they differ).
     model: ModelCache,
-    /// The FMU's one state: the relaxed creep forces [F_x, F_y] [N] (creep_relaxation = on).
-    relaxed_forces: RelaxedForces,
     log_filter: LogFilter,
     sink: Box<dyn LogSink>,
 }
@@ -168,13 +229,9 @@ impl Instance {
         let mut instance = Instance {
             name: instance_name.to_owned(),
             resource_location: resource_location.map(str::to_owned),
-            state: Instantiated,
-            values: Values::default(),
-            time: 0.0,
-            stop_time: None,
+            run: RunState::instantiated(),
             model: ModelCache::default(),
-            relaxed_forces: RelaxedForces::default(),
-            log_filter: LogFilter { debug_logging: logging_on, categories: None },
+            log_filter: LogFilter::new(logging_on, None),
             sink,
         };
         instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
@@ -192,45 +249,49 @@ impl Instance {
     }
 
     pub fn state(&self) -> State {
-        self.state
+        self.run.mode
     }
 
     /// The instance's values (inputs, parameters, last outputs).
     pub fn values(&self) -> &Values {
-        &self.values
+        &self.run.values
     }
 
     /// Runs one FMI call. A panic inside it (a bug: no valid input panics) becomes `Fatal`, is
     /// logged, and leaves the instance in the `fatal` state, where every call but
     /// fmi2FreeInstance is refused. `AssertUnwindSafe` is sound for that reason: nothing reads
     /// the values a panic may have left half-updated.
+    #[inline]
     pub fn guarded(&mut self, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> Status {
         match catch_unwind(AssertUnwindSafe(|| body(self))) {
             Ok(status) => status,
-            Err(payload) => {
-                self.state = State::Fatal;
-                let reason = payload
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| payload.downcast_ref::<String>().cloned())
-                    .unwrap_or_else(|| "unknown panic".to_owned());
-                let message = format!("{call}: internal error ({reason}); this instance can only be freed");
-                self.emit(Status::Fatal, &message);
-                Status::Fatal
-            }
+            Err(payload) => self.panicked(call, payload.as_ref()),
         }
     }
 
+    #[cold]
+    fn panicked(&mut self, call: &str, payload: &(dyn std::any::Any + Send)) -> Status {
+        self.run.mode = State::Fatal;
+        let reason = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".to_owned());
+        let message = format!("{call}: internal error ({reason}); this instance can only be freed");
+        self.emit(Status::Fatal, &message);
+        Status::Fatal
+    }
+
     fn emit(&mut self, status: Status, message: &str) {
-        let category = status_category(status);
-        if self.log_filter.passes(status, category) {
-            self.sink.log(status, category, message);
+        if self.log_filter.passes(status) {
+            self.sink.log(status, status_category(status), message);
         }
     }
 
     /// Logs a call trace (category logCalls); the message is only formatted when it will be sent.
+    #[inline]
     fn trace(&mut self, message: impl FnOnce() -> String) {
-        if self.log_filter.passes(Status::Ok, status_category(Status::Ok)) {
+        if self.log_filter.passes(Status::Ok) {
             let text = message();
             self.sink.log(Status::Ok, status_category(Status::Ok), &text);
         }
@@ -241,13 +302,19 @@ impl Instance {
         Status::Error
     }
 
-    fn require(&mut self, call: &str, allowed: &[State]) -> Result<(), Status> {
-        if allowed.contains(&self.state) {
+    #[inline]
+    fn require(&mut self, call: &str, allowed: States) -> Result<(), Status> {
+        if allowed.contains(self.run.mode) {
             Ok(())
         } else {
-            let state = self.state.name();
-            Err(self.fail(call, &format!("illegal call in state {state}")))
+            Err(self.illegal_call(call))
         }
+    }
+
+    #[cold]
+    fn illegal_call(&mut self, call: &str) -> Status {
+        let state = self.run.mode.name();
+        self.fail(call, &format!("illegal call in state {state}"))
     }
 
     /// fmi2SetDebugLogging. Unknown categories are ignored with a warning.
@@ -260,10 +327,8 @@ impl Instance {
         if let Err(status) = self.require(CALL, LIVE) {
             return status;
         }
-        let known: Vec<&'static str> =
-            LOG_CATEGORIES.iter().copied().filter(|known| categories.contains(known)).collect();
-        let selection = if categories.is_empty() { None } else { Some(known) };
-        self.log_filter = LogFilter { debug_logging: logging_on, categories: selection };
+        let selection = if categories.is_empty() { None } else { Some(categories) };
+        self.log_filter = LogFilter::new(logging_on, selection);
         let unknown: Vec<&&str> = categories.iter().filter(|c| !LOG_CATEGORIES.contains(c)).collect();
         self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
         if unknown.is_empty() {
@@ -278,7 +343,7 @@ impl Instance {
     /// fmi2SetupExperiment. The tolerance is not used: the outputs are algebraic in the inputs.
     pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status {
         const CALL: &str = "fmi2SetupExperiment";
-        if let Err(status) = self.require(CALL, &[Instantiated]) {
+        if let Err(status) = self.require(CALL, States::of(&[Instantiated])) {
             return status;
         }
         self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
@@ -288,18 +353,18 @@ impl Instance {
         if let Some(stop) = stop_time.filter(|stop| stop.is_nan() || *stop < start_time) {
             return self.fail(CALL, &format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"));
         }
-        self.time = start_time;
-        self.stop_time = stop_time;
+        self.run.time = start_time;
+        self.run.stop_time = stop_time;
         Status::Ok
     }
 
     pub fn enter_initialization_mode(&mut self) -> Status {
         const CALL: &str = "fmi2EnterInitializationMode";
-        if let Err(status) = self.require(CALL, &[Instantiated]) {
+        if let Err(status) = self.require(CALL, States::of(&[Instantiated])) {
             return status;
         }
         self.trace(|| CALL.to_owned());
-        self.state = InitializationMode;
+        self.run.mode = InitializationMode;
         Status::Ok
     }
 
@@ -307,24 +372,24 @@ impl Instance {
     /// initialization mode so that the master can correct it.
     pub fn exit_initialization_mode(&mut self) -> Status {
         const CALL: &str = "fmi2ExitInitializationMode";
-        if let Err(status) = self.require(CALL, &[InitializationMode]) {
+        if let Err(status) = self.require(CALL, States::of(&[InitializationMode])) {
             return status;
         }
         self.trace(|| CALL.to_owned());
         if let Err(status) = self.update_outputs(CALL, Evaluation::Initialise) {
             return status;
         }
-        self.state = StepComplete;
+        self.run.mode = StepComplete;
         Status::Ok
     }
 
     pub fn terminate(&mut self) -> Status {
         const CALL: &str = "fmi2Terminate";
-        if let Err(status) = self.require(CALL, &[StepComplete]) {
+        if let Err(status) = self.require(CALL, States::of(&[StepComplete])) {
             return status;
         }
         self.trace(|| CALL.to_owned());
-        self.state = Terminated;
+        self.run.mode = Terminated;
         Status::Ok
     }
 
@@ -335,87 +400,103 @@ impl Instance {
             return status;
         }
         self.trace(|| CALL.to_owned());
-        self.values = Values::default();
-        self.time = 0.0;
-        self.stop_time = None;
+        self.run = RunState::instantiated();
         self.model = ModelCache::default();
-        self.relaxed_forces = RelaxedForces::default();
-        self.state = Instantiated;
         Status::Ok
     }
 
+    #[inline]
     fn update_outputs(&mut self, call: &str, evaluation: Evaluation) -> Result<(), Status> {
-        match compute_outputs(&self.values, &mut self.model, &mut self.relaxed_forces, evaluation) {
+        // The model state advances on a copy, kept only if the outputs are good.
+        let mut model_state = self.run.model_state;
+        let outputs = compute_outputs(&self.run.values, &mut self.model, &mut model_state.relaxed_forces, evaluation)
+            .and_then(|outputs| finite(Values { outputs, ..self.run.values }).map(|_| outputs));
+        match outputs {
             Ok(outputs) => {
-                self.values.outputs = outputs;
+                self.run.values.outputs = outputs;
+                self.run.model_state = model_state;
                 Ok(())
             }
             Err(reason) => Err(self.fail(call, &reason)),
         }
     }
 
-    /// Why `value_reference` cannot be written as `type_name` now, if it cannot.
-    fn check_settable(&self, value_reference: u32, type_name: &str) -> Result<(), String> {
-        let Some(variable) = variable(value_reference) else {
-            return Err(format!("unknown value reference {value_reference}"));
-        };
-        let name = variable.name;
-        if type_name_of(&variable.kind) != type_name {
-            return Err(format!("value reference {value_reference} ({name}) is not a {type_name}"));
-        }
-        match (variable.causality, variable.variability) {
-            (Causality::Output, _) => Err(format!("{name} is an output and cannot be set")),
-            (Causality::Parameter, Variability::Fixed) if self.state == StepComplete => {
-                Err(format!("{name} is a fixed parameter and cannot be set after initialization"))
+    /// Whether `value_reference` can be written as `value_type` now.
+    #[inline]
+    fn settable(&self, value_reference: u32, value_type: ValueType) -> bool {
+        variable(value_reference).is_some_and(|v| {
+            ValueType::of(&v.kind) == value_type
+                && match (v.causality, v.variability) {
+                    (Causality::Output, _) => false,
+                    (Causality::Parameter, Variability::Fixed) => self.run.mode != StepComplete,
+                    _ => true,
+                }
+        })
+    }
+
+    /// Why `value_reference` cannot be written as `value_type` now (only called when it cannot).
+    #[cold]
+    fn not_settable(&self, value_reference: u32, value_type: ValueType) -> String {
+        match variable(value_reference) {
+            None => format!("unknown value reference {value_reference}"),
+            Some(v) if ValueType::of(&v.kind) != value_type => {
+                format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name())
             }
-            _ => Ok(()),
+            Some(v) if v.causality == Causality::Output => format!("{} is an output and cannot be set", v.name),
+            Some(v) => format!("{} is a fixed parameter and cannot be set after initialization", v.name),
         }
     }
 
-    fn check_readable(value_reference: u32, type_name: &str) -> Result<(), String> {
+    #[inline]
+    fn readable(value_reference: u32, value_type: ValueType) -> bool {
+        variable(value_reference).is_some_and(|v| ValueType::of(&v.kind) == value_type)
+    }
+
+    #[cold]
+    fn not_readable(value_reference: u32, value_type: ValueType) -> String {
         match variable(value_reference) {
-            None => Err(format!("unknown value reference {value_reference}")),
-            Some(v) if type_name_of(&v.kind) != type_name => {
-                Err(format!("value reference {value_reference} ({}) is not a {type_name}", v.name))
-            }
-            Some(_) => Ok(()),
+            None => format!("unknown value reference {value_reference}"),
+            Some(v) => format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name()),
         }
     }
 
     /// Checks every reference first, so that a call sets either all its values or none.
-    fn prepare_set(&mut self, call: &str, value_references: &[u32], type_name: &str) -> Result<(), Status> {
+    #[inline]
+    fn prepare_set(&mut self, call: &str, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
         self.require(call, WRITABLE)?;
-        for &value_reference in value_references {
-            if let Err(reason) = self.check_settable(value_reference, type_name) {
-                return Err(self.fail(call, &reason));
+        match value_references.iter().find(|&&r| !self.settable(r, value_type)) {
+            None => Ok(()),
+            Some(&value_reference) => {
+                let reason = self.not_settable(value_reference, value_type);
+                Err(self.fail(call, &reason))
             }
         }
-        Ok(())
     }
 
     /// Checks the references and, in initialization mode, brings the outputs up to date with
     /// the values just set if any is read.
-    fn prepare_get(&mut self, call: &str, value_references: &[u32], type_name: &str) -> Result<(), Status> {
+    #[inline]
+    fn prepare_get(&mut self, call: &str, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
         self.require(call, READABLE)?;
-        for &value_reference in value_references {
-            if let Err(reason) = Self::check_readable(value_reference, type_name) {
-                return Err(self.fail(call, &reason));
-            }
+        if let Some(&value_reference) = value_references.iter().find(|&&r| !Self::readable(r, value_type)) {
+            let reason = Self::not_readable(value_reference, value_type);
+            return Err(self.fail(call, &reason));
         }
         let reads_output =
             || value_references.iter().any(|&r| variable(r).is_some_and(|v| v.causality == Causality::Output));
-        if self.state == InitializationMode && reads_output() {
+        if self.run.mode == InitializationMode && reads_output() {
             self.update_outputs(call, Evaluation::Initialise)?;
         }
         Ok(())
     }
 
+    #[inline]
     pub fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
-        if let Err(status) = self.prepare_set("fmi2SetReal", value_references, "Real") {
+        if let Err(status) = self.prepare_set("fmi2SetReal", value_references, ValueType::Real) {
             return status;
         }
         for (&value_reference, &value) in value_references.iter().zip(values) {
-            if let Some(field) = self.values.real_mut(value_reference) {
+            if let Some(field) = self.run.values.real_mut(value_reference) {
                 *field = value;
             }
         }
@@ -423,12 +504,13 @@ impl Instance {
         Status::Ok
     }
 
+    #[inline]
     pub fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
-        if let Err(status) = self.prepare_get("fmi2GetReal", value_references, "Real") {
+        if let Err(status) = self.prepare_get("fmi2GetReal", value_references, ValueType::Real) {
             return status;
         }
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
-            *slot = self.values.real(value_reference).unwrap_or(f64::NAN);
+            *slot = self.run.values.real(value_reference).unwrap_or(f64::NAN);
         }
         self.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
         Status::Ok
@@ -436,11 +518,11 @@ impl Instance {
 
     /// fmi2SetInteger: Integer and Enumeration variables.
     pub fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status {
-        if let Err(status) = self.prepare_set("fmi2SetInteger", value_references, "Integer") {
+        if let Err(status) = self.prepare_set("fmi2SetInteger", value_references, ValueType::Integer) {
             return status;
         }
         for (&value_reference, &value) in value_references.iter().zip(values) {
-            if let Some(field) = self.values.integer_mut(value_reference) {
+            if let Some(field) = self.run.values.integer_mut(value_reference) {
                 *field = value;
             }
         }
@@ -449,36 +531,37 @@ impl Instance {
     }
 
     pub fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
-        if let Err(status) = self.prepare_get("fmi2GetInteger", value_references, "Integer") {
+        if let Err(status) = self.prepare_get("fmi2GetInteger", value_references, ValueType::Integer) {
             return status;
         }
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
-            *slot = self.values.integer(value_reference).unwrap_or_default();
+            *slot = self.run.values.integer(value_reference).unwrap_or_default();
         }
         self.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
         Status::Ok
     }
 
     /// fmi2GetBoolean / fmi2GetString: this FMU has no such variables, so only n = 0 succeeds.
-    pub fn get_absent_type(&mut self, call: &str, type_name: &str, value_references: &[u32]) -> Status {
-        match self.prepare_get(call, value_references, type_name) {
+    pub fn get_absent_type(&mut self, call: &str, value_type: ValueType, value_references: &[u32]) -> Status {
+        match self.prepare_get(call, value_references, value_type) {
             Ok(()) => Status::Ok,
             Err(status) => status,
         }
     }
 
     /// fmi2SetBoolean / fmi2SetString: this FMU has no such variables, so only n = 0 succeeds.
-    pub fn set_absent_type(&mut self, call: &str, type_name: &str, value_references: &[u32]) -> Status {
-        match self.prepare_set(call, value_references, type_name) {
+    pub fn set_absent_type(&mut self, call: &str, value_type: ValueType, value_references: &[u32]) -> Status {
+        match self.prepare_set(call, value_references, value_type) {
             Ok(()) => Status::Ok,
             Err(status) => status,
         }
     }
 
     /// fmi2DoStep: outputs at t + h from the inputs set before the step (the model is algebraic).
+    #[inline]
     pub fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
         const CALL: &str = "fmi2DoStep";
-        if let Err(status) = self.require(CALL, &[StepComplete]) {
+        if let Err(status) = self.require(CALL, States::of(&[StepComplete])) {
             return status;
         }
         let (t, h) = (current_communication_point, communication_step_size);
@@ -486,26 +569,26 @@ impl Instance {
         if !(h > 0.0 && h.is_finite()) {
             return self.fail(CALL, &format!("communicationStepSize = {h} is invalid: must be finite and > 0"));
         }
-        let tolerance = TIME_TOLERANCE * self.time.abs().max(1.0);
-        let on_time = (t - self.time).abs() <= tolerance; // false for a NaN t
+        let tolerance = TIME_TOLERANCE * self.run.time.abs().max(1.0);
+        let on_time = (t - self.run.time).abs() <= tolerance; // false for a NaN t
         if !on_time {
-            let time = self.time;
+            let time = self.run.time;
             return self.fail(CALL, &format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
         }
         let end = t + h;
-        if let Some(stop) = self.stop_time.filter(|stop| end > stop + tolerance) {
+        if let Some(stop) = self.run.stop_time.filter(|stop| end > stop + tolerance) {
             return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
         }
         if let Err(status) = self.update_outputs(CALL, Evaluation::Step(h)) {
             return status;
         }
-        self.time = end;
+        self.run.time = end;
         Status::Ok
     }
 
     /// fmi2CancelStep: DoStep never returns fmi2Pending, so there is never a step to cancel.
     pub fn cancel_step(&mut self) -> Status {
-        match self.require("fmi2CancelStep", &[]) {
+        match self.require("fmi2CancelStep", NEVER) {
             Ok(()) => Status::Ok,
             Err(status) => status,
         }
@@ -531,7 +614,7 @@ impl Instance {
         const CALL: &str = "fmi2GetRealStatus";
         self.require(CALL, STEPPED)?;
         match kind {
-            StatusKind::LastSuccessfulTime => Ok(self.time),
+            StatusKind::LastSuccessfulTime => Ok(self.run.time),
             _ => Err(self.discard_status(CALL, kind)),
         }
     }
@@ -564,6 +647,131 @@ impl Instance {
         self.discard_status(CALL, kind)
     }
 
+    /// fmi2GetFMUstate: a copy of the instance's mode, time, values and model state.
+    pub fn get_fmu_state(&mut self) -> Result<FmuState, Status> {
+        const CALL: &str = "fmi2GetFMUstate";
+        self.require(CALL, LIVE)?;
+        let (mode, time) = (self.run.mode, self.run.time);
+        self.trace(|| format!("{CALL}: state {}, time {time}", mode.name()));
+        Ok(FmuState(self.run.clone()))
+    }
+
+    /// fmi2SetFMUstate: from here on the instance behaves exactly as when `state` was taken.
+    pub fn set_fmu_state(&mut self, state: &FmuState) -> Status {
+        const CALL: &str = "fmi2SetFMUstate";
+        if let Err(status) = self.require(CALL, LIVE) {
+            return status;
+        }
+        self.trace(|| format!("{CALL}: state {}, time {}", state.0.mode.name(), state.0.time));
+        self.run.clone_from(&state.0);
+        Status::Ok
+    }
+
+    /// fmi2FreeFMUstate: whether the call is legal now (the C layer releases the memory).
+    pub fn free_fmu_state(&mut self) -> Status {
+        const CALL: &str = "fmi2FreeFMUstate";
+        match self.require(CALL, LIVE) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+
+    /// fmi2SerializedFMUstateSize: the exact length fmi2SerializeFMUstate writes.
+    pub fn serialized_fmu_state_size(&mut self, state: &FmuState) -> Result<usize, Status> {
+        self.require("fmi2SerializedFMUstateSize", LIVE)?;
+        Ok(encode(&state.0).len())
+    }
+
+    /// fmi2SerializeFMUstate: `bytes` must have exactly the serialized size.
+    pub fn serialize_fmu_state(&mut self, state: &FmuState, bytes: &mut [u8]) -> Status {
+        const CALL: &str = "fmi2SerializeFMUstate";
+        if let Err(status) = self.require(CALL, LIVE) {
+            return status;
+        }
+        let encoded = encode(&state.0);
+        if bytes.len() != encoded.len() {
+            let (size, needed) = (bytes.len(), encoded.len());
+            return self.fail(
+                CALL,
+                &format!("size = {size} is not the serialized size {needed} (see fmi2SerializedFMUstateSize)"),
+            );
+        }
+        bytes.copy_from_slice(&encoded);
+        Status::Ok
+    }
+
+    /// fmi2DeSerializeFMUstate: the state in `bytes`, after checking all of them (see
+    /// [`decode`]); the instance itself is not changed.
+    pub fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState, Status> {
+        const CALL: &str = "fmi2DeSerializeFMUstate";
+        self.require(CALL, LIVE)?;
+        decode(bytes).map(FmuState).map_err(|reason| self.fail(CALL, &format!("serializedState rejected: {reason}")))
+    }
+
+    /// fmi2GetDirectionalDerivative: `unknown_rates` = J·`known_rates`, J = ∂(outputs)/∂(inputs)
+    /// at the current values. Knowns must be continuous inputs (a value reference given twice
+    /// adds its rates), unknowns outputs; all-or-nothing like Get.
+    pub fn get_directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        known_rates: &[f64],
+        unknown_rates: &mut [f64],
+    ) -> Status {
+        const CALL: &str = "fmi2GetDirectionalDerivative";
+        if let Err(status) = self.require(CALL, READABLE) {
+            return status;
+        }
+        self.trace(|| format!("{CALL}: unknowns {unknowns:?}, knowns {knowns:?} = {known_rates:?}"));
+        let mut rates = Values::default();
+        for input in model_description::VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
+            if let Some(rate) = rates.real_mut(input.value_reference) {
+                *rate = 0.0;
+            }
+        }
+        for (&value_reference, &rate) in knowns.iter().zip(known_rates) {
+            match variable(value_reference) {
+                Some(v) if is_known(v.causality, v.variability, &v.kind) && rate.is_finite() => {
+                    *rates.real_mut(value_reference).expect("a Real input") += rate;
+                }
+                Some(v) if is_known(v.causality, v.variability, &v.kind) => {
+                    return self.fail(CALL, &format!("dvKnown = {rate} for {} is invalid: must be finite", v.name));
+                }
+                Some(v) => {
+                    let reason = format!(
+                        "{} (value reference {value_reference}) cannot be a known: derivatives are taken with \
+                         respect to the continuous Real inputs only",
+                        v.name
+                    );
+                    return self.fail(CALL, &reason);
+                }
+                None => return self.fail(CALL, &format!("unknown value reference {value_reference}")),
+            }
+        }
+        if let Some(&value_reference) =
+            unknowns.iter().find(|&&r| variable(r).is_none_or(|v| v.causality != Causality::Output))
+        {
+            let reason = match variable(value_reference) {
+                Some(v) => {
+                    format!("{} (value reference {value_reference}) cannot be an unknown: not an output", v.name)
+                }
+                None => format!("unknown value reference {value_reference}"),
+            };
+            return self.fail(CALL, &reason);
+        }
+        let derivative = directional_derivative(&self.run.values, &mut self.model, &rates.inputs)
+            .and_then(|outputs| finite(Values { outputs, ..rates }));
+        match derivative {
+            Ok(derivative) => {
+                for (&value_reference, slot) in unknowns.iter().zip(unknown_rates.iter_mut()) {
+                    *slot = derivative.real(value_reference).unwrap_or(f64::NAN);
+                }
+                Status::Ok
+            }
+            Err(reason) => self.fail(CALL, &reason),
+        }
+    }
+
     /// An unsupported capability: `Error` with the capability flag that says so.
     pub fn unsupported(&mut self, capability: Unsupported) -> Status {
         let (call, allowed, flag) = capability.describe();
@@ -585,21 +793,13 @@ impl Instance {
 /// The capabilities this FMU declares false.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Unsupported {
-    /// fmi2GetFMUstate, fmi2SetFMUstate, fmi2FreeFMUstate, and the (de)serialisation functions.
-    FmuState(&'static str),
-    DirectionalDerivative,
     RealInputDerivatives,
     RealOutputDerivatives,
 }
 
 impl Unsupported {
-    fn describe(self) -> (&'static str, &'static [State], &'static str) {
+    fn describe(self) -> (&'static str, States, &'static str) {
         match self {
-            Unsupported::FmuState(call) if call.contains("erializ") => (call, LIVE, "canSerializeFMUstate = false"),
-            Unsupported::FmuState(call) => (call, LIVE, "canGetAndSetFMUstate = false"),
-            Unsupported::DirectionalDerivative => {
-                ("fmi2GetDirectionalDerivative", READABLE, "providesDirectionalDerivative = false")
-            }
             Unsupported::RealInputDerivatives => {
                 ("fmi2SetRealInputDerivatives", WRITABLE, "canInterpolateInputs = false")
             }
@@ -610,17 +810,33 @@ impl Unsupported {
     }
 }
 
-fn type_name_of(kind: &Kind) -> &'static str {
-    match kind {
-        Kind::Real { .. } => "Real",
-        Kind::Integer { .. } | Kind::Enumeration { .. } => "Integer",
+/// `values` if every output is finite, else why not: the last guard of "never NaN or Inf out",
+/// for finite inputs so large that the model's arithmetic overflows (e.g. μ = 1.8e308 makes
+/// μQ infinite).
+fn finite(values: Values) -> Result<Values, String> {
+    let outputs = model_description::VARIABLES.iter().filter(|v| v.causality == Causality::Output);
+    let overflowing: Vec<String> = outputs
+        .filter_map(|v| values.real(v.value_reference).filter(|x| !x.is_finite()).map(|x| format!("{} = {x}", v.name)))
+        .collect();
+    if overflowing.is_empty() {
+        Ok(values)
+    } else {
+        Err(format!(
+            "{} for these values: an input or parameter is too large for the model's floating-point range",
+            overflowing.join(", ")
+        ))
     }
+}
+
+/// Whether a variable can be a known of fmi2GetDirectionalDerivative: a continuous Real input.
+fn is_known(causality: Causality, variability: Variability, kind: &Kind) -> bool {
+    causality == Causality::Input && variability == Variability::Continuous && matches!(kind, Kind::Real { .. })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID};
+    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID, VARIABLES};
     use std::cell::RefCell;
     use std::rc::Rc;
 
@@ -807,23 +1023,23 @@ mod tests {
         let mut source = [0];
         assert_eq!(instance.get_integer(&[vr::STIFFNESS_SOURCE], &mut source), Status::Ok);
         assert_eq!(source, [1]);
-        assert_eq!(instance.get_absent_type("fmi2GetBoolean", "Boolean", &[]), Status::Ok);
-        assert_eq!(instance.get_absent_type("fmi2GetBoolean", "Boolean", &[vr::NORMAL_FORCE]), Status::Error);
+        assert_eq!(instance.get_absent_type("fmi2GetBoolean", ValueType::Boolean, &[]), Status::Ok);
+        assert_eq!(instance.get_absent_type("fmi2GetBoolean", ValueType::Boolean, &[vr::NORMAL_FORCE]), Status::Error);
         assert_eq!(last_message(&log), "fmi2GetBoolean: value reference 3 (normal_force) is not a Boolean");
-        assert_eq!(instance.set_absent_type("fmi2SetString", "String", &[]), Status::Ok);
+        assert_eq!(instance.set_absent_type("fmi2SetString", ValueType::String, &[]), Status::Ok);
     }
 
     /// Every call outside the states the standard allows it in is refused, the state unchanged.
     #[test]
     fn illegal_calls_are_refused_in_every_state() {
         type Call = fn(&mut Instance) -> Status;
-        let calls: [(&str, Call, &[State]); 12] = [
-            ("fmi2SetupExperiment", |i| i.setup_experiment(0.0, None), &[Instantiated]),
-            ("fmi2EnterInitializationMode", Instance::enter_initialization_mode, &[Instantiated]),
-            ("fmi2ExitInitializationMode", Instance::exit_initialization_mode, &[InitializationMode]),
-            ("fmi2DoStep", |i| i.do_step(0.0, 1e-3), &[StepComplete]),
-            ("fmi2Terminate", Instance::terminate, &[StepComplete]),
-            ("fmi2CancelStep", Instance::cancel_step, &[]),
+        let calls: [(&str, Call, States); 17] = [
+            ("fmi2SetupExperiment", |i| i.setup_experiment(0.0, None), States::of(&[Instantiated])),
+            ("fmi2EnterInitializationMode", Instance::enter_initialization_mode, States::of(&[Instantiated])),
+            ("fmi2ExitInitializationMode", Instance::exit_initialization_mode, States::of(&[InitializationMode])),
+            ("fmi2DoStep", |i| i.do_step(0.0, 1e-3), States::of(&[StepComplete])),
+            ("fmi2Terminate", Instance::terminate, States::of(&[StepComplete])),
+            ("fmi2CancelStep", Instance::cancel_step, NEVER),
             ("fmi2GetReal", |i| i.get_real(&[0], &mut [0.0]), READABLE),
             ("fmi2SetReal", |i| i.set_real(&[0], &[0.0]), WRITABLE),
             ("fmi2GetStatus", |i| i.get_status(StatusKind::DoStepStatus), STEPPED),
@@ -833,7 +1049,20 @@ mod tests {
                 STEPPED,
             ),
             ("fmi2Reset", Instance::reset, LIVE),
-            ("fmi2GetFMUstate", |i| i.unsupported(Unsupported::FmuState("fmi2GetFMUstate")), LIVE),
+            ("fmi2GetFMUstate", |i| i.get_fmu_state().err().unwrap_or(Status::Ok), LIVE),
+            ("fmi2SetFMUstate", |i| i.set_fmu_state(&FmuState(RunState::instantiated())), LIVE),
+            ("fmi2FreeFMUstate", Instance::free_fmu_state, LIVE),
+            (
+                "fmi2SerializedFMUstateSize",
+                |i| i.serialized_fmu_state_size(&FmuState(RunState::instantiated())).err().unwrap_or(Status::Ok),
+                LIVE,
+            ),
+            ("fmi2DeSerializeFMUstate", |i| i.deserialize_fmu_state(&[]).err().unwrap_or(Status::Ok), LIVE),
+            (
+                "fmi2GetDirectionalDerivative",
+                |i| i.get_directional_derivative(&[vr::FORCE_LATERAL], &[vr::CREEPAGE_LATERAL], &[1.0], &mut [0.0]),
+                READABLE,
+            ),
         ];
         let states: [(State, fn() -> Instance); 4] = [
             (Instantiated, || new_instance().0),
@@ -856,7 +1085,7 @@ mod tests {
                 instance.sink = Box::new(Recorder(log.clone()));
                 let status = call(&mut instance);
                 let message = last_message(&log);
-                if allowed.contains(&state) {
+                if allowed.contains(state) {
                     assert!(!message.contains("illegal call"), "{name} in {state:?}: {message}");
                 } else {
                     assert_eq!(status, Status::Error, "{name} in {state:?}");
@@ -899,11 +1128,12 @@ mod tests {
     #[test]
     fn unsupported_capabilities_name_their_flag() {
         let (mut instance, log) = stepping();
-        assert_eq!(instance.unsupported(Unsupported::DirectionalDerivative), Status::Error);
-        let expected = "fmi2GetDirectionalDerivative: not supported (providesDirectionalDerivative = false in modelDescription.xml)";
+        assert_eq!(instance.unsupported(Unsupported::RealOutputDerivatives), Status::Error);
+        let expected =
+            "fmi2GetRealOutputDerivatives: not supported (maxOutputDerivativeOrder = 0 in modelDescription.xml)";
         assert_eq!(last_message(&log), expected);
-        instance.unsupported(Unsupported::FmuState("fmi2SerializeFMUstate"));
-        assert!(last_message(&log).contains("canSerializeFMUstate = false"));
+        instance.unsupported(Unsupported::RealInputDerivatives);
+        assert!(last_message(&log).contains("canInterpolateInputs = false"));
     }
 
     #[test]
@@ -936,6 +1166,195 @@ mod tests {
         );
         instance.do_step(0.0, 1.0);
         assert_eq!(last_message(&log), "fmi2DoStep: currentCommunicationPoint = 0, communicationStepSize = 1");
+    }
+
+    /// A point where every input matters: combined creepage with spin, partly saturated.
+    fn at_a_general_point() -> (Instance, Log) {
+        let (mut instance, log) = stepping();
+        instance.set_real(&[vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE], &[-0.6e-3, 0.3]);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+        (instance, log)
+    }
+
+    const OUTPUTS: [u32; 3] = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION];
+
+    #[test]
+    fn directional_derivative_is_the_core_models_along_the_given_rates() {
+        let (mut instance, _) = at_a_general_point();
+        let knowns = [vr::CREEPAGE_LONGITUDINAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE, vr::CREEPAGE_LONGITUDINAL];
+        let rates = [1.0, -0.5, 2e3, 0.25];
+        let mut derivative = [f64::NAN; 3];
+        assert_eq!(instance.get_directional_derivative(&OUTPUTS, &knowns, &rates, &mut derivative), Status::Ok);
+        let input = crate::fmi::scene::contact_input(instance.values());
+        let direction = crate::ContactInput {
+            creepage_longitudinal: 1.25, // a known given twice adds its rates
+            creepage_lateral: 0.0,
+            spin_creepage: -0.5,
+            normal_force: 2e3,
+            semi_axis_a: 0.0,
+            semi_axis_b: 0.0,
+            friction_coefficient: 0.0,
+            shear_modulus: 0.0,
+            poisson_ratio: 0.0,
+        };
+        use crate::CreepForceModel;
+        let expected = crate::Polach::default().directional_derivative(&input, &direction).unwrap();
+        assert_eq!(derivative, [expected.force_longitudinal, expected.force_lateral, expected.adhesion_utilisation]);
+        // Unknowns in any order and subset.
+        let mut lateral = [f64::NAN];
+        instance.get_directional_derivative(&[vr::FORCE_LATERAL], &knowns, &rates, &mut lateral);
+        assert_eq!(lateral[0], derivative[1]);
+        // No knowns: zero.
+        instance.get_directional_derivative(&OUTPUTS, &[], &[], &mut derivative);
+        assert_eq!(derivative, [0.0; 3]);
+    }
+
+    #[test]
+    fn directional_derivative_refuses_parameters_outputs_and_bad_rates_by_name() {
+        let (mut instance, log) = at_a_general_point();
+        let mut out = [0.0];
+        let cases: [(&[u32], &[u32], f64, &str); 5] = [
+            (
+                &[vr::FORCE_LATERAL],
+                &[vr::SHEAR_MODULUS],
+                1.0,
+                "fmi2GetDirectionalDerivative: shear_modulus (value reference 100) cannot be a known: derivatives are \
+                 taken with respect to the continuous Real inputs only",
+            ),
+            (
+                &[vr::FORCE_LATERAL],
+                &[vr::FORCE_LONGITUDINAL],
+                1.0,
+                "fmi2GetDirectionalDerivative: force_longitudinal (value reference 200) cannot be a known: \
+                 derivatives are taken with respect to the continuous Real inputs only",
+            ),
+            (
+                &[vr::NORMAL_FORCE],
+                &[vr::SEMI_AXIS_A],
+                1.0,
+                "fmi2GetDirectionalDerivative: normal_force (value reference 3) cannot be an unknown: not an output",
+            ),
+            (
+                &[vr::FORCE_LATERAL],
+                &[vr::SEMI_AXIS_A],
+                f64::INFINITY,
+                "fmi2GetDirectionalDerivative: dvKnown = inf for semi_axis_a is invalid: must be finite",
+            ),
+            (&[999], &[vr::SEMI_AXIS_A], 1.0, "fmi2GetDirectionalDerivative: unknown value reference 999"),
+        ];
+        for (unknowns, knowns, rate, expected) in cases {
+            assert_eq!(instance.get_directional_derivative(unknowns, knowns, &[rate], &mut out), Status::Error);
+            assert_eq!(last_message(&log), expected);
+        }
+        // At an invalid point the variable is named, as for DoStep.
+        instance.set_real(&[vr::SEMI_AXIS_B], &[-1.0]);
+        assert_eq!(
+            instance.get_directional_derivative(&OUTPUTS[..1], &[vr::SEMI_AXIS_A], &[1.0], &mut out),
+            Status::Error
+        );
+        assert_eq!(
+            last_message(&log),
+            "fmi2GetDirectionalDerivative: semi_axis_b = -1 is invalid: must be finite and > 0"
+        );
+    }
+
+    /// `<ModelStructure>` dependencies and the Jacobian agree: for each smooth model, at a
+    /// general point, every non-zero derivative is along a declared dependency. (The declared
+    /// lists hold what can change an output under some model or option; that each declared input
+    /// does change its output somewhere is tested in `scene.rs` by perturbation.)
+    #[test]
+    fn every_non_zero_derivative_is_a_declared_dependency() {
+        use crate::fmi::model_description::Model;
+        for model in [Model::Polach, Model::KalkerLinear, Model::ShenHedrickElkins] {
+            let (mut instance, _) = new_instance();
+            assert_eq!(instance.set_integer(&[vr::MODEL], &[model as i32]), Status::Ok);
+            assert_eq!(instance.setup_experiment(0.0, None), Status::Ok);
+            assert_eq!(instance.enter_initialization_mode(), Status::Ok);
+            assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+            instance.set_real(&[vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE], &[-0.6e-3, 0.3]);
+            assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+            let mut non_zero = 0;
+            for input in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
+                for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
+                    let mut derivative = [f64::NAN];
+                    let status = instance.get_directional_derivative(
+                        &[output.value_reference],
+                        &[input.value_reference],
+                        &[1.0],
+                        &mut derivative,
+                    );
+                    assert_eq!(status, Status::Ok);
+                    if derivative[0] != 0.0 {
+                        non_zero += 1;
+                        let declared = output.dependencies.contains(&input.value_reference);
+                        assert!(
+                            declared,
+                            "{model:?}: d {} / d {} = {} undeclared",
+                            output.name, input.name, derivative[0]
+                        );
+                    }
+                }
+            }
+            assert!(non_zero > 30, "{model:?}: only {non_zero} non-zero derivatives");
+        }
+    }
+
+    #[test]
+    fn an_fmu_state_restores_mode_time_and_every_value() {
+        let (mut instance, _) = at_a_general_point();
+        let saved = instance.get_fmu_state().unwrap();
+        let before = (instance.state(), *instance.values(), instance.get_real_status(StatusKind::LastSuccessfulTime));
+        instance.set_real(&[vr::NORMAL_FORCE, vr::SHEAR_MODULUS], &[20e3, 70e9]);
+        instance.set_integer(&[vr::STIFFNESS_SOURCE], &[StiffnessSourceValue::MEASURED]);
+        instance.do_step(0.1, 0.2);
+        instance.terminate();
+        assert_eq!(instance.set_fmu_state(&saved), Status::Ok);
+        let after = (instance.state(), *instance.values(), instance.get_real_status(StatusKind::LastSuccessfulTime));
+        assert_eq!(after, before);
+        // Through bytes, into an instance in another mode: the same.
+        let mut bytes = vec![0; instance.serialized_fmu_state_size(&saved).unwrap()];
+        assert_eq!(instance.serialize_fmu_state(&saved, &mut bytes), Status::Ok);
+        let (mut fresh, _) = new_instance();
+        let restored = fresh.deserialize_fmu_state(&bytes).unwrap();
+        assert_eq!(restored, saved);
+        fresh.set_fmu_state(&restored);
+        assert_eq!((fresh.state(), *fresh.values()), (before.0, before.1));
+        // The master's settings are not part of the state.
+        assert_eq!(fresh.name(), "wheel 1");
+    }
+
+    #[test]
+    fn serialisation_checks_sizes_and_rejects_bad_bytes_by_reason() {
+        let (mut instance, log) = stepping();
+        let state = instance.get_fmu_state().unwrap();
+        let size = instance.serialized_fmu_state_size(&state).unwrap();
+        assert_eq!(instance.serialize_fmu_state(&state, &mut vec![0; size + 1]), Status::Error);
+        let expected = format!(
+            "fmi2SerializeFMUstate: size = {} is not the serialized size {size} (see fmi2SerializedFMUstateSize)",
+            size + 1
+        );
+        assert_eq!(last_message(&log), expected);
+        assert_eq!(instance.deserialize_fmu_state(b"WRCst").unwrap_err(), Status::Error);
+        let expected =
+            "fmi2DeSerializeFMUstate: serializedState rejected: truncated: 5 bytes, the state needs at least 11";
+        assert_eq!(last_message(&log), expected);
+    }
+
+    #[test]
+    fn outputs_that_overflow_are_errors_and_keep_the_last_valid_values() {
+        let (mut instance, log) = stepping();
+        let before = instance.values().outputs;
+        instance.set_real(&[vr::FRICTION_COEFFICIENT], &[f64::MAX]);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
+        assert!(
+            last_message(&log).starts_with("fmi2DoStep: force_longitudinal = NaN")
+                && last_message(&log).ends_with(
+                    "for these values: an input or parameter is too large for the model's floating-point range"
+                ),
+            "{}",
+            last_message(&log)
+        );
+        assert_eq!(instance.values().outputs, before);
     }
 
     #[test]

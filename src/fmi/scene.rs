@@ -29,9 +29,19 @@ use crate::{
     LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
-/// The relaxed forces [F_x, F_y] [N]: the FMU's one state (used when `creep_relaxation = on`),
-/// in the layout of [`RelaxationLengths::advance`].
+/// The relaxed forces [F_x, F_y] [N] (used when `creep_relaxation = on`), in the layout of
+/// [`RelaxationLengths::advance`].
 pub type RelaxedForces = [f64; 2];
+
+/// State the model carries from one step to the next, held by the instance and saved and
+/// restored whole with the FMU state (`fmi::fmu_state::RunState`); `Default` (unrelaxed) after
+/// instantiation and fmi2Reset. Plain values only. Changing its layout needs a new
+/// `FORMAT_VERSION` in `fmu_state.rs`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct ModelState {
+    /// The creep-relaxation state.
+    pub relaxed_forces: RelaxedForces,
+}
 
 /// What an evaluation is for.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -313,6 +323,12 @@ pub(crate) fn compute_outputs(
     Ok(outputs)
 }
 
+/// The creep-force model the parameters select: what fmi2GetDirectionalDerivative
+/// differentiates when no option transforms its inputs (see `derivative.rs`).
+pub(crate) fn creep_force_model(parameters: &Parameters, cache: &mut ModelCache) -> Result<ModelChoice, String> {
+    Ok(cache.plan(parameters)?.model)
+}
+
 fn evaluate(
     values: &Values,
     plan: &Plan,
@@ -433,7 +449,8 @@ fn relax_forces(
     // Checked at initialisation too, so that a bad length is reported at ExitInitializationMode.
     let lengths = relaxation_lengths(contact, relaxation_length)?;
     let relaxed = match evaluation {
-        Evaluation::Initialise => steady_forces,
+        // Initialised at the steady state: the outputs are the model's, exactly.
+        Evaluation::Initialise => return Ok((*steady, steady_forces)),
         Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, rolling_speed, step)?,
     };
     let friction_limit = contact.normal_force * friction;

@@ -46,4 +46,22 @@ impl CreepForceModel for ModelChoice {
             Self::Exact(model) => model.creep_forces(input),
         }
     }
+
+    /// The chosen model's own derivative: exact (dual numbers) for Polach, Kalker's linear
+    /// theory and Shen–Hedrick–Elkins, FASTSIM's central difference. Without this the trait's
+    /// default (a central difference) would replace the exact ones.
+    #[inline]
+    fn directional_derivative(
+        &self,
+        input: &ContactInput,
+        direction: &ContactInput,
+    ) -> Result<CreepForces, InvalidInput> {
+        match self {
+            Self::Polach(model) => model.directional_derivative(input, direction),
+            Self::KalkerLinear(model) => model.directional_derivative(input, direction),
+            Self::ShenHedrickElkins(model) => model.directional_derivative(input, direction),
+            Self::Fastsim(model) => model.directional_derivative(input, direction),
+            Self::Exact(model) => model.directional_derivative(input, direction),
+        }
+    }
 }

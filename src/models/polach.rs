@@ -68,7 +68,7 @@ impl Polach {
         spin_creepage: f64,
         semi_axis_a: f64,
     ) -> f64 {
-        ResultingCreepage::new(creepage_longitudinal, creepage_lateral, spin_creepage, semi_axis_a).s_c
+        resulting_creepage_at(creepage_longitudinal, creepage_lateral, spin_creepage, semi_axis_a)
     }
 
     /// The forces for a validated input, over any [`Scalar`]: `f64` for values, a dual number
@@ -197,6 +197,11 @@ impl<D: Scalar> CreepDirection<D> {
             Some((x2, y2)) => ((c11 * c11 * x2 + c22 * c22 * y2) * self.inverse_norm).sqrt(),
         }
     }
+}
+
+/// [`Polach::resulting_creepage`] over any [`Scalar`] (dual numbers give its derivative).
+pub(crate) fn resulting_creepage_at<D: Scalar>(xi: D, eta: D, spin: D, semi_axis_a: D) -> D {
+    ResultingCreepage::new(xi, eta, spin, semi_axis_a).s_c
 }
 
 /// The creepages of eqs. (21), (22) after the overflow guard.

@@ -1,0 +1,208 @@
+//! A small master over the FMU's C exports (the `extern "C"` functions of
+//! `wheel_rail_contact::fmi::ffi`, called in-process exactly as a master calls the shared
+//! library), shared by the C-ABI integration tests and the leak-check example.
+#![allow(dead_code)] // each test binary uses part of it
+
+use std::ffi::{c_char, CStr, CString};
+use std::ptr::{null, null_mut};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use fmi_sys::fmi2::*;
+use wheel_rail_contact::fmi::ffi::*;
+use wheel_rail_contact::fmi::model_description::{value_reference as vr, GUID};
+
+pub const OK: fmi2Status = fmi2Status_fmi2OK;
+pub const ERROR: fmi2Status = fmi2Status_fmi2Error;
+
+/// The seven continuous inputs, in value-reference order.
+pub const INPUTS: [u32; 7] = [
+    vr::CREEPAGE_LONGITUDINAL,
+    vr::CREEPAGE_LATERAL,
+    vr::SPIN_CREEPAGE,
+    vr::NORMAL_FORCE,
+    vr::SEMI_AXIS_A,
+    vr::SEMI_AXIS_B,
+    vr::FRICTION_COEFFICIENT,
+];
+pub const OUTPUTS: [u32; 3] = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION];
+
+/// Counts the logger's calls and checks each one as a master would rely on it: the format is
+/// `"%s"` and every string is a valid, NUL-terminated pointer.
+pub struct LogCounter(pub AtomicUsize);
+
+/// The logger: stable Rust cannot define a C-variadic function, so it takes the one argument
+/// that `"%s"` announces as a named parameter (passed identically on x86-64 System V and
+/// AArch64 Linux, as in the adapter's own tests).
+extern "C" fn count_message(
+    environment: fmi2ComponentEnvironment,
+    instance_name: fmi2String,
+    status: fmi2Status,
+    category: fmi2String,
+    format: fmi2String,
+    text: fmi2String,
+) {
+    // SAFETY: the environment is the `LogCounter` given at instantiation; the FMU passes
+    // NUL-terminated strings.
+    unsafe {
+        assert!(status <= fmi2Status_fmi2Fatal, "status {status}");
+        assert_eq!(CStr::from_ptr(format), c"%s");
+        for text in [instance_name, category, text] {
+            assert!(!text.is_null());
+            CStr::from_ptr(text).to_str().expect("UTF-8 message");
+        }
+        (*environment.cast::<LogCounter>()).0.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// Callbacks whose logger counts into `counter` (`None`: no logger).
+pub fn callbacks(counter: Option<&LogCounter>) -> fmi2CallbackFunctions {
+    type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+    type Variadic = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+    // SAFETY: see `count_message`.
+    let logger = counter.map(|_| unsafe { std::mem::transmute::<Named, Variadic>(count_message) });
+    fmi2CallbackFunctions {
+        logger,
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: counter.map_or(null_mut(), |c| (c as *const LogCounter).cast_mut().cast()),
+    }
+}
+
+/// One instance, freed on drop.
+pub struct Fmu {
+    pub c: fmi2Component,
+    /// Kept alive as long as the instance: the FMU holds no pointer into it, but the master's
+    /// callbacks structure must outlive fmi2Instantiate.
+    _callbacks: Box<fmi2CallbackFunctions>,
+}
+
+impl Fmu {
+    pub fn instantiate(name: &str, counter: Option<&LogCounter>) -> Fmu {
+        let callbacks = Box::new(callbacks(counter));
+        let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
+        // SAFETY: valid strings and callbacks.
+        let c = unsafe {
+            fmi2Instantiate(name.as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, 0, 0)
+        };
+        assert!(!c.is_null());
+        Fmu { c, _callbacks: callbacks }
+    }
+
+    /// Instantiated, initialised from `start_time` on, in step mode.
+    pub fn stepping(name: &str, start_time: f64) -> Fmu {
+        let fmu = Fmu::instantiate(name, None);
+        // SAFETY: `fmu.c` is live.
+        unsafe {
+            assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, start_time, 0, 0.0), OK);
+            assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+            assert_eq!(fmi2ExitInitializationMode(fmu.c), OK);
+        }
+        fmu
+    }
+
+    pub fn set_real(&self, references: &[u32], values: &[f64]) -> fmi2Status {
+        assert_eq!(references.len(), values.len());
+        // SAFETY: live instance, matching lengths.
+        unsafe { fmi2SetReal(self.c, references.as_ptr(), references.len(), values.as_ptr()) }
+    }
+
+    pub fn get_real(&self, references: &[u32]) -> Vec<f64> {
+        let mut values = vec![f64::NAN; references.len()];
+        // SAFETY: live instance, matching lengths.
+        let status = unsafe { fmi2GetReal(self.c, references.as_ptr(), references.len(), values.as_mut_ptr()) };
+        assert_eq!(status, OK);
+        values
+    }
+
+    pub fn do_step(&self, time: f64, step: f64) -> fmi2Status {
+        // SAFETY: live instance.
+        unsafe { fmi2DoStep(self.c, time, step, 0) }
+    }
+
+    pub fn get_state(&self) -> fmi2FMUstate {
+        let mut state: fmi2FMUstate = null_mut();
+        // SAFETY: live instance; a NULL slot asks for a new state.
+        assert_eq!(unsafe { fmi2GetFMUstate(self.c, &mut state) }, OK);
+        assert!(!state.is_null());
+        state
+    }
+
+    pub fn set_state(&self, state: fmi2FMUstate) -> fmi2Status {
+        // SAFETY: live instance; `state` from this FMU.
+        unsafe { fmi2SetFMUstate(self.c, state) }
+    }
+
+    pub fn free_state(&self, mut state: fmi2FMUstate) {
+        // SAFETY: live instance; `state` from this FMU, freed once (the slot is cleared).
+        assert_eq!(unsafe { fmi2FreeFMUstate(self.c, &mut state) }, OK);
+        assert!(state.is_null());
+    }
+
+    pub fn serialize(&self, state: fmi2FMUstate) -> Vec<u8> {
+        let mut size = 0;
+        // SAFETY: live instance and state; the buffer has the size the FMU asked for.
+        unsafe {
+            assert_eq!(fmi2SerializedFMUstateSize(self.c, state, &mut size), OK);
+            let mut bytes = vec![0u8; size];
+            assert_eq!(fmi2SerializeFMUstate(self.c, state, bytes.as_mut_ptr().cast::<c_char>(), size), OK);
+            bytes
+        }
+    }
+
+    /// The state in `bytes` (`Err(status)` if the FMU rejects them).
+    pub fn deserialize(&self, bytes: &[u8]) -> Result<fmi2FMUstate, fmi2Status> {
+        let mut state: fmi2FMUstate = null_mut();
+        // SAFETY: live instance; `bytes` valid for its length.
+        let status =
+            unsafe { fmi2DeSerializeFMUstate(self.c, bytes.as_ptr().cast::<c_char>(), bytes.len(), &mut state) };
+        if status == OK {
+            Ok(state)
+        } else {
+            assert!(state.is_null(), "a rejected byte string gives no state");
+            Err(status)
+        }
+    }
+}
+
+impl Drop for Fmu {
+    fn drop(&mut self) {
+        // SAFETY: freed once.
+        unsafe { fmi2FreeInstance(self.c) }
+    }
+}
+
+/// Inputs of step `k` of a scene that sweeps every input through its range (creepage ramp
+/// through saturation and sign change, spin, load steps down to lift-off, ellipse shape,
+/// friction drop).
+pub fn scene_inputs(k: usize) -> [f64; 7] {
+    let t = k as f64;
+    [
+        4e-3 * (0.05 * t).sin(),
+        -2e-3 * (0.031 * t).cos(),
+        0.6 * (0.017 * t).sin(),
+        if k % 97 == 50 { -10.0 } else { 60e3 + 40e3 * (0.011 * t).cos() },
+        6e-3 + 2e-3 * (0.007 * t).sin(),
+        4.5e-3 + 1.5e-3 * (0.013 * t).cos(),
+        if k % 200 < 150 { 0.35 } else { 0.15 },
+    ]
+}
+
+/// Runs steps `first..first + count` of [`scene_inputs`] from `fmu`'s current time, returning
+/// the three outputs after every step.
+pub fn run_scene(fmu: &Fmu, first: usize, count: usize, start_time: f64, step: f64) -> Vec<[f64; 3]> {
+    (first..first + count)
+        .map(|k| {
+            assert_eq!(fmu.set_real(&INPUTS, &scene_inputs(k)), OK);
+            let time = start_time + (k - first) as f64 * step;
+            assert_eq!(fmu.do_step(time, step), OK, "step {k}");
+            let outputs = fmu.get_real(&OUTPUTS);
+            [outputs[0], outputs[1], outputs[2]]
+        })
+        .collect()
+}
+
+/// Bit patterns, so that equality is exact (and NaN-safe).
+pub fn bits(rows: &[[f64; 3]]) -> Vec<[u64; 3]> {
+    rows.iter().map(|row| row.map(f64::to_bits)).collect()
+}
