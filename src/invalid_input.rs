@@ -22,7 +22,15 @@ impl InvalidInput {
 
 impl fmt::Display for InvalidInput {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} = {} is invalid: {}", self.variable, self.value, self.requirement)
+        write!(f, "{} = ", self.variable)?;
+        // Ordinary values as written (0.2, -1); huge and tiny ones in exponent form, not 309 digits.
+        let magnitude = self.value.abs();
+        if magnitude != 0.0 && magnitude.is_finite() && !(1e-5..1e16).contains(&magnitude) {
+            write!(f, "{:e}", self.value)?;
+        } else {
+            write!(f, "{}", self.value)?;
+        }
+        write!(f, " is invalid: {}", self.requirement)
     }
 }
 
