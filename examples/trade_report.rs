@@ -276,10 +276,12 @@ fn write_header(report: &mut String, settings: &Settings, case_count: usize, acc
         report,
         "Reference: Kalker's exact theory (`ExactTheory`, CONTACT's steady-rolling problem) on {coarse} × {coarse} \
          and {fine} × {fine} elements over 1.1 a × 1.1 b, extrapolated to the zero grid size assuming its \
-         first-order grid error (Richardson: F = 2 F_{fine} − F_{coarse}). Accuracy of the reference: the \
-         extrapolation moves the {fine} × {fine} forces by median {:.4} / max {:.4} (F_x), {:.4} / {:.4} (F_y), \
-         max {:.4} (M_z) in the units below; the error left after it is smaller than that (see \
-         [../trade.md](../trade.md)). Every FASTSIM row uses CONTACT's blended flexibilities. Errors are \
+         first-order grid error (Richardson: F = 2 F_{fine} − F_{coarse}). The extrapolation moves the \
+         {fine} × {fine} forces by median {:.4} / max {:.4} (F_x), {:.4} / {:.4} (F_y), max {:.4} (M_z) in \
+         the units below. Accuracy of the reference, checked against 160 × 160 on two cases \
+         ([../trade.md](../trade.md)): ≈ 0.002 μQ in pure ξ, up to ≈ 0.015 μQ with spin, where the exact \
+         theory's grid convergence is slow and irregular; smaller differences between models are not \
+         resolved there. Every FASTSIM row uses CONTACT's blended flexibilities. Errors are \
          |Δ F|/(μQ) for forces and |Δ M_z|/(μQ·c) for the spin moment (\"—\": the model has no M_z). Time: \
          median over {} passes through all cases in one process, per evaluation (exact theory: one pass); \
          ratio = time / Polach's time.\n",
