@@ -4,7 +4,8 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, Fastsim, Flexibility, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
+    ContactInput, CreepForceModel, Discretisation, Fastsim, Flexibility, KalkerLinear, Polach, ShenHedrickElkins,
+    TractionBound,
 };
 
 /// A worn-wheel tread contact in partial slip with all three creepages (utilisation ≈ 0.6).
@@ -40,6 +41,12 @@ fn models(c: &mut Criterion) {
     bench_model(c, "fastsim_parabolic_unblended_5x5", &unblended);
     let elliptic = Fastsim::new(20, 20, TractionBound::Elliptic, Flexibility::ThreeBlended).unwrap();
     bench_model(c, "fastsim_elliptic_20x20", &elliptic);
+    // CONTACT's discretisation on CONTACT's grid: 44 × 44 over 1.1 × the contact, ≈ 1257 of
+    // the 1936 elements inside the ellipse.
+    let contact_grid = Fastsim::new(44, 44, TractionBound::Parabolic, Flexibility::ThreeBlended)
+        .unwrap()
+        .with_discretisation(Discretisation::ContactGrid);
+    bench_model(c, "fastsim_contact_grid_parabolic_44x44", &contact_grid);
 }
 
 criterion_group!(benches, models);

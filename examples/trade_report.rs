@@ -1,6 +1,7 @@
 //! The speed–accuracy trade, measured: evaluates every model of the ladder over the fixed case
-//! set of docs/trade.md against the reference (FASTSIM on a converged fine grid) and CONTACT's
-//! published exact-theory values, and writes tables and SVG plots under docs/trade/.
+//! set of docs/trade.md against the reference, Kalker's exact theory (`ExactTheory`) on two grids
+//! extrapolated in the grid size (Richardson), checks the reference against CONTACT's published
+//! values, and writes tables and SVG plots under docs/trade/.
 //!
 //! Run: `cargo run --release --example trade_report` (or `-- --quick` for the reduced CI set).
 
@@ -9,8 +10,8 @@ use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, CreepForces, Fastsim, Flexibility, KalkerCoefficients, KalkerLinear, ModelChoice,
-    Polach, ShenHedrickElkins, TractionBound,
+    ContactInput, CreepForceModel, CreepForces, Discretisation, ExactTheory, Fastsim, Flexibility, KalkerCoefficients,
+    KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
 };
 
 /// CONTACT's published cases, the same definitions the tests use.
@@ -26,24 +27,32 @@ const SHEAR_MODULUS: f64 = 82e9;
 const POISSON: f64 = 0.28;
 /// c = √(ab) of every case [m]; a/b varies around it.
 const MEAN_SEMI_AXIS: f64 = 5e-3;
+/// Points per creep-force curve (the exact theory's curves use every fourth).
+const CURVE_POINTS: usize = 96;
 
 struct Settings {
     quick: bool,
     ratios: &'static [f64],
     levels: &'static [f64],
-    reference_grid: usize,
+    /// The exact theory's coarse and fine grids (n × n); the reference is 2 F_fine − F_coarse.
+    exact_grids: (usize, usize),
+    fastsim_grids: &'static [usize],
     repetitions: usize,
     out_dir: &'static str,
 }
 
+type Model = (String, Box<dyn CreepForceModel>);
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let started = Instant::now();
     let quick = std::env::args().any(|a| a == "--quick");
     let settings = if quick {
         Settings {
             quick,
             ratios: &[0.5, 2.0],
             levels: &[0.1, 1.0, 5.0],
-            reference_grid: 60,
+            exact_grids: (10, 20),
+            fastsim_grids: &[5, 10, 20],
             repetitions: 3,
             out_dir: "target/trade-quick",
         }
@@ -52,27 +61,36 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             quick,
             ratios: &[0.2, 0.5, 1.0, 2.0, 5.0],
             levels: &[0.02, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 5.0, 20.0],
-            reference_grid: 200,
+            exact_grids: (40, 80),
+            fastsim_grids: &[5, 10, 20, 40, 70, 100],
             repetitions: 15,
             out_dir: "docs/trade",
         }
     };
     std::fs::create_dir_all(settings.out_dir)?;
     let cases = case_set(&settings);
-    let reference_model = fastsim(settings.reference_grid, TractionBound::Elliptic);
-    let reference: Vec<CreepForces> = cases.iter().map(|c| reference_model.creep_forces(c).unwrap()).collect();
+    let (coarse, fine) = settings.exact_grids;
+    let exact_coarse = evaluate(&exact(coarse), &cases, 1);
+    let exact_fine = evaluate(&exact(fine), &cases, 1);
+    let reference: Vec<CreepForces> = exact_coarse.0.iter().zip(&exact_fine.0).map(|(c, f)| richardson(c, f)).collect();
 
-    let grids: &[usize] = if settings.quick { &[5, 10, 20] } else { &[5, 10, 20, 40, 70, 100] };
     let mut rows = Vec::new();
-    for model in ladder(grids) {
-        rows.push(measure(&model, &cases, &reference, settings.repetitions));
+    for (name, model) in ladder(settings.fastsim_grids) {
+        let (results, nanoseconds) = evaluate(model.as_ref(), &cases, settings.repetitions);
+        rows.push(Row::new(name, &results, &reference, nanoseconds));
+    }
+    for (grid, (results, nanoseconds)) in [(coarse, &exact_coarse), (fine, &exact_fine)] {
+        rows.push(Row::new(format!("exact_{grid}x{grid}"), results, &reference, *nanoseconds));
     }
     let polach_time = rows[0].nanoseconds;
+    let finest_fastsim =
+        ladder_results(&rows, &format!("fastsim_elliptic_{0}x{0}", settings.fastsim_grids.last().unwrap()));
+    let reference_accuracy = deviations(&exact_fine.0, &reference);
     let mut report = String::new();
-    write_header(&mut report, &settings, cases.len());
+    write_header(&mut report, &settings, cases.len(), reference_accuracy);
     write_trade_table(&mut report, &rows, polach_time);
-    write_convergence(&mut report, &rows);
-    write_contact_comparison(&mut report, grids)?;
+    write_convergence(&mut report, &rows, &finest_fastsim);
+    write_contact_comparison(&mut report, &settings)?;
     std::fs::write(format!("{}/README.md", settings.out_dir), report)?;
     plot_pareto(&format!("{}/pareto.svg", settings.out_dir), &rows)?;
     for (file, title, direction) in [
@@ -80,10 +98,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("curve_eta.svg", "pure lateral creepage, a/b = 1: F_y/(μQ)", Direction::Eta),
         ("curve_spin.svg", "pure spin, a/b = 1: F_y/(μQ)", Direction::Spin),
     ] {
-        plot_curves(&format!("{}/{file}", settings.out_dir), title, direction, grids)?;
+        plot_curves(&format!("{}/{file}", settings.out_dir), title, direction, &settings)?;
     }
-    println!("wrote {}/README.md and plots", settings.out_dir);
+    println!("wrote {}/README.md and plots in {:.0} s", settings.out_dir, started.elapsed().as_secs_f64());
     Ok(())
+}
+
+fn exact(n: usize) -> ExactTheory {
+    ExactTheory::new(n, n)
+}
+
+/// Richardson extrapolation for a first-order grid error, from grids n and 2n: 2 F_2n − F_n.
+fn richardson(coarse: &CreepForces, fine: &CreepForces) -> CreepForces {
+    let extrapolate = |c: f64, f: f64| 2.0 * f - c;
+    CreepForces::new(
+        extrapolate(coarse.force_longitudinal, fine.force_longitudinal),
+        extrapolate(coarse.force_lateral, fine.force_lateral),
+        Some(extrapolate(coarse.spin_moment.unwrap(), fine.spin_moment.unwrap())),
+        FRICTION * NORMAL_FORCE,
+    )
 }
 
 /// FASTSIM with CONTACT's blended flexibilities (the default, which reproduces CONTACT).
@@ -91,19 +124,28 @@ fn fastsim(n: usize, bound: TractionBound) -> Fastsim {
     Fastsim::new(n, n, bound, Flexibility::ThreeBlended).expect("valid grid")
 }
 
+fn bound_name(bound: TractionBound) -> &'static str {
+    if bound == TractionBound::Parabolic {
+        "parabolic"
+    } else {
+        "elliptic"
+    }
+}
+
 /// Every model measured: Polach first (the speed ratios refer to it).
-fn ladder(grids: &[usize]) -> Vec<(String, ModelChoice)> {
-    let mut models = vec![
-        ("polach".to_owned(), ModelChoice::Polach(Polach::default())),
-        ("kalker_linear".to_owned(), ModelChoice::KalkerLinear(KalkerLinear)),
-        ("shen_hedrick_elkins".to_owned(), ModelChoice::ShenHedrickElkins(ShenHedrickElkins)),
+fn ladder(grids: &[usize]) -> Vec<Model> {
+    let mut models: Vec<Model> = vec![
+        ("polach".to_owned(), Box::new(Polach::default())),
+        ("kalker_linear".to_owned(), Box::new(KalkerLinear)),
+        ("shen_hedrick_elkins".to_owned(), Box::new(ShenHedrickElkins)),
     ];
     for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
         for &n in grids {
-            let name =
-                format!("fastsim_{}_{n}x{n}", if bound == TractionBound::Parabolic { "parabolic" } else { "elliptic" });
-            models.push((name, ModelChoice::Fastsim(fastsim(n, bound))));
+            models.push((format!("fastsim_{}_{n}x{n}", bound_name(bound)), Box::new(fastsim(n, bound))));
         }
+        // CONTACT's own discretisation on CONTACT's grid (40 × 40 elements in the contact).
+        let contact_grid = fastsim(44, bound).with_discretisation(Discretisation::ContactGrid);
+        models.push((format!("fastsim_contact_grid_{}_44x44", bound_name(bound)), Box::new(contact_grid)));
     }
     models
 }
@@ -162,11 +204,24 @@ struct Row {
     fy: (f64, f64),
     mz: Option<(f64, f64)>,
     nanoseconds: f64,
+    results: Vec<CreepForces>,
 }
 
-fn measure(model: &(String, ModelChoice), cases: &[ContactInput], reference: &[CreepForces], reps: usize) -> Row {
-    let (name, model) = model;
-    let results: Vec<CreepForces> = cases.iter().map(|c| model.creep_forces(c).unwrap()).collect();
+impl Row {
+    fn new(name: String, results: &[CreepForces], reference: &[CreepForces], nanoseconds: f64) -> Self {
+        let errors = deviations(results, reference);
+        Row { name, fx: errors.0, fy: errors.1, mz: errors.2, nanoseconds, results: results.to_vec() }
+    }
+}
+
+fn ladder_results(rows: &[Row], name: &str) -> Vec<CreepForces> {
+    rows.iter().find(|r| r.name == name).map(|r| r.results.clone()).unwrap_or_default()
+}
+
+/// Median and max over the cases of |ΔF_x|/(μQ), |ΔF_y|/(μQ) and |ΔM_z|/(μQ c).
+type Deviations = ((f64, f64), (f64, f64), Option<(f64, f64)>);
+
+fn deviations(results: &[CreepForces], reference: &[CreepForces]) -> Deviations {
     let limit = FRICTION * NORMAL_FORCE;
     let err = |f: &dyn Fn(&CreepForces) -> Option<f64>, scale: f64| -> Option<(f64, f64)> {
         let mut e: Vec<f64> = results
@@ -177,25 +232,31 @@ fn measure(model: &(String, ModelChoice), cases: &[ContactInput], reference: &[C
         e.sort_by(f64::total_cmp);
         Some((e[e.len() / 2], e[e.len() - 1]))
     };
-    let fx = err(&|f| Some(f.force_longitudinal), limit).unwrap();
-    let fy = err(&|f| Some(f.force_lateral), limit).unwrap();
-    let mz = err(&|f| f.spin_moment, limit * MEAN_SEMI_AXIS);
-    // Median over repetitions of the time per evaluation of one pass over all cases.
+    (
+        err(&|f| Some(f.force_longitudinal), limit).unwrap(),
+        err(&|f| Some(f.force_lateral), limit).unwrap(),
+        err(&|f| f.spin_moment, limit * MEAN_SEMI_AXIS),
+    )
+}
+
+/// The model's forces on every case, and the time per evaluation: the median over `reps`
+/// passes through all cases in this process.
+fn evaluate(model: &dyn CreepForceModel, cases: &[ContactInput], reps: usize) -> (Vec<CreepForces>, f64) {
+    let mut results = Vec::new();
     let mut times: Vec<f64> = (0..reps)
         .map(|_| {
             let start = Instant::now();
-            for case in cases {
-                let _ = black_box(model.creep_forces(black_box(case)));
-            }
+            results = cases.iter().map(|case| black_box(model.creep_forces(black_box(case)).unwrap())).collect();
             start.elapsed().as_secs_f64() * 1e9 / cases.len() as f64
         })
         .collect();
     times.sort_by(f64::total_cmp);
-    Row { name: name.clone(), fx, fy, mz, nanoseconds: times[times.len() / 2] }
+    (results, times[times.len() / 2])
 }
 
-fn write_header(report: &mut String, settings: &Settings, case_count: usize) {
+fn write_header(report: &mut String, settings: &Settings, case_count: usize, accuracy: Deviations) {
     let mode = if settings.quick { " (quick mode: reduced set, not the committed report)" } else { "" };
+    let (coarse, fine) = settings.exact_grids;
     writeln!(report, "# The speed–accuracy trade, measured{mode}\n").unwrap();
     writeln!(
         report,
@@ -210,19 +271,32 @@ fn write_header(report: &mut String, settings: &Settings, case_count: usize) {
         settings.levels
     )
     .unwrap();
+    let max = |d: (f64, f64)| d.1;
     writeln!(
         report,
-        "Reference: FASTSIM, three flexibilities blended as in CONTACT, elliptic (Hertz) traction bound, \
-         {0} × {0} grid. Every FASTSIM row uses CONTACT's blended flexibilities. Errors are \
-         |Δ F|/(μQ) for forces and |Δ M_z|/(μQ·c) for the spin moment (\"—\": the model has no M_z). Time: median \
-         over {1} passes through all cases in one process, per evaluation; ratio = time / Polach's time.\n",
-        settings.reference_grid, settings.repetitions
+        "Reference: Kalker's exact theory (`ExactTheory`, CONTACT's steady-rolling problem) on {coarse} × {coarse} \
+         and {fine} × {fine} elements over 1.1 a × 1.1 b, extrapolated to the zero grid size assuming its \
+         first-order grid error (Richardson: F = 2 F_{fine} − F_{coarse}). The extrapolation moves the \
+         {fine} × {fine} forces by median {:.4} / max {:.4} (F_x), {:.4} / {:.4} (F_y), max {:.4} (M_z) in \
+         the units below. Accuracy of the reference, checked against 160 × 160 on two cases \
+         ([../trade.md](../trade.md)): ≈ 0.002 μQ in pure ξ, up to ≈ 0.015 μQ with spin, where the exact \
+         theory's grid convergence is slow and irregular; smaller differences between models are not \
+         resolved there. Every FASTSIM row uses CONTACT's blended flexibilities. Errors are \
+         |Δ F|/(μQ) for forces and |Δ M_z|/(μQ·c) for the spin moment (\"—\": the model has no M_z). Time: \
+         median over {} passes through all cases in one process, per evaluation (exact theory: one pass); \
+         ratio = time / Polach's time.\n",
+        accuracy.0 .0,
+        max(accuracy.0),
+        accuracy.1 .0,
+        max(accuracy.1),
+        accuracy.2.map_or(f64::NAN, max),
+        settings.repetitions
     )
     .unwrap();
 }
 
 fn write_trade_table(report: &mut String, rows: &[Row], polach_time: f64) {
-    report.push_str("## Trade table\n\n| model | F_x median | F_x max | F_y median | F_y max | M_z median | M_z max | ns / evaluation | time / Polach |\n|---|---|---|---|---|---|---|---|---|\n");
+    report.push_str("## Trade table (errors against the exact theory)\n\n| model | F_x median | F_x max | F_y median | F_y max | M_z median | M_z max | ns / evaluation | time / Polach |\n|---|---|---|---|---|---|---|---|---|\n");
     for row in rows {
         let mz = row.mz.map_or(("—".to_owned(), "—".to_owned()), |(m, x)| (format!("{m:.4}"), format!("{x:.4}")));
         writeln!(
@@ -240,82 +314,125 @@ fn write_trade_table(report: &mut String, rows: &[Row], polach_time: f64) {
         )
         .unwrap();
     }
-    report.push_str("\nThe linear theory is not friction-limited, so its error grows without bound beyond the linear range (its max is the largest level of the set).\n\n![error vs time](pareto.svg)\n\n");
+    report.push_str(
+        "\nThe linear theory is not friction-limited, so its error grows without bound beyond the linear range \
+         (its max is the largest level of the set). The `exact_n×n` rows are the exact theory on one grid: their \
+         error is its grid error.\n\n![error vs time](pareto.svg)\n\n",
+    );
 }
 
-fn write_convergence(report: &mut String, rows: &[Row]) {
-    report.push_str("## FASTSIM grid convergence (elliptic bound, against the reference grid)\n\n| grid | max(F_x, F_y) median error | max(F_x, F_y) max error | M_z max error | ns / evaluation | ns / element |\n|---|---|---|---|---|---|\n");
+fn write_convergence(report: &mut String, rows: &[Row], finest: &[CreepForces]) {
+    report.push_str(
+        "## FASTSIM grid convergence (elliptic bound)\n\nError against the exact theory (the model error plus the \
+         grid error), and the change against FASTSIM's own finest grid (the grid error alone).\n\n\
+         | grid | vs exact: median | vs exact: max | vs finest FASTSIM: median | vs finest FASTSIM: max | ns / evaluation | ns / element |\n\
+         |---|---|---|---|---|---|---|\n",
+    );
     for row in rows.iter().filter(|r| r.name.starts_with("fastsim_elliptic")) {
         let n: f64 = row.name.rsplit('x').next().unwrap().parse().unwrap();
+        let own = deviations(&row.results, finest);
         writeln!(
             report,
-            "| {} | {:.5} | {:.5} | {:.5} | {:.0} | {:.1} |",
+            "| {} | {:.5} | {:.5} | {:.5} | {:.5} | {:.0} | {:.1} |",
             row.name.trim_start_matches("fastsim_elliptic_"),
             row.fx.0.max(row.fy.0),
             row.fx.1.max(row.fy.1),
-            row.mz.map_or(f64::NAN, |m| m.1),
+            own.0 .0.max(own.1 .0),
+            own.0 .1.max(own.1 .1),
             row.nanoseconds,
             row.nanoseconds / (n * n)
         )
         .unwrap();
     }
-    report.push('\n');
+    report.push_str("\n(max over F_x and F_y of the median and max errors / (μQ).)\n\n");
 }
 
 /// CONTACT's published values (tests/data/contact_published_cases.md): the exact theory, and
-/// CONTACT's own FASTSIM on the `fastsim` case.
-fn write_contact_comparison(report: &mut String, grids: &[usize]) -> std::io::Result<()> {
-    let exact = FASTSIM_CASE_EXACT;
+/// CONTACT's own FASTSIM on the `fastsim` case; an independent check of the reference.
+fn write_contact_comparison(report: &mut String, settings: &Settings) -> std::io::Result<()> {
+    let published = FASTSIM_CASE_EXACT;
+    let (coarse, fine) = settings.exact_grids;
     writeln!(
         report,
-        "## Against CONTACT (published examples)\n\n`tractcurv`: a/b = 0.5, pure ξ, the {} published points \
-         from 0.001 % to 25 % (tests/data/contact_published_cases.md, case 1). `fastsim`: a = 8 mm, b = 4 mm, \
-         η = −6.25e-4, φ = 0.625 /m (case 2): exact F_y/(μN) = {}, M_z = {} N·m.\n\n\
+        "## Against CONTACT (published examples)\n\n`tractcurv`: a/b = 0.5, pure ξ, the {} published exact-theory \
+         points from 0.001 % to 25 % (tests/data/contact_published_cases.md, case 1; CONTACT's grid 48 × 44). \
+         `fastsim`: a = 8 mm, b = 4 mm, η = −6.25e-4, φ = 0.625 /m (case 2): CONTACT's exact theory on its \
+         44 × 44 grid gives F_y/(μN) = {}, M_z = {} N·m.\n\n\
          | model | tractcurv max abs ΔF_x/(μN) | fastsim F_y/(μN) | fastsim M_z [N·m] |\n|---|---|---|---|",
         TRACTCURV_EXACT.len(),
-        exact.force_lateral_ratio,
-        exact.spin_moment
+        published.force_lateral_ratio,
+        published.spin_moment
     )
     .unwrap();
-    let mut models = ladder(grids);
+    let mut models = ladder(settings.fastsim_grids);
+    let finest = format!("_{0}x{0}", settings.fastsim_grids.last().unwrap());
     models.retain(|(name, _)| {
         !name.starts_with("fastsim")
             || name.ends_with("_20x20")
-            || name.ends_with(&format!("_{0}x{0}", grids[grids.len() - 1]))
+            || name.ends_with(&finest)
+            || name.contains("contact_grid")
     });
-    for (name, model) in models {
-        let max_error = TRACTCURV_EXACT
-            .iter()
-            .map(|&(xi_percent, exact)| {
-                let input = ContactInput { creepage_longitudinal: xi_percent / 100.0, ..TRACTCURV_CONTACT };
-                (model.creep_forces(&input).unwrap().force_longitudinal / input.friction_limit() - exact).abs()
-            })
-            .fold(0.0, f64::max);
+    models.push(("exact, CONTACT's grids (48 × 44, 44 × 44)".to_owned(), Box::new(exact(44))));
+    for (name, model) in &models {
+        let tractcurv_model: &dyn CreepForceModel =
+            if name.starts_with("exact") { &ExactTheory::new(48, 44) } else { model.as_ref() };
+        let max_error = tractcurv_error(tractcurv_model);
         let f = model.creep_forces(&FASTSIM_CASE).unwrap();
         let mz = f.spin_moment.map_or("—".to_owned(), |m| format!("{m:.2}"));
         writeln!(report, "| {name} | {max_error:.4} | {:.4} | {mz} |", f.force_lateral / FASTSIM_CASE.friction_limit())
             .unwrap();
     }
+    let extrapolated = |input: &ContactInput| {
+        richardson(&exact(coarse).creep_forces(input).unwrap(), &exact(fine).creep_forces(input).unwrap())
+    };
+    let tractcurv_reference = TRACTCURV_EXACT
+        .iter()
+        .map(|&(xi_percent, published)| {
+            let input = ContactInput { creepage_longitudinal: xi_percent / 100.0, ..TRACTCURV_CONTACT };
+            (extrapolated(&input).force_longitudinal / input.friction_limit() - published).abs()
+        })
+        .fold(0.0, f64::max);
+    let f = extrapolated(&FASTSIM_CASE);
+    writeln!(
+        report,
+        "| the reference: exact, {coarse}/{fine} extrapolated | {tractcurv_reference:.4} | {:.4} | {:.2} |",
+        f.force_lateral / FASTSIM_CASE.friction_limit(),
+        f.spin_moment.unwrap()
+    )
+    .unwrap();
     for published in FASTSIM_CASE_CONTACT_FASTSIM {
-        let bound = if published.bound == TractionBound::Parabolic { "parabolic" } else { "elliptic" };
         let n = published.elements_in_contact;
         writeln!(
             report,
-            "| CONTACT's FASTSIM, {bound}, {n} × {n} in the contact | — | {:.4} | {:.2} |",
-            published.result.force_lateral_ratio, published.result.spin_moment
+            "| CONTACT's FASTSIM, {}, {n} × {n} in the contact | — | {:.4} | {:.2} |",
+            bound_name(published.bound),
+            published.result.force_lateral_ratio,
+            published.result.spin_moment
         )
         .unwrap();
     }
     writeln!(
         report,
-        "| CONTACT exact theory | 0 | {:.4} | {:.2} |\n\n\
-         CONTACT's FASTSIM is first-order on its rectangular grid: its 200 × 200 values are 0.4–0.6 % (F_y) from \
-         the converged limit our FASTSIM reaches, its 40 × 40 parabolic value 4.4 % (tests/ladder_contact_case.rs).\n\n\
+        "| CONTACT exact theory (44 × 44) | 0 | {:.4} | {:.2} |\n\n\
+         CONTACT's published exact values carry its grid's first-order error like our `exact` rows on the same \
+         grids; the extrapolated reference differs from them by that error. `fastsim_contact_grid` is CONTACT's \
+         FASTSIM discretisation (`Discretisation::ContactGrid`) and reproduces CONTACT's own FASTSIM rows.\n\n\
          ![pure ξ](curve_xi.svg)\n![pure η](curve_eta.svg)\n![pure spin](curve_spin.svg)",
-        exact.force_lateral_ratio, exact.spin_moment
+        published.force_lateral_ratio, published.spin_moment
     )
     .unwrap();
     Ok(())
+}
+
+/// Largest |ΔF_x|/(μN) over CONTACT's published `tractcurv` exact-theory curve.
+fn tractcurv_error(model: &dyn CreepForceModel) -> f64 {
+    TRACTCURV_EXACT
+        .iter()
+        .map(|&(xi_percent, published)| {
+            let input = ContactInput { creepage_longitudinal: xi_percent / 100.0, ..TRACTCURV_CONTACT };
+            (model.creep_forces(&input).unwrap().force_longitudinal / input.friction_limit() - published).abs()
+        })
+        .fold(0.0, f64::max)
 }
 
 const PALETTE: [RGBColor; 8] = [
@@ -365,7 +482,7 @@ fn plot_curves(
     path: &str,
     title: &str,
     direction: Direction,
-    grids: &[usize],
+    settings: &Settings,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
     root.fill(&WHITE)?;
@@ -377,13 +494,18 @@ fn plot_curves(
         .y_label_area_size(60)
         .build_cartesian_2d(0.0..4.0, -1.3..0.05)?;
     chart.configure_mesh().x_desc("creepage / characteristic creepage").y_desc("force / (μQ)").draw()?;
-    let mut models = ladder(grids);
+    let mut models = ladder(settings.fastsim_grids);
     models.retain(|(name, _)| !name.starts_with("fastsim") || name.ends_with("_5x5") || name.ends_with("_20x20"));
+    let (_, fine) = settings.exact_grids;
+    models.push((format!("exact ({fine} × {fine})"), Box::new(exact(fine))));
     for (i, (name, model)) in models.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
-        let curve: Vec<(f64, f64)> = (0..=200)
+        // The exact theory costs seconds per point: every fourth point.
+        let stride = if name.starts_with("exact") { 4 } else { 1 };
+        let curve: Vec<(f64, f64)> = (0..=CURVE_POINTS)
+            .step_by(stride)
             .map(|k| {
-                let level = 4.0 * k as f64 / 200.0;
+                let level = 4.0 * k as f64 / CURVE_POINTS as f64;
                 let input = match direction {
                     Direction::Xi => contact(1.0, level * xs, 0.0, 0.0),
                     Direction::Eta => contact(1.0, 0.0, level * es, 0.0),

@@ -37,7 +37,7 @@ pub use creep_forces::CreepForces;
 pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;
 pub use models::exact::{ElementState, ExactSolution, ExactTheory, GridSize};
-pub use models::fastsim::{Fastsim, FastsimResult, Flexibility, TractionBound};
+pub use models::fastsim::{Discretisation, Fastsim, FastsimResult, Flexibility, TractionBound};
 pub use models::kalker_linear::KalkerLinear;
 pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};
 pub use models::model_choice::ModelChoice;

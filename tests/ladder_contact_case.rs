@@ -12,21 +12,23 @@
 //! the contact edge cuts through elements and the rows do not follow the ellipse; each row
 //! starts with a full step dq = dx at its first interior element (implicit Euler), evaluates the
 //! spin slip φ(x + dq/6) (src/m_sdis.f90 `srztng`, default `facphi` = 1/6, where the exact step
-//! average is x + dq/2) and does not rescale the sampled pressure. We divide the ellipse itself
-//! into strips of equal width, each strip's own length into equal elements, start each strip
-//! exactly at the leading edge with a half step, take the slip at mid-step and normalise the
-//! discrete pressure to carry N. Both converge to the same limit, ours much faster: an emulation
-//! of CONTACT's scheme with our flexibilities gives −0.6098 / −0.6008 at 44 × 44 and
-//! −0.6338 / −0.5948 at 220 × 220 (published −0.6118 / −0.6016 and −0.6359 / −0.5956), and
-//! extrapolates to −0.640 / −0.593, our converged values. CONTACT's own 220 × 220 results thus
-//! carry 0.6 % (parabolic) and 0.4 % (elliptic) discretisation error in F_y, 1.6 % in the
-//! elliptic M_z; its 44 × 44 parabolic F_y carries 4.4 %.
+//! average is x + dq/2) and does not rescale the sampled pressure. Ours (`Discretisation::Strips`)
+//! divides the ellipse itself into strips of equal width, each strip's own length into equal
+//! elements, starts each strip exactly at the leading edge with a half step, takes the slip at
+//! mid-step and normalises the discrete pressure to carry N. Both converge to the same limit,
+//! ours much faster. CONTACT's scheme is available as `Discretisation::ContactGrid` and
+//! reproduces the published numbers on CONTACT's grids: −0.6098 / −39.04 N·m (parabolic) and
+//! −0.6008 / −48.28 N·m (elliptic) at 44 × 44, −0.6338 / −38.01 and −0.5948 / −45.29 at 220 × 220
+//! (published −0.6118 / −39.00, −0.6016 / −48.29, −0.6359 / −37.98, −0.5956 / −45.30); refined
+//! to 880 × 880 it reaches −0.6382 / −0.5935, approaching our converged −0.640 / −0.593. CONTACT's
+//! own 220 × 220 results thus carry 0.6 % (parabolic) and 0.4 % (elliptic) discretisation error
+//! in F_y, 1.6 % in the elliptic M_z; its 44 × 44 parabolic F_y carries 4.4 %.
 
 mod common;
 
 use common::fastsim;
 use common::published::{FASTSIM_CASE, FASTSIM_CASE_CONTACT_FASTSIM};
-use wheel_rail_contact::{CreepForceModel, Fastsim, Flexibility, TractionBound};
+use wheel_rail_contact::{CreepForceModel, Discretisation, Fastsim, Flexibility, TractionBound};
 
 /// Asserts our F_y/(μN) within `fy_tolerance` of CONTACT's FASTSIM result with the same bound
 /// and `elements_in_contact` (40 or 200), and M_z within `mz_tolerance` where given.
@@ -67,12 +69,41 @@ fn elliptic_bound_40_by_40_matches_contact_to_two_percent() {
     assert_matches_contact(&fastsim(40, TractionBound::Elliptic), 40, 0.02, None);
 }
 
+/// CONTACT's FASTSIM on its own grid of `grid` × `grid` elements over 1.1 × the contact.
+fn contact_grid(grid: usize, bound: TractionBound) -> Fastsim {
+    fastsim(grid, bound).with_discretisation(Discretisation::ContactGrid)
+}
+
 #[test]
-#[ignore = "cannot hold: ours −0.6432 at 40 × 40 vs CONTACT's −0.6118 (5.1 %). CONTACT's 44 × 44 scheme \
-            (full first step, spin slip at x + dq/6, rectangular grid) is 4.4 % short of its own converged \
-            −0.640, which ours meets to 0.6 % at 40 × 40; see the top comment and the fine-grid test."]
-fn parabolic_bound_40_by_40_matches_contact_to_two_percent() {
-    assert_matches_contact(&fastsim(40, TractionBound::Parabolic), 40, 0.02, None);
+fn contact_discretisation_reproduces_contacts_40_by_40_results() {
+    // CONTACT's 44 × 44 grid, 40 × 40 elements in the contact. Measured −0.6098 / −39.04 N·m
+    // (published −0.6118 / −39.00) and −0.6008 / −48.28 N·m (−0.6016 / −48.29). The remaining
+    // 0.3 % in the parabolic F_y is not traced. The issue asks for 2 %.
+    for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
+        assert_matches_contact(&contact_grid(44, bound), 40, 0.005, Some(0.005));
+    }
+}
+
+#[test]
+fn contact_discretisation_reproduces_contacts_200_by_200_results() {
+    // 220 × 220 over 1.1 × the contact. Measured −0.6338 / −38.01 N·m and −0.5948 / −45.29 N·m.
+    for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
+        assert_matches_contact(&contact_grid(220, bound), 200, 0.005, Some(0.005));
+    }
+}
+
+#[test]
+fn contact_discretisation_converges_to_ours() {
+    // Both schemes discretise the same simplified theory: CONTACT's approaches our converged
+    // value at first order (errors −0.0303, −0.0063, −0.0034 at 44, 220, 440; parabolic bound).
+    let lateral = |model: &Fastsim| model.creep_forces(&FASTSIM_CASE).unwrap().force_lateral;
+    let converged = lateral(&fastsim(300, TractionBound::Parabolic));
+    let errors: Vec<f64> = [44, 220, 440]
+        .iter()
+        .map(|&n| (lateral(&contact_grid(n, TractionBound::Parabolic)) - converged).abs())
+        .collect();
+    assert!(errors[0] > 4.0 * errors[1] && errors[1] > 1.6 * errors[2], "errors {errors:?}");
+    assert!(errors[2] < 0.01 * converged.abs(), "errors {errors:?}");
 }
 
 #[test]
@@ -95,5 +126,55 @@ fn fastsim_converges_at_first_order_in_partial_slip() {
     let errors: Vec<f64> = [20, 40, 80, 160].iter().map(|&n| (lateral(n) - reference).abs()).collect();
     for pair in errors.windows(2) {
         assert!(pair[0] / pair[1] > 1.6, "errors {errors:?}");
+    }
+}
+
+#[test]
+fn contact_discretisation_full_slip_carries_the_sampled_load() {
+    // CONTACT's scheme samples the pressure at element centres without rescaling, so in full
+    // slip |F| = μ Σ p_n δA, which differs from μN by the sampling error (measured −1.6 % on
+    // 9 × 14 with the elliptic bound, +0.04 % on 22 × 22 parabolic: the scheme can exceed μN,
+    // which is why it is an option, not our default); the forces are odd in the creepages.
+    for (rows, columns, bound) in [(9, 14, TractionBound::Elliptic), (22, 22, TractionBound::Parabolic)] {
+        let model = Fastsim::new(rows, columns, bound, Flexibility::Three)
+            .unwrap()
+            .with_discretisation(Discretisation::ContactGrid);
+        let (dx, dy) = (2.2 / columns as f64, 2.2 / rows as f64);
+        let mut sampled = 0.0;
+        for row in 0..rows {
+            for column in 0..columns {
+                let (x, y) = (-1.1 + (column as f64 + 0.5) * dx, -1.1 + (row as f64 + 0.5) * dy);
+                let depth = 1.0 - x * x - y * y;
+                if depth > 0.0 {
+                    sampled += match bound {
+                        TractionBound::Parabolic => 2.0 / std::f64::consts::PI * depth,
+                        TractionBound::Elliptic => 1.5 / std::f64::consts::PI * depth.sqrt(),
+                    } * dx
+                        * dy;
+                }
+            }
+        }
+        let case = wheel_rail_contact::ContactInput {
+            creepage_longitudinal: 0.3,
+            creepage_lateral: -0.4,
+            spin_creepage: 0.0,
+            ..FASTSIM_CASE
+        };
+        let forces = model.creep_forces(&case).unwrap();
+        assert!(
+            (forces.adhesion_utilisation - sampled).abs() < 1e-12,
+            "{} vs sampled {sampled}",
+            forces.adhesion_utilisation
+        );
+        assert!((sampled - 1.0).abs() < 0.02 && (sampled - 1.0).abs() > 1e-4, "sampled load / N = {sampled}");
+        let opposite = wheel_rail_contact::ContactInput {
+            creepage_longitudinal: -0.3,
+            creepage_lateral: 0.4,
+            spin_creepage: 0.0,
+            ..FASTSIM_CASE
+        };
+        let mirrored = model.creep_forces(&opposite).unwrap();
+        assert_eq!(mirrored.force_longitudinal, -forces.force_longitudinal);
+        assert_eq!(mirrored.force_lateral, -forces.force_lateral);
     }
 }

@@ -20,9 +20,11 @@
 //! M_z = Σ (x p_y − y p_x) δA about the contact centre.
 //!
 //! Cost: O(N²) per sweep for N elements in contact, and the number of sweeps grows like √N
-//! (40–100 on the tested grids). Measured on CONTACT's spin case (`benches/exact.rs`, release):
-//! 6 ms at 20 × 20, 0.15 s at 40 × 40, 0.26 s at 44 × 44, 3.8 s at 80 × 80. Meant for offline
-//! or low-rate use and as the reference of the ladder.
+//! (30–100 on the tested grids). Measured on CONTACT's spin case (`benches/exact.rs`, release,
+//! shared 2-core machine): 7 ms at 20 × 20, 0.1 s at 40 × 40, 0.12–0.17 s at 44 × 44, 2–2.7 s at
+//! 80 × 80; 1–2 min at 160 × 160. Pure creepage in partial slip converges in fewer sweeps
+//! (0.08 s at 44 × 44, 0.9 s at 80 × 80). Meant for offline or low-rate use and as the
+//! reference of the ladder.
 
 mod grid;
 mod influence;
@@ -90,8 +92,9 @@ pub struct ExactSolution {
     pub slip_area: f64,
     /// Gauss–Seidel sweeps used.
     pub sweeps: usize,
-    /// Whether the iteration met its tolerance (relative traction change ≤ 1e-10) within the
-    /// sweep limit. Every case in the tests converges; the forces are the last iterate otherwise.
+    /// Whether the iteration met its tolerance (largest traction change in a sweep ≤ 1e-6 × the
+    /// largest traction) within the sweep limit. Every case in the tests converges; the forces
+    /// are the last iterate otherwise.
     pub converged: bool,
 }
 
