@@ -372,7 +372,8 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         )
         .unwrap();
         for v in variables.iter().filter(|v| v.causality == causality) {
-            let unit = v.unit.as_deref().map(|u| format!(" [{u}]")).unwrap_or_default();
+            // Escaped: rustdoc would read "[m]" as a link.
+            let unit = v.unit.as_deref().map(|u| format!(" \\[{u}\\]")).unwrap_or_default();
             writeln!(source, "    /// {}{unit}\n    pub {}: {},", v.description, v.name, rust_type(v)).unwrap();
         }
         writeln!(source, "}}\n\nimpl Default for {struct_name} {{\n    /// The start values.").unwrap();

@@ -446,8 +446,16 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
+/// A row's model family and grid: "fastsim_elliptic_20x20" → ("fastsim_elliptic", "20x20").
+fn family_and_grid(name: &str) -> (&str, &str) {
+    match name.rsplit_once('_') {
+        Some((family, grid)) if grid.contains('x') && grid.starts_with(|c: char| c.is_ascii_digit()) => (family, grid),
+        _ => (name, ""),
+    }
+}
+
 fn plot_pareto(path: &str, rows: &[Row]) -> Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    let root = SVGBackend::new(path, (1000, 640)).into_drawing_area();
     root.fill(&WHITE)?;
     let error = |r: &Row| r.fx.0.max(r.fy.0).max(1e-6);
     let (t_min, t_max) =
@@ -458,22 +466,48 @@ fn plot_pareto(path: &str, rows: &[Row]) -> Result<(), Box<dyn std::error::Error
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d((t_min * 0.5..t_max * 2.0).log_scale(), (e_min * 0.5..e_max * 2.0).log_scale())?;
-    chart.configure_mesh().x_desc("ns per evaluation").y_desc("median error / (μQ)").draw()?;
-    for (i, row) in rows.iter().enumerate() {
+        .build_cartesian_2d((t_min * 0.5..t_max * 3.0).log_scale(), (e_min * 0.5..e_max * 4.0).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("ns per evaluation")
+        .y_desc("median error / (μQ)")
+        .x_label_formatter(&|x| format!("{x:.0e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()?;
+    // One colour and one legend entry per model family; a family's grids are joined by a line
+    // and labelled at their points.
+    let mut families: Vec<&str> = Vec::new();
+    for row in rows {
+        let (family, _) = family_and_grid(&row.name);
+        if !families.contains(&family) {
+            families.push(family);
+        }
+    }
+    for (i, family) in families.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
-        let point = (row.nanoseconds, error(row));
+        let members: Vec<(f64, f64, &str)> = rows
+            .iter()
+            .filter(|r| family_and_grid(&r.name).0 == *family)
+            .map(|r| (r.nanoseconds, error(r), family_and_grid(&r.name).1))
+            .collect();
+        chart.draw_series(LineSeries::new(members.iter().map(|&(t, e, _)| (t, e)), color.mix(0.6)))?;
         chart
-            .draw_series(std::iter::once(Circle::new(point, 5, color.filled())))?
-            .label(row.name.clone())
-            .legend(move |(x, y)| Circle::new((x, y), 4, color.filled()));
+            .draw_series(members.iter().map(|&(t, e, _)| Circle::new((t, e), 5, color.filled())))?
+            .label(family.to_string())
+            .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
+        chart.draw_series(
+            members
+                .iter()
+                .filter(|(_, _, grid)| !grid.is_empty())
+                .map(|&(t, e, grid)| Text::new(grid.to_owned(), (t * 1.08, e * 1.12), ("sans-serif", 11).into_font())),
+        )?;
     }
-    for family in ["fastsim_parabolic", "fastsim_elliptic"] {
-        let line: Vec<(f64, f64)> =
-            rows.iter().filter(|r| r.name.starts_with(family)).map(|r| (r.nanoseconds, error(r))).collect();
-        chart.draw_series(LineSeries::new(line, BLACK.mix(0.3)))?;
-    }
-    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()?;
     root.present()?;
     Ok(())
 }

@@ -11,23 +11,23 @@ use crate::numerics::{value, Scalar};
 /// `T` is `f64` for values; models evaluate a dual-number `ContactInput` to differentiate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactInput<T = f64> {
-    /// Longitudinal creepage ξ (s_x in Polach) [1].
+    /// Longitudinal creepage ξ (s_x in Polach) \[1\].
     pub creepage_longitudinal: T,
-    /// Lateral creepage η (s_y in Polach) [1].
+    /// Lateral creepage η (s_y in Polach) \[1\].
     pub creepage_lateral: T,
     /// Spin creepage φ (Φ in Polach) [1/m].
     pub spin_creepage: T,
-    /// Normal force Q [N]. Q ≤ 0 means the wheel has lifted off: every model returns zero force.
+    /// Normal force Q \[N\]. Q ≤ 0 means the wheel has lifted off: every model returns zero force.
     pub normal_force: T,
-    /// Contact-ellipse semi-axis a in the rolling direction [m].
+    /// Contact-ellipse semi-axis a in the rolling direction \[m\].
     pub semi_axis_a: T,
-    /// Contact-ellipse semi-axis b in the lateral direction [m].
+    /// Contact-ellipse semi-axis b in the lateral direction \[m\].
     pub semi_axis_b: T,
-    /// Coulomb friction coefficient μ (f in Polach) [1]. μ = 0 gives zero force.
+    /// Coulomb friction coefficient μ (f in Polach) \[1\]. μ = 0 gives zero force.
     pub friction_coefficient: T,
-    /// Combined shear modulus G of wheel and rail [Pa].
+    /// Combined shear modulus G of wheel and rail \[Pa\].
     pub shear_modulus: T,
-    /// Combined Poisson's ratio ν [1], in [0, 0.5].
+    /// Combined Poisson's ratio ν \[1\], in [0, 0.5].
     pub poisson_ratio: T,
 }
 
@@ -67,7 +67,7 @@ impl<T: Scalar> ContactInput<T> {
         value(self.normal_force) <= 0.0 || value(self.friction_coefficient) == 0.0
     }
 
-    /// The Coulomb limit μQ [N] (0 after lift-off).
+    /// The Coulomb limit μQ \[N\] (0 after lift-off).
     pub fn friction_limit(&self) -> T {
         if self.transmits_no_force() {
             T::from(0.0)

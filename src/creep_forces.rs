@@ -11,14 +11,14 @@ use crate::numerics::{magnitude, value, Scalar};
 /// structure holding derivatives.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CreepForces<T = f64> {
-    /// Longitudinal force F_x [N].
+    /// Longitudinal force F_x \[N\].
     pub force_longitudinal: T,
-    /// Lateral force F_y [N].
+    /// Lateral force F_y \[N\].
     pub force_lateral: T,
     /// Spin moment M_z [N·m] about the contact normal; `None` for models that do not compute it
     /// (Polach's method neglects it, see the paper's discussion before eq. 16).
     pub spin_moment: Option<T>,
-    /// Adhesion utilisation |F|/(μQ) [1]; 0 when μQ = 0.
+    /// Adhesion utilisation |F|/(μQ) \[1\]; 0 when μQ = 0.
     pub adhesion_utilisation: T,
 }
 

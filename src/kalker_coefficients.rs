@@ -55,7 +55,7 @@ const G_TABLE_MIN: f64 = 0.1;
 /// Physical contacts never come near it; below it the coefficients are held constant.
 const G_FLOOR: f64 = 1e-100;
 
-/// Kalker's creepage coefficients for one ellipse shape and material [1].
+/// Kalker's creepage coefficients for one ellipse shape and material \[1\].
 ///
 /// `T` is `f64` for values, a dual number where the models differentiate with respect to a/b.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,7 +76,7 @@ impl KalkerCoefficients {
         Self::at(a_over_b, poisson_ratio)
     }
 
-    /// Kalker's spin-moment coefficient C33 [1] for the same arguments as [`Self::new`], with
+    /// Kalker's spin-moment coefficient C33 \[1\] for the same arguments as [`Self::new`], with
     /// M_z = G c³ C23 η − G c⁴ C33 φ, c = √(ab) (moment on the wheel, Kalker's convention).
     pub fn spin_moment_c33(a_over_b: f64, poisson_ratio: f64) -> f64 {
         spin_moment_c33_at(a_over_b, poisson_ratio)

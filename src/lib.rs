@@ -32,7 +32,7 @@ mod numerics;
 pub mod scene;
 
 pub use contact_input::ContactInput;
-pub use creep_force_model::CreepForceModel;
+pub use creep_force_model::{central_difference, CreepForceModel};
 pub use creep_forces::CreepForces;
 pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;

@@ -29,7 +29,7 @@ use crate::{
     LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
-/// The relaxed forces [F_x, F_y] [N] (used when `creep_relaxation = on`), in the layout of
+/// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`), in the layout of
 /// [`RelaxationLengths::advance`].
 pub type RelaxedForces = [f64; 2];
 
@@ -49,7 +49,7 @@ pub enum Evaluation {
     /// Initialization mode (ExitInitializationMode, GetReal of an output): the relaxed forces
     /// start at the steady state.
     Initialise,
-    /// fmi2DoStep of this size [s] (> 0): the relaxed forces advance over it.
+    /// fmi2DoStep of this size \[s\] (> 0): the relaxed forces advance over it.
     Step(f64),
 }
 

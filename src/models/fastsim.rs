@@ -136,7 +136,7 @@ pub struct Fastsim {
 pub struct FastsimResult {
     /// F_x, F_y and M_z (always `Some`).
     pub forces: CreepForces,
-    /// Adhesion area / contact area [1], 1 in the linear limit, 0 in full slip.
+    /// Adhesion area / contact area \[1\], 1 in the linear limit, 0 in full slip.
     pub adhesion_area_fraction: f64,
 }
 

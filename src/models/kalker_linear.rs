@@ -26,9 +26,9 @@ pub struct KalkerLinear;
 
 /// Linear-theory stiffnesses G c^n C_ij of one contact, each held finite.
 pub(crate) struct LinearTheory<D> {
-    /// G c² C11 [N].
+    /// G c² C11 \[N\].
     k11: D,
-    /// G c² C22 [N].
+    /// G c² C22 \[N\].
     k22: D,
     /// G c³ C23 [N·m].
     k23: D,

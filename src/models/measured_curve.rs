@@ -66,8 +66,8 @@ impl fmt::Display for MeasuredCurveError {
 impl std::error::Error for MeasuredCurveError {}
 
 impl MeasuredCurve {
-    /// Fits the curve to a measured peak adhesion F_max/Q [1] at creepage s_max [1], with kinetic
-    /// friction f_k [1] at large creepage.
+    /// Fits the curve to a measured peak adhesion F_max/Q \[1\] at creepage s_max \[1\], with kinetic
+    /// friction f_k \[1\] at large creepage.
     pub fn from_peak(
         peak_adhesion: f64,
         creepage_at_peak: f64,
@@ -103,18 +103,18 @@ impl MeasuredCurve {
         })
     }
 
-    /// k = f_s/f_k of eq. (33) [1].
+    /// k = f_s/f_k of eq. (33) \[1\].
     pub fn friction_ratio(&self) -> f64 {
         self.friction_ratio
     }
 
-    /// ε_max of eq. (35) [1].
+    /// ε_max of eq. (35) \[1\].
     pub fn gradient_at_peak(&self) -> f64 {
         self.gradient_at_peak
     }
 
-    /// Contact stiffness C of eq. (36) [N/m³] for a contact with normal force Q [N] and semi-axes
-    /// a, b [m]: C = 3 Q f_k ε_max / (2 π a² b s_max).
+    /// Contact stiffness C of eq. (36) [N/m³] for a contact with normal force Q \[N\] and semi-axes
+    /// a, b \[m\]: C = 3 Q f_k ε_max / (2 π a² b s_max).
     pub fn contact_stiffness(&self, normal_force: f64, semi_axis_a: f64, semi_axis_b: f64) -> f64 {
         3.0 * normal_force * self.kinetic_friction * self.gradient_at_peak
             / (2.0 * PI * semi_axis_a * semi_axis_a * semi_axis_b * self.creepage_at_peak)

@@ -58,8 +58,8 @@ impl CreepForceModel for Polach {
 }
 
 impl Polach {
-    /// Polach's resulting creepage s_C [1] of eqs. (21), (22), for creepages ξ, η [1], spin
-    /// φ [1/m] and semi-axis a [m]: the spin counts towards the lateral creepage only where it
+    /// Polach's resulting creepage s_C \[1\] of eqs. (21), (22), for creepages ξ, η \[1\], spin
+    /// φ [1/m] and semi-axis a \[m\]: the spin counts towards the lateral creepage only where it
     /// enlarges it. Polach 2005's slip velocity is s_C·|V|. (Creepages beyond 1e150 are scaled
     /// down together, as in the force evaluation.)
     pub fn resulting_creepage(

@@ -63,12 +63,12 @@ impl Polach2005 {
         Ok(Self { adhesion_reduction, slip_reduction, friction_limit_ratio, friction_decay })
     }
 
-    /// k_A: stiffness reduction in the adhesion area [1].
+    /// k_A: stiffness reduction in the adhesion area \[1\].
     pub fn adhesion_reduction(&self) -> f64 {
         self.adhesion_reduction
     }
 
-    /// k_S: stiffness reduction in the slip area [1].
+    /// k_S: stiffness reduction in the slip area \[1\].
     pub fn slip_reduction(&self) -> f64 {
         self.slip_reduction
     }

@@ -75,7 +75,7 @@ impl RelativeCurvature {
         Ok(Self { rolling, lateral })
     }
 
-    /// From the radii [m] of a wheel on a straight rail (the rail is flat in the rolling
+    /// From the radii \[m\] of a wheel on a straight rail (the rail is flat in the rolling
     /// direction): A = 1/(2 r), B = (1/R_w + 1/R_r)/2.
     ///
     /// A radius is positive where the surface is convex (centre of curvature inside the body),
@@ -122,7 +122,7 @@ impl RelativeCurvature {
     }
 }
 
-/// Hertz's contact modulus E* [Pa] of two bodies of the same material, from the shear modulus G
+/// Hertz's contact modulus E* \[Pa\] of two bodies of the same material, from the shear modulus G
 /// and Poisson's ratio ν that [`crate::ContactInput`] carries: 1/E* = 2(1 − ν²)/E with
 /// E = 2G(1 + ν), so E* = G/(1 − ν). For G = 82 GPa, ν = 0.28 this is 82000/(1 − 0.28) N/mm²,
 /// the value of the reference cases.
@@ -139,19 +139,19 @@ pub fn contact_modulus(shear_modulus: f64, poisson_ratio: f64) -> Result<f64, In
 /// The Hertzian contact of one wheel on one rail, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HertzContact {
-    /// Semi-axis a along the rolling direction (the `rolling` curvature) [m].
+    /// Semi-axis a along the rolling direction (the `rolling` curvature) \[m\].
     pub semi_axis_a: f64,
-    /// Semi-axis b along the lateral direction [m].
+    /// Semi-axis b along the lateral direction \[m\].
     pub semi_axis_b: f64,
-    /// Maximum contact pressure p0 = 3Q/(2πab) [Pa].
+    /// Maximum contact pressure p0 = 3Q/(2πab) \[Pa\].
     pub max_pressure: f64,
-    /// Approach δ of distant points of wheel and rail [m].
+    /// Approach δ of distant points of wheel and rail \[m\].
     pub approach: f64,
 }
 
 impl HertzContact {
-    /// Solves Hertz's problem for normal force Q [N], the relative curvatures and the contact
-    /// modulus E* [Pa] (see [`contact_modulus`]).
+    /// Solves Hertz's problem for normal force Q \[N\], the relative curvatures and the contact
+    /// modulus E* \[Pa\] (see [`contact_modulus`]).
     ///
     /// Q ≤ 0 (lift-off) is not an error: it gives a zero contact (a = b = p0 = δ = 0).
     pub fn solve(normal_force: f64, curvature: &RelativeCurvature, contact_modulus: f64) -> Result<Self, InvalidInput> {

@@ -47,7 +47,7 @@ pub struct WheelKinematics {
     /// Wheel angular speed ω about its axle [rad/s], positive when rolling forwards (ωr = V in
     /// pure rolling).
     pub wheel_angular_speed: f64,
-    /// Rolling radius r at the contact point [m], > 0.
+    /// Rolling radius r at the contact point \[m\], > 0.
     pub wheel_rolling_radius: f64,
     /// Lateral slip velocity v_y of the wheel relative to the rail at the contact point [m/s].
     pub lateral_slip_velocity: f64,
@@ -59,9 +59,9 @@ pub struct WheelKinematics {
 /// Regularised creepages in track axes, ready for [`crate::ContactInput`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Creepages {
-    /// Longitudinal creepage ξ [1].
+    /// Longitudinal creepage ξ \[1\].
     pub longitudinal: f64,
-    /// Lateral creepage η [1].
+    /// Lateral creepage η \[1\].
     pub lateral: f64,
     /// Spin creepage φ [1/m].
     pub spin: f64,
@@ -163,7 +163,7 @@ mod tests {
         Polach::default().creep_forces(&contact(kinematics.creepages(V_C).unwrap())).unwrap()
     }
 
-    /// Kalker's longitudinal creep stiffness G·ab·C11 of the contact above [N].
+    /// Kalker's longitudinal creep stiffness G·ab·C11 of the contact above \[N\].
     fn creep_stiffness() -> f64 {
         let input = contact(Creepages { longitudinal: 0.0, lateral: 0.0, spin: 0.0, reference_speed: 1.0 });
         let c11 = KalkerCoefficients::new(input.semi_axis_a / input.semi_axis_b, input.poisson_ratio).c11;

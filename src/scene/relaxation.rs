@@ -33,17 +33,17 @@
 
 use crate::{InvalidInput, KalkerCoefficients};
 
-/// Relaxation lengths of the longitudinal and lateral force [m].
+/// Relaxation lengths of the longitudinal and lateral force \[m\].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RelaxationLengths {
-    /// L_x, for the longitudinal force [m].
+    /// L_x, for the longitudinal force \[m\].
     pub longitudinal: f64,
-    /// L_y, for the lateral force (creepage and spin parts together) [m].
+    /// L_y, for the lateral force (creepage and spin parts together) \[m\].
     pub lateral: f64,
 }
 
 impl RelaxationLengths {
-    /// The same length L [m] (> 0) in both directions.
+    /// The same length L \[m\] (> 0) in both directions.
     pub fn uniform(length: f64) -> Result<Self, InvalidInput> {
         if !(length > 0.0 && length.is_finite()) {
             return Err(InvalidInput::new("relaxation_length", length, "must be finite and > 0"));
@@ -52,7 +52,7 @@ impl RelaxationLengths {
     }
 
     /// The default L = C/k (module documentation) of the contact ellipse with semi-axes a
-    /// (rolling) and b [m] and Poisson's ratio ν.
+    /// (rolling) and b \[m\] and Poisson's ratio ν.
     pub fn from_contact(semi_axis_a: f64, semi_axis_b: f64, poisson_ratio: f64) -> Result<Self, InvalidInput> {
         for (variable, value) in [("semi_axis_a", semi_axis_a), ("semi_axis_b", semi_axis_b)] {
             if !(value > 0.0 && value.is_finite()) {
@@ -68,7 +68,7 @@ impl RelaxationLengths {
         Ok(Self { longitudinal: per_coefficient * coefficients.c11, lateral: per_coefficient * coefficients.c22 })
     }
 
-    /// Advances the relaxed forces `[F_x, F_y]` [N] towards the steady-state forces over a step
+    /// Advances the relaxed forces `[F_x, F_y]` \[N\] towards the steady-state forces over a step
     /// of `step` seconds (≥ 0) at rolling speed `rolling_speed` [m/s], both held over the step.
     pub fn advance(
         &self,

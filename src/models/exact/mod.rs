@@ -74,21 +74,21 @@ pub struct ExactSolution {
     pub forces: CreepForces,
     /// The grid the problem was solved on.
     pub grid: GridSize,
-    /// Element size along x [m].
+    /// Element size along x \[m\].
     pub element_length: f64,
-    /// Element size along y [m].
+    /// Element size along y \[m\].
     pub element_width: f64,
-    /// Normal pressure per element [Pa] (0 outside the contact ellipse).
+    /// Normal pressure per element \[Pa\] (0 outside the contact ellipse).
     pub pressure: Vec<f64>,
-    /// Longitudinal traction p_x per element [Pa].
+    /// Longitudinal traction p_x per element \[Pa\].
     pub traction_longitudinal: Vec<f64>,
-    /// Lateral traction p_y per element [Pa].
+    /// Lateral traction p_y per element \[Pa\].
     pub traction_lateral: Vec<f64>,
     /// Exterior, adhesion or slip per element.
     pub element_state: Vec<ElementState>,
-    /// Area of the adhesion elements [m²].
+    /// Area of the adhesion elements \[m²\].
     pub adhesion_area: f64,
-    /// Area of the slip elements [m²].
+    /// Area of the slip elements \[m²\].
     pub slip_area: f64,
     /// Gauss–Seidel sweeps used.
     pub sweeps: usize,
@@ -99,7 +99,7 @@ pub struct ExactSolution {
 }
 
 impl ExactSolution {
-    /// Centre of element (i, j) [m] relative to the contact centre.
+    /// Centre of element (i, j) \[m\] relative to the contact centre.
     pub fn element_centre(&self, i: usize, j: usize) -> (f64, f64) {
         let x = (i as f64 + 0.5 - 0.5 * self.grid.longitudinal as f64) * self.element_length;
         let y = (j as f64 + 0.5 - 0.5 * self.grid.lateral as f64) * self.element_width;
