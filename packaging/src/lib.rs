@@ -6,7 +6,7 @@
 //!   adapter uses, with a plot of the default creep-force curve computed by the core;
 //! - [`default_scene`]: the creepage sweep of the README's first command, through the packaged
 //!   `.fmu` loaded with rust-fmi;
-//! - [`reference`]: the core's forces for rows of inputs (CSV), the reference of the fmpy tests;
+//! - [`reference`](mod@reference): the core's forces for rows of inputs (CSV), the reference of the fmpy tests;
 //! - [`plot`]: the small SVG line plot both of the above draw.
 
 pub mod default_scene;

@@ -217,7 +217,7 @@ fn outputs(row: &Row, relaxed: &mut [f64; 2]) -> Result<[f64; 13], String> {
 
 /// Reads CSV whose header names FMU inputs and parameters (Enumerations as their integer
 /// values; `model`, `stiffness_source`, `traction_law` and the three option switches may be
-/// left out: plain Polach, options off) plus an optional `step_size` [s] for creep relaxation,
+/// left out: plain Polach, options off) plus an optional `step_size` \[s\] for creep relaxation,
 /// and writes [`OUTPUT_COLUMNS`] per row with every digit. Rows are a sequence: the relaxed
 /// force carries from one row to the next.
 pub fn outputs_csv(input: impl BufRead, mut output: impl Write) -> Result<(), String> {
