@@ -4,20 +4,14 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTheory};
+use wheel_rail_contact::{CreepForceModel, ExactTheory};
+
+#[allow(dead_code)] // the bench uses one of the published cases
+#[path = "../tests/data/contact_published_cases.rs"]
+mod published;
 
 fn exact_theory_spin_case(c: &mut Criterion) {
-    let input = ContactInput {
-        creepage_longitudinal: 0.0,
-        creepage_lateral: -6.25e-4,
-        spin_creepage: 0.625,
-        normal_force: 82e3,
-        semi_axis_a: 8e-3,
-        semi_axis_b: 4e-3,
-        friction_coefficient: 0.3,
-        shear_modulus: 82e9,
-        poisson_ratio: 0.28,
-    };
+    let input = published::FASTSIM_CASE;
     let mut group = c.benchmark_group("exact_theory_spin_case");
     group.sample_size(10);
     for elements in [20, 40, 44, 80] {

@@ -8,19 +8,10 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use fmi_sys::fmi2::{fmi2CallbackFunctions, fmi2Status_fmi2OK, fmi2Type_fmi2CoSimulation};
 use wheel_rail_contact::fmi::ffi::*;
 use wheel_rail_contact::fmi::model_description::{value_reference as vr, GUID};
-use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+use wheel_rail_contact::{CreepForceModel, Polach};
 
-const SCENE: ContactInput = ContactInput {
-    creepage_longitudinal: 1.5e-3,
-    creepage_lateral: -0.8e-3,
-    spin_creepage: 0.4,
-    normal_force: 80e3,
-    semi_axis_a: 6.3e-3,
-    semi_axis_b: 4.1e-3,
-    friction_coefficient: 0.35,
-    shear_modulus: 82e9,
-    poisson_ratio: 0.28,
-};
+mod shared;
+use shared::WITH_SPIN as SCENE;
 
 fn fmu_step_against_core(c: &mut Criterion) {
     let mut group = c.benchmark_group("fmu_step");

@@ -8,17 +8,8 @@ use wheel_rail_contact::{
     ContactInput, CreepForceModel, LargeCreepage, MeasuredCurve, Polach, Polach2005, StiffnessSource,
 };
 
-const WITH_SPIN: ContactInput = ContactInput {
-    creepage_longitudinal: 1.5e-3,
-    creepage_lateral: -0.8e-3,
-    spin_creepage: 0.4,
-    normal_force: 80e3,
-    semi_axis_a: 6.3e-3,
-    semi_axis_b: 4.1e-3,
-    friction_coefficient: 0.35,
-    shear_modulus: 8.2e10,
-    poisson_ratio: 0.28,
-};
+mod shared;
+use shared::WITH_SPIN;
 
 fn polach(c: &mut Criterion) {
     let base = Polach::default();

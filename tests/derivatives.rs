@@ -8,6 +8,19 @@ use wheel_rail_contact::{
     MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
+/// A direction with no rate at all; tests set the rates they need.
+const NO_RATES: ContactInput = ContactInput {
+    creepage_longitudinal: 0.0,
+    creepage_lateral: 0.0,
+    spin_creepage: 0.0,
+    normal_force: 0.0,
+    semi_axis_a: 0.0,
+    semi_axis_b: 0.0,
+    friction_coefficient: 0.0,
+    shear_modulus: 0.0,
+    poisson_ratio: 0.0,
+};
+
 /// The input moved by `t` along `direction`.
 fn moved(x: &ContactInput, d: &ContactInput, t: f64) -> ContactInput {
     ContactInput {
@@ -37,17 +50,7 @@ fn finite_difference(model: &dyn CreepForceModel, x: &ContactInput, d: &ContactI
 
 /// One direction per input, each scaled to move its input by 1e-3 of a typical value per unit.
 fn unit_directions(x: &ContactInput) -> Vec<(&'static str, ContactInput)> {
-    let zero = ContactInput {
-        creepage_longitudinal: 0.0,
-        creepage_lateral: 0.0,
-        spin_creepage: 0.0,
-        normal_force: 0.0,
-        semi_axis_a: 0.0,
-        semi_axis_b: 0.0,
-        friction_coefficient: 0.0,
-        shear_modulus: 0.0,
-        poisson_ratio: 0.0,
-    };
+    let zero = NO_RATES;
     vec![
         ("xi", ContactInput { creepage_longitudinal: 1e-3, ..zero }),
         ("eta", ContactInput { creepage_lateral: 1e-3, ..zero }),
@@ -173,17 +176,7 @@ fn at_zero_creepage_the_derivative_is_kalkers_stiffness() {
     let ab = x.semi_axis_a * x.semi_axis_b;
     let g = x.shear_modulus;
     let along = |xi: f64, eta: f64, phi: f64| {
-        let d = ContactInput {
-            creepage_longitudinal: xi,
-            creepage_lateral: eta,
-            spin_creepage: phi,
-            normal_force: 0.0,
-            semi_axis_a: 0.0,
-            semi_axis_b: 0.0,
-            friction_coefficient: 0.0,
-            shear_modulus: 0.0,
-            poisson_ratio: 0.0,
-        };
+        let d = ContactInput { creepage_longitudinal: xi, creepage_lateral: eta, spin_creepage: phi, ..NO_RATES };
         Polach::default().directional_derivative(&x, &d).unwrap()
     };
     assert!(relative_difference(along(1.0, 0.0, 0.0).force_longitudinal, -g * ab * c.c11) < 1e-12);

@@ -1,6 +1,6 @@
 //! CONTACT's published reference cases as data, in SI units: the one definition shared by the
-//! tests (through `tests/common`) and the trade report (`examples/trade_report.rs`), both of which
-//! include this file with `#[path]`. Source and the full tables: `contact_published_cases.md`
+//! tests (through `tests/common`), the trade report (`examples/trade_report.rs`) and the exact
+//! theory's benchmark, which include this file with `#[path]`. Source and the full tables: `contact_published_cases.md`
 //! beside this file (open-source CONTACT, https://github.com/eve70a/CONTACT, `examples/tractcurv`
 //! and `examples/fastsim`, Apache-2.0).
 
