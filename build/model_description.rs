@@ -390,6 +390,22 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         }
         writeln!(source, "        }}\n    }}\n}}\n").unwrap();
     }
+    // The outputs (all Real) as an array with their names: the adapter checks them all at
+    // every step, and that must cost a few compares, not a lookup per value reference.
+    let outputs: Vec<&Variable> = variables.iter().filter(|v| v.causality == Causality::Output).collect();
+    assert!(outputs.iter().all(|v| v.base_type == BaseType::Real), "every output must be a Real");
+    let names: Vec<String> = outputs.iter().map(|v| format!("\"{}\"", v.name)).collect();
+    let fields: Vec<String> = outputs.iter().map(|v| format!("self.{}", v.name)).collect();
+    writeln!(
+        source,
+        "impl Outputs {{\n    /// The outputs' names, in the order of [`Outputs::reals`].\n    pub const NAMES: [&str; {n}] = \
+         [{names}];\n\n    /// Every output's value.\n    #[inline]\n    pub fn reals(&self) -> [f64; {n}] {{\n        \
+         [{fields}]\n    }}\n}}\n",
+        n = outputs.len(),
+        names = names.join(", "),
+        fields = fields.join(", ")
+    )
+    .unwrap();
     writeln!(source, "/// Every value of one instance: plain data, no pointers.").unwrap();
     writeln!(source, "#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]")
         .unwrap();

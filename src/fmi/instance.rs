@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use super::derivative::directional_derivative;
 use super::fmu_state::{decode, encode, FmuState, RunState};
-use super::model_description::{self, variable, Causality, Kind, Values, Variability, LOG_CATEGORIES};
+use super::model_description::{self, variable, Causality, Kind, Outputs, Values, Variability, LOG_CATEGORIES};
 use super::scene::{compute_outputs, Evaluation, ModelCache};
 
 /// What an FMI call returns (`fmi2Status` without `fmi2Pending`: every call is synchronous).
@@ -410,7 +410,7 @@ impl Instance {
         // The model state advances on a copy, kept only if the outputs are good.
         let mut model_state = self.run.model_state;
         let outputs = compute_outputs(&self.run.values, &mut self.model, &mut model_state.relaxed_forces, evaluation)
-            .and_then(|outputs| finite(Values { outputs, ..self.run.values }).map(|_| outputs));
+            .and_then(|outputs| finite(&outputs).map(|_| outputs));
         match outputs {
             Ok(outputs) => {
                 self.run.values.outputs = outputs;
@@ -760,7 +760,7 @@ impl Instance {
             return self.fail(CALL, &reason);
         }
         let derivative = directional_derivative(&self.run.values, &mut self.model, &rates.inputs)
-            .and_then(|outputs| finite(Values { outputs, ..rates }));
+            .and_then(|outputs| finite(&outputs).map(|_| Values { outputs, ..rates }));
         match derivative {
             Ok(derivative) => {
                 for (&value_reference, slot) in unknowns.iter().zip(unknown_rates.iter_mut()) {
@@ -810,22 +810,24 @@ impl Unsupported {
     }
 }
 
-/// `values` if every output is finite, else why not: the last guard of "never NaN or Inf out",
-/// for finite inputs so large that the model's arithmetic overflows (e.g. μ = 1.8e308 makes
-/// μQ infinite).
-fn finite(values: Values) -> Result<Values, String> {
-    let outputs = model_description::VARIABLES.iter().filter(|v| v.causality == Causality::Output);
-    let overflowing: Vec<String> = outputs
-        .filter_map(|v| values.real(v.value_reference).filter(|x| !x.is_finite()).map(|x| format!("{} = {x}", v.name)))
-        .collect();
-    if overflowing.is_empty() {
-        Ok(values)
-    } else {
-        Err(format!(
-            "{} for these values: an input or parameter is too large for the model's floating-point range",
-            overflowing.join(", ")
-        ))
+/// Every output finite, or why not: the last guard of "never NaN or Inf out", for finite
+/// inputs so large that a model's arithmetic overflows. A few compares on the hot path; the
+/// message is built only on failure.
+fn finite(outputs: &Outputs) -> Result<(), String> {
+    let reals = outputs.reals();
+    if reals.iter().all(|x| x.is_finite()) {
+        return Ok(());
     }
+    let overflowing: Vec<String> = Outputs::NAMES
+        .iter()
+        .zip(reals)
+        .filter(|(_, x)| !x.is_finite())
+        .map(|(name, x)| format!("{name} = {x}"))
+        .collect();
+    Err(format!(
+        "{} for these values: an input or parameter is too large for the model's floating-point range",
+        overflowing.join(", ")
+    ))
 }
 
 /// Whether a variable can be a known of fmi2GetDirectionalDerivative: a continuous Real input.
