@@ -4,8 +4,13 @@
 //! creepages, spin, normal load, contact ellipse and friction: a pure, safe physics core in SI
 //! units, under an FMI 2.0 Co-Simulation adapter.
 //!
-//! The core method is Polach's fast analytical solution ([`Polach`]); every model implements
-//! [`CreepForceModel`].
+//! The core method is Polach's fast analytical solution ([`Polach`]). Around it a ladder of models
+//! trades speed for accuracy — [`KalkerLinear`], [`ShenHedrickElkins`], [`Polach`], [`Fastsim`]
+//! at any grid, [`ExactTheory`] — each in its own file under [`models`], all implementing
+//! [`CreepForceModel`] (forces and exact or finite-difference directional derivatives);
+//! [`ModelChoice`] selects one at run time. [`scene`] holds what a scene may add: Hertz contact,
+//! creepages from kinematics through standstill, creep relaxation. [`fmi`] is the FMI 2.0
+//! adapter; it alone holds `unsafe` code (in `fmi::ffi`, enforced by `deny(unsafe_code)`).
 //!
 //! **Sign convention** (Kalker, CONTACT): forces act on the wheel and oppose the creepages; in
 //! the linear range F_x = −G·ab·C11·ξ and F_y = −G·ab·C22·η − G·(ab)^{3/2}·C23·φ.
@@ -20,6 +25,8 @@
 //! let forces = Polach::default().creep_forces(&input).unwrap();
 //! assert!(forces.force_longitudinal < 0.0 && forces.adhesion_utilisation < 1.0);
 //! ```
+
+#![deny(unsafe_code)]
 
 mod contact_input;
 mod creep_force_model;

@@ -10,6 +10,9 @@
 //! (fmi2GetFMUstate, fmi2DeSerializeFMUstate) and not yet given to [`fmi2FreeFMUstate`]; array
 //! pointers are valid for their n elements; strings are NUL-terminated. Calls on one instance are not concurrent; different instances may
 //! run on different threads (there is no global mutable state).
+
+// The FMI adapter's C boundary: the only module allowed `unsafe` (the crate denies it).
+#![allow(unsafe_code)]
 #![allow(non_snake_case, non_upper_case_globals, clippy::missing_safety_doc)]
 #![deny(unsafe_op_in_unsafe_fn)]
 
