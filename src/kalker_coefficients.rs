@@ -83,6 +83,13 @@ impl KalkerCoefficients {
     }
 }
 
+impl KalkerCoefficients {
+    /// The coefficients as another [`Scalar`] (constants: no derivative).
+    pub(crate) fn map<D: Scalar>(self, into: impl Fn(f64) -> D) -> KalkerCoefficients<D> {
+        KalkerCoefficients { c11: into(self.c11), c22: into(self.c22), c23: into(self.c23) }
+    }
+}
+
 impl<D: Scalar> KalkerCoefficients<D> {
     /// [`KalkerCoefficients::new`] for any [`Scalar`] a/b.
     pub(crate) fn at(a_over_b: D, poisson_ratio: f64) -> Self {

@@ -48,6 +48,6 @@ pub use models::fastsim::{Discretisation, Fastsim, FastsimResult, Flexibility, T
 pub use models::kalker_linear::KalkerLinear;
 pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};
 pub use models::model_choice::ModelChoice;
-pub use models::polach::{spin_moment_factor, Polach, StiffnessSource};
+pub use models::polach::{spin_moment_factor, Polach, PolachShape, ShapeCache, StiffnessSource};
 pub use models::polach2005::{LargeCreepage, Polach2005};
 pub use models::shen_hedrick_elkins::ShenHedrickElkins;

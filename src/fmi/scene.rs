@@ -26,7 +26,8 @@ use crate::scene::kinematics::WheelKinematics;
 use crate::scene::relaxation::RelaxationLengths;
 use crate::{
     ContactInput, CreepForceModel, CreepForces, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear,
-    LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
+    LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShapeCache, ShenHedrickElkins, StiffnessSource,
+    TractionBound,
 };
 
 /// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`), in the layout of
@@ -66,11 +67,13 @@ struct Plan {
 
 /// The plan for the last parameter values it was asked for: built (the measured-curve fit, FASTSIM's
 /// load normalisation, every check of the parameters) once when the parameters are first needed
-/// and again only when one changes, not at every step. Derived from the parameters alone, so it
-/// is not part of the FMU's state.
+/// and again only when one changes, not at every step; and Polach's shape factors (Kalker's
+/// coefficients, K_S) for the last ellipse shape, recomputed only when a/b or ν change. Derived
+/// data, so not part of the FMU's state.
 #[derive(Debug, Clone, Default)]
 pub struct ModelCache {
     built: Option<(Parameters, Result<Plan, String>)>,
+    shape: ShapeCache,
 }
 
 impl ModelCache {
@@ -318,7 +321,8 @@ pub(crate) fn compute_outputs(
     evaluation: Evaluation,
 ) -> Result<Outputs, String> {
     let plan = cache.plan(&values.parameters)?;
-    let (outputs, relaxed) = evaluate(values, &plan, *relaxed_forces, evaluation).map_err(|e| e.to_string())?;
+    let (outputs, relaxed) =
+        evaluate(values, &plan, &mut cache.shape, *relaxed_forces, evaluation).map_err(|e| e.to_string())?;
     *relaxed_forces = relaxed;
     Ok(outputs)
 }
@@ -332,6 +336,7 @@ pub(crate) fn creep_force_model(parameters: &Parameters, cache: &mut ModelCache)
 fn evaluate(
     values: &Values,
     plan: &Plan,
+    shape: &mut ShapeCache,
     relaxed_forces: RelaxedForces,
     evaluation: Evaluation,
 ) -> Result<(Outputs, RelaxedForces), InvalidInput> {
@@ -395,8 +400,9 @@ fn evaluate(
     let (steady, friction) = match (plan.traction, plan.model) {
         (Some(extension), ModelChoice::Polach(polach)) => {
             let model = Polach { large_creepage: Some(LargeCreepage::new(extension, creepages.speed)?), ..polach };
-            (model.creep_forces(&contact)?, extension.friction(friction_coefficient, slip_velocity))
+            (model.creep_forces_with_cache(&contact, shape)?, extension.friction(friction_coefficient, slip_velocity))
         }
+        (None, ModelChoice::Polach(polach)) => (polach.creep_forces_with_cache(&contact, shape)?, friction_coefficient),
         _ => (plan.model.creep_forces(&contact)?, friction_coefficient),
     };
     let (forces, relaxed) = if plan.creep_relaxation {

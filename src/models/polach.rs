@@ -45,7 +45,7 @@ pub struct Polach {
 impl CreepForceModel for Polach {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
         input.validate()?;
-        Ok(self.forces(input))
+        Ok(self.forces(input, None))
     }
 
     fn directional_derivative(
@@ -53,8 +53,64 @@ impl CreepForceModel for Polach {
         input: &ContactInput,
         direction: &ContactInput,
     ) -> Result<CreepForces, InvalidInput> {
-        dual_derivative(input, direction, |dual| self.forces(dual))
+        dual_derivative(input, direction, |dual| self.forces(dual, None))
     }
+}
+
+/// What Polach's method derives from the ellipse's shape alone — a/b and ν: Kalker's
+/// coefficients and the spin correction K_S of eq. (24). Together about a third of an
+/// evaluation, and constant while the shape is (given semi-axes, or Hertz with fixed curvatures).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PolachShape {
+    a_over_b: f64,
+    poisson_ratio: f64,
+    coefficients: KalkerCoefficients,
+    spin_correction: f64,
+}
+
+impl PolachShape {
+    /// The shape factors for semi-axis ratio a/b and Poisson's ratio ν.
+    pub fn new(a_over_b: f64, poisson_ratio: f64) -> Self {
+        Self {
+            a_over_b,
+            poisson_ratio,
+            coefficients: KalkerCoefficients::new(a_over_b, poisson_ratio),
+            spin_correction: spin_correction(a_over_b),
+        }
+    }
+
+    /// Whether these are the factors of exactly this a/b and ν (bit for bit: no approximation).
+    fn is_for(&self, a_over_b: f64, poisson_ratio: f64) -> bool {
+        self.a_over_b.to_bits() == a_over_b.to_bits() && self.poisson_ratio.to_bits() == poisson_ratio.to_bits()
+    }
+}
+
+/// A one-shape cache for [`Polach::creep_forces_with_cache`]: a scene that evaluates one contact
+/// step after step keeps one and pays for the shape factors only when a/b or ν change.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ShapeCache(Option<PolachShape>);
+
+impl Polach {
+    /// [`CreepForceModel::creep_forces`], bit for bit, reusing the shape factors in `cache` when
+    /// the input's a/b and ν are the cached ones (and caching them otherwise).
+    pub fn creep_forces_with_cache(
+        &self,
+        input: &ContactInput,
+        cache: &mut ShapeCache,
+    ) -> Result<CreepForces, InvalidInput> {
+        input.validate()?;
+        let (a_over_b, poisson_ratio) = (input.semi_axis_a / input.semi_axis_b, input.poisson_ratio);
+        let shape = match &mut cache.0 {
+            Some(shape) if shape.is_for(a_over_b, poisson_ratio) => shape,
+            slot => slot.insert(PolachShape::new(a_over_b, poisson_ratio)),
+        };
+        Ok(self.forces(input, Some(shape)))
+    }
+}
+
+/// K_S = 1 + 6.3 (1 − e^{−a/b}) of eq. (24): the finite-a/b correction of the spin force.
+fn spin_correction<D: Scalar>(a_over_b: D) -> D {
+    (-(-a_over_b).exp() + 1.0) * 6.3 + 1.0
 }
 
 impl Polach {
@@ -73,12 +129,18 @@ impl Polach {
 
     /// The forces for a validated input, over any [`Scalar`]: `f64` for values, a dual number
     /// for their exact derivative. Branches look at values only.
-    fn forces<D: Scalar>(&self, input: &ContactInput<D>) -> CreepForces<D> {
+    ///
+    /// `shape`: a precomputed [`PolachShape`] to use if it is this input's (values only).
+    fn forces<D: Scalar>(&self, input: &ContactInput<D>, shape: Option<&PolachShape>) -> CreepForces<D> {
         if input.transmits_no_force() {
             return CreepForces::zero();
         }
         let a = input.semi_axis_a;
         let b = input.semi_axis_b;
+        let a_over_b = a / b;
+        let poisson_ratio = value(input.poisson_ratio);
+        // Dual numbers never take the cached shape: its values carry no derivative in a and b.
+        let cached = shape.filter(|s| D::NDERIV == 0 && s.is_for(value(a_over_b), poisson_ratio));
         let ResultingCreepage { xi, eta, spin_shift, s_yc, s_c } =
             ResultingCreepage::new(input.creepage_longitudinal, input.creepage_lateral, input.spin_creepage, a);
         if value(s_c) == 0.0 {
@@ -104,7 +166,10 @@ impl Polach {
         // ε = κ·s_C (eq. 7); `law_adhesion` is 1/k of eq. (34).
         let (kappa, law_adhesion, kalker_c23) = match &self.stiffness {
             StiffnessSource::Kalker => {
-                let c = KalkerCoefficients::at(a / b, value(input.poisson_ratio));
+                let c = match cached {
+                    Some(shape) => shape.coefficients.map(D::from),
+                    None => KalkerCoefficients::at(a_over_b, poisson_ratio),
+                };
                 // E3: ε = π G a b c_jj s_C / (4 Q f), from eq. (7) with C of eq. (28).
                 let kappa = input.shear_modulus * PI * a * b * direction.weighted(c.c11, c.c22) * inverse_quarter_limit;
                 (kappa, 1.0, Some(c.c23))
@@ -131,8 +196,10 @@ impl Polach {
         // Eqs. (23)–(25): spin's lateral force. Without spin it is zero and is skipped (its
         // derivative in Φ is not zero, so dual numbers always evaluate it).
         if value(spin_shift) != 0.0 || D::NDERIV > 0 {
-            // Eq. (24): finite-a/b correction K_S of the spin force.
-            let k_s = (-(-(a / b)).exp() + 1.0) * 6.3 + 1.0;
+            let k_s = match cached {
+                Some(shape) => D::from(shape.spin_correction),
+                None => spin_correction(a_over_b),
+            };
             let kappa_spin = match kalker_c23 {
                 // E2: ε_s = (8/3) G b √(ab) c23 |s_yC| / (Q f K_S), eq. (25) with C_s of eq. (32).
                 Some(c23) => {
