@@ -1,11 +1,11 @@
 //! Polach's method per evaluation, validation and Kalker coefficient lookup included: the
 //! issue's case (with spin), without spin, with the measured-curve stiffness, with Polach 2005
-//! switched on, and the exact directional derivative (dual numbers).
+//! switched on, with the shape factors cached, and the exact directional derivative (dual numbers).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, LargeCreepage, MeasuredCurve, Polach, Polach2005, StiffnessSource,
+    ContactInput, CreepForceModel, LargeCreepage, MeasuredCurve, Polach, Polach2005, ShapeCache, StiffnessSource,
 };
 
 mod shared;
@@ -35,6 +35,11 @@ fn polach(c: &mut Criterion) {
 
     c.bench_function("polach_with_spin", |b| b.iter(|| base.creep_forces(black_box(&WITH_SPIN))));
     c.bench_function("polach_without_spin", |b| b.iter(|| base.creep_forces(black_box(&without_spin))));
+    // The same shape step after step (the FMU's case): Kalker's coefficients and K_S cached.
+    let mut cache = ShapeCache::default();
+    c.bench_function("polach_with_spin_shape_cached", |b| {
+        b.iter(|| base.creep_forces_with_cache(black_box(&WITH_SPIN), &mut cache))
+    });
     c.bench_function("polach_measured_curve", |b| b.iter(|| measured.creep_forces(black_box(&WITH_SPIN))));
     c.bench_function("polach_2005_dry", |b| b.iter(|| falling.creep_forces(black_box(&WITH_SPIN))));
     c.bench_function("polach_directional_derivative", |b| {
