@@ -326,8 +326,11 @@ time, every variable's value and the model's internal state; fmi2SerializeFMUsta
 fmi2SerializedFMUstateSize bytes. fmi2DeSerializeFMUstate rejects truncated, corrupted, foreign or other-version
 byte strings with fmi2Error and the reason, changing nothing.</li>
 <li>Directional derivatives (providesDirectionalDerivative): J·v of the outputs with respect to the continuous
-inputs at the current values — exact (forward-mode dual numbers) for Polach; a parameter as a known is fmi2Error
-naming it.</li>
+inputs at the current values — exact (forward-mode dual numbers) for Polach, Kalker's linear theory and
+Shen–Hedrick–Elkins (one-sided at kinks: Kalker's table rows in a/b, Φ = 0, aΦ = −2η); a central difference for
+FASTSIM and the exact theory (tolerance 1e-2 relative). A parameter as a known is fmi2Error naming it. With
+hertz_contact, creepages_from_kinematics, creep_relaxation or a Polach 2005 traction law on, the call is fmi2Error
+(“directional derivatives are not available with … on”).</li>
 <li>Not supported (declared false; the functions return fmi2Error saying so): input interpolation, output
 derivatives, asynchronous steps.</li>
 <li>Logging: messages go to the master's logger as "%s" plus text, with its componentEnvironment. With debug
