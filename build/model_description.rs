@@ -428,34 +428,29 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
     {
         let rust = if kind == "real" { "f64" } else { "i32" };
         let matching: Vec<&Variable> = variables.iter().filter(|v| types.contains(&v.base_type)).collect();
-        writeln!(source, "    /// The field behind a {kind} value reference.").unwrap();
-        writeln!(source, "    #[inline]").unwrap();
-        writeln!(source, "    pub fn {kind}(&self, value_reference: u32) -> Option<{rust}> {{").unwrap();
-        writeln!(source, "        match value_reference {{").unwrap();
-        for v in &matching {
+        // The reading accessor and the writing one differ only in their references.
+        for (suffix, doc, receiver, reference) in
+            [("", "", "&self", ""), ("_mut", ", for writing", "&mut self", "&mut ")]
+        {
+            writeln!(source, "    /// The field behind a {kind} value reference{doc}.").unwrap();
+            writeln!(source, "    #[inline]").unwrap();
             writeln!(
                 source,
-                "            value_reference::{} => Some(self.{}),",
-                constant_name(&v.name),
-                field_path(v)
+                "    pub fn {kind}{suffix}({receiver}, value_reference: u32) -> Option<{reference}{rust}> {{"
             )
             .unwrap();
+            writeln!(source, "        match value_reference {{").unwrap();
+            for v in &matching {
+                writeln!(
+                    source,
+                    "            value_reference::{} => Some({reference}self.{}),",
+                    constant_name(&v.name),
+                    field_path(v)
+                )
+                .unwrap();
+            }
+            writeln!(source, "            _ => None,\n        }}\n    }}\n").unwrap();
         }
-        writeln!(source, "            _ => None,\n        }}\n    }}\n").unwrap();
-        writeln!(source, "    /// The field behind a {kind} value reference, for writing.").unwrap();
-        writeln!(source, "    #[inline]").unwrap();
-        writeln!(source, "    pub fn {kind}_mut(&mut self, value_reference: u32) -> Option<&mut {rust}> {{").unwrap();
-        writeln!(source, "        match value_reference {{").unwrap();
-        for v in &matching {
-            writeln!(
-                source,
-                "            value_reference::{} => Some(&mut self.{}),",
-                constant_name(&v.name),
-                field_path(v)
-            )
-            .unwrap();
-        }
-        writeln!(source, "            _ => None,\n        }}\n    }}\n").unwrap();
     }
     writeln!(source, "}}\n").unwrap();
 }
