@@ -49,7 +49,7 @@ fn options(c: &mut Criterion) {
                 (vr::CREEP_RELAXATION, on),
             ],
         ),
-        ("fastsim_20x20", vec![(vr::MODEL, Model::Fastsim as i32)]),
+        ("fastsim_20x20", vec![(vr::CREEP_FORCE_MODEL, Model::Fastsim as i32)]),
     ];
     let inputs = [vr::CREEPAGE_LONGITUDINAL, vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE];
     let values = [1.5e-3, -0.8e-3, 0.4, 80e3];

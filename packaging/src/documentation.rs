@@ -218,9 +218,9 @@ as in any first-order relaxation model.</p>
 <tr><td>every scene</td><td>normal_force, friction_coefficient, rolling_speed (checked finite; for slip_velocity)</td><td>shear_modulus, poisson_ratio, model</td><td>forces, utilisation, spin_moment</td></tr>
 <tr><td>creepages as inputs (default)</td><td>creepage_longitudinal, creepage_lateral, spin_creepage</td><td>—</td><td>effective_* echo them</td></tr>
 <tr><td>ellipse as input (default)</td><td>semi_axis_a, semi_axis_b</td><td>—</td><td>contact_semi_axis_a/b echo them, max_pressure</td></tr>
-<tr><td>model = polach</td><td>—</td><td>stiffness_source, measured_*</td><td>—</td></tr>
-<tr><td>model = fastsim</td><td>—</td><td>fastsim_strips, fastsim_elements, fastsim_traction_bound, fastsim_flexibility</td><td>spin_moment</td></tr>
-<tr><td>model = exact</td><td>—</td><td>exact_elements_longitudinal, exact_elements_lateral</td><td>spin_moment</td></tr>
+<tr><td>creep_force_model = polach</td><td>—</td><td>stiffness_source, measured_*</td><td>—</td></tr>
+<tr><td>creep_force_model = fastsim</td><td>—</td><td>fastsim_strips, fastsim_elements, fastsim_traction_bound, fastsim_flexibility</td><td>spin_moment</td></tr>
+<tr><td>creep_force_model = exact</td><td>—</td><td>exact_elements_longitudinal, exact_elements_lateral</td><td>spin_moment</td></tr>
 <tr><td>traction_law = polach2005_*</td><td>rolling_speed</td><td>traction_law (user: the four factors)</td><td>current_friction_coefficient, slip_velocity</td></tr>
 <tr><td>hertz_contact = on</td><td>wheel_rolling_radius (not semi_axis_a/b)</td><td>wheel_profile_curvature, rail_profile_curvature</td><td>contact_semi_axis_a/b, max_pressure, approach</td></tr>
 <tr><td>creepages_from_kinematics = on</td><td>rolling_speed, wheel_angular_speed, wheel_rolling_radius, lateral_slip_velocity, spin_angular_velocity (not the creepages)</td><td>regularisation_speed</td><td>effective_*, slip_velocity</td></tr>

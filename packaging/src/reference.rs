@@ -36,7 +36,7 @@ pub const OUTPUT_COLUMNS: [&str; 13] = [
 /// The integer-valued columns that may be left out, with the value they then take: the plain
 /// scene (Polach with Kalker's stiffness, every option off).
 const INTEGER_DEFAULTS: [(&str, f64); 6] = [
-    ("model", 1.0),
+    ("creep_force_model", 1.0),
     ("stiffness_source", 1.0),
     ("traction_law", 1.0),
     ("hertz_contact", 0.0),
@@ -92,7 +92,7 @@ fn model(row: &Row, speed: f64) -> Result<Box<dyn CreepForceModel>, String> {
         let large_creepage = law.map(|law| LargeCreepage::new(law, speed)).transpose().map_err(|e| e.to_string())?;
         Ok(Polach { stiffness, large_creepage })
     };
-    Ok(match row.get("model") as i32 {
+    Ok(match row.get("creep_force_model") as i32 {
         1 => Box::new(polach()?),
         2 => Box::new(KalkerLinear),
         3 => Box::new(ShenHedrickElkins),
@@ -106,7 +106,7 @@ fn model(row: &Row, speed: f64) -> Result<Box<dyn CreepForceModel>, String> {
             Box::new(fastsim.map_err(|e| e.to_string())?)
         }
         5 => Box::new(ExactTheory::new(row.count("exact_elements_longitudinal"), row.count("exact_elements_lateral"))),
-        other => return Err(format!("model = {other}")),
+        other => return Err(format!("creep_force_model = {other}")),
     })
 }
 
@@ -216,7 +216,7 @@ fn outputs(row: &Row, relaxed: &mut [f64; 2]) -> Result<[f64; 13], String> {
 }
 
 /// Reads CSV whose header names FMU inputs and parameters (Enumerations as their integer
-/// values; `model`, `stiffness_source`, `traction_law` and the three option switches may be
+/// values; `creep_force_model`, `stiffness_source`, `traction_law` and the three option switches may be
 /// left out: plain Polach, options off) plus an optional `step_size` \[s\] for creep relaxation,
 /// and writes [`OUTPUT_COLUMNS`] per row with every digit. Rows are a sequence: the relaxed
 /// force carries from one row to the next.

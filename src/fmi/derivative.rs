@@ -35,7 +35,7 @@ pub(crate) fn option_without_derivatives(parameters: &Parameters) -> Option<&'st
         measured_peak_adhesion: _,
         measured_creepage_at_peak: _,
         measured_kinetic_friction: _,
-        model: _,
+        creep_force_model: _,
         fastsim_strips: _,
         fastsim_elements: _,
         fastsim_traction_bound: _,

@@ -1269,7 +1269,7 @@ mod tests {
         use crate::fmi::model_description::Model;
         for model in [Model::Polach, Model::KalkerLinear, Model::ShenHedrickElkins] {
             let (mut instance, _) = new_instance();
-            assert_eq!(instance.set_integer(&[vr::MODEL], &[model as i32]), Status::Ok);
+            assert_eq!(instance.set_integer(&[vr::CREEP_FORCE_MODEL], &[model as i32]), Status::Ok);
             assert_eq!(instance.setup_experiment(0.0, None), Status::Ok);
             assert_eq!(instance.enter_initialization_mode(), Status::Ok);
             assert_eq!(instance.exit_initialization_mode(), Status::Ok);

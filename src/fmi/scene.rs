@@ -129,7 +129,7 @@ fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
         measured_peak_adhesion,
         measured_creepage_at_peak,
         measured_kinetic_friction,
-        model,
+        creep_force_model,
         fastsim_strips,
         fastsim_elements,
         fastsim_traction_bound,
@@ -149,7 +149,7 @@ fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
         creep_relaxation,
         relaxation_length: _,
     } = *parameters;
-    let selected = enumeration("model", model, Model::from_value, Model::ITEMS)?;
+    let selected = enumeration("creep_force_model", creep_force_model, Model::from_value, Model::ITEMS)?;
     let stiffness =
         match enumeration("stiffness_source", stiffness_source, StiffnessChoice::from_value, StiffnessChoice::ITEMS)? {
             StiffnessChoice::Kalker => StiffnessSource::Kalker,
@@ -175,16 +175,16 @@ fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
     };
     // Both are Polach's: rejected rather than silently ignored with another model.
     if selected != Model::Polach {
-        let name = Model::ITEMS.iter().find(|(_, value, _)| *value == model).map_or("?", |(name, _, _)| name);
-        let model_text = format!("model = {model} ({name})");
+        let name = Model::ITEMS.iter().find(|(_, value, _)| *value == creep_force_model).map_or("?", |(name, _, _)| name);
+        let model_text = format!("creep_force_model = {creep_force_model} ({name})");
         if traction.is_some() {
             return Err(format!(
-                "traction_law = {traction_law} is invalid: Polach 2005 needs model = 1 (polach), not {model_text}"
+                "traction_law = {traction_law} is invalid: Polach 2005 needs creep_force_model = 1 (polach), not {model_text}"
             ));
         }
         if stiffness != StiffnessSource::Kalker {
             return Err(format!(
-                "stiffness_source = {stiffness_source} is invalid: a measured curve needs model = 1 (polach), not {model_text}"
+                "stiffness_source = {stiffness_source} is invalid: a measured curve needs creep_force_model = 1 (polach), not {model_text}"
             ));
         }
     }
@@ -592,7 +592,7 @@ mod tests {
         assert_eq!(models.len(), Model::ITEMS.len());
         let mut spin_moments = Vec::new();
         for (item, model) in models {
-            values.parameters.model = item as i32;
+            values.parameters.creep_force_model = item as i32;
             let expected = model.creep_forces(&input).unwrap();
             let outputs = outputs(&values);
             assert_eq!(outputs.force_longitudinal, expected.force_longitudinal, "{item:?}");
@@ -612,15 +612,15 @@ mod tests {
         use TractionLaw::{Coulomb, Polach2005Dry as Dry, Polach2005User as User};
         type Change = fn(&mut Parameters);
         let cases: [(Model, TractionLaw, Change, &str); 14] = [
-            (PolachModel, Coulomb, |p| p.model = 9, "model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
+            (PolachModel, Coulomb, |p| p.creep_force_model = 9, "creep_force_model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
             (PolachModel, Coulomb, |p| p.stiffness_source = 7, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)"),
             (PolachModel, Coulomb, |p| p.hertz_contact = 2, "hertz_contact = 2 is invalid: must be one of 0 (off), 1 (on)"),
             (PolachModel, Coulomb, |p| p.creepages_from_kinematics = -1, "creepages_from_kinematics = -1 is invalid: must be one of 0 (off), 1 (on)"),
             (PolachModel, User, |p| p.adhesion_reduction_factor = 0.0, "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]"),
             (PolachModel, User, |p| p.slip_reduction_factor = 1.5, "slip_reduction_factor = 1.5 is invalid: k_S must lie in (0, k_A]"),
             (PolachModel, User, |p| p.friction_decay_rate = f64::NAN, "friction_decay_rate = NaN is invalid: B must be finite and >= 0 [s/m]"),
-            (FastsimModel, Dry, |_| {}, "traction_law = 2 is invalid: Polach 2005 needs model = 1 (polach), not model = 4 (fastsim)"),
-            (Linear, Coulomb, |p| p.stiffness_source = 2, "stiffness_source = 2 is invalid: a measured curve needs model = 1 (polach), not model = 2 (kalker_linear)"),
+            (FastsimModel, Dry, |_| {}, "traction_law = 2 is invalid: Polach 2005 needs creep_force_model = 1 (polach), not creep_force_model = 4 (fastsim)"),
+            (Linear, Coulomb, |p| p.stiffness_source = 2, "stiffness_source = 2 is invalid: a measured curve needs creep_force_model = 1 (polach), not creep_force_model = 2 (kalker_linear)"),
             (FastsimModel, Coulomb, |p| p.fastsim_strips = 0, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
             (FastsimModel, Coulomb, |p| p.fastsim_elements = -3, "fastsim_elements = -3 is invalid: must be an integer in 1..=10000"),
             (FastsimModel, Coulomb, |p| p.fastsim_flexibility = 0, "fastsim_flexibility = 0 is invalid: must be one of 1 (three_blended), 2 (three), 3 (single_weighted)"),
@@ -629,7 +629,7 @@ mod tests {
         ];
         for (model, law, change, expected) in cases {
             let mut values = Values::default();
-            (values.parameters.model, values.parameters.traction_law) = (model as i32, law as i32);
+            (values.parameters.creep_force_model, values.parameters.traction_law) = (model as i32, law as i32);
             change(&mut values.parameters);
             assert_eq!(outputs_of(&values).unwrap_err(), expected);
         }
@@ -897,7 +897,7 @@ mod tests {
         values.parameters.measured_peak_adhesion = 0.29;
         let message = evaluate(&values).unwrap_err();
         assert!(message.starts_with("measured_peak_adhesion = 0.29 is invalid"), "{message}");
-        values.parameters.model = Model::KalkerLinear as i32;
+        values.parameters.creep_force_model = Model::KalkerLinear as i32;
         values.parameters.stiffness_source = StiffnessChoice::Kalker as i32;
         assert_eq!(evaluate(&values).unwrap(), outputs(&values));
     }
@@ -916,14 +916,14 @@ mod tests {
             (|p| p.creep_relaxation = on(), Evaluation::Step(1e-4)),
             (
                 |p| {
-                    p.model = Model::Fastsim as i32;
+                    p.creep_force_model = Model::Fastsim as i32;
                     (p.fastsim_strips, p.fastsim_elements) = (6, 6);
                 },
                 Evaluation::Initialise,
             ),
             (
                 |p| {
-                    p.model = Model::Fastsim as i32;
+                    p.creep_force_model = Model::Fastsim as i32;
                     (p.fastsim_strips, p.fastsim_elements) = (6, 6);
                     p.creepages_from_kinematics = on();
                 },
@@ -931,7 +931,7 @@ mod tests {
             ),
             (
                 |p| {
-                    p.model = Model::KalkerLinear as i32;
+                    p.creep_force_model = Model::KalkerLinear as i32;
                     (p.hertz_contact, p.creepages_from_kinematics, p.creep_relaxation) = (on(), on(), on());
                 },
                 Evaluation::Step(1e-4),

@@ -82,7 +82,7 @@ CREEPAGE_ROWS = [
     (5, {"exact_elements_longitudinal": 14, "exact_elements_lateral": 12}),
 ])
 def test_every_model_equals_the_core(new_slave, model_description, model, options):
-    results, rows = run(new_slave, model_description, {"model": model, **options}, CREEPAGE_ROWS, [1e-3] * 4)
+    results, rows = run(new_slave, model_description, {"creep_force_model": model, **options}, CREEPAGE_ROWS, [1e-3] * 4)
     assert_equal_to_core(results, rows)
     spin_moments = [r["spin_moment"] for r in results]
     if model in (1, 3):
@@ -114,11 +114,11 @@ def test_polach_2005_equals_the_core_and_friction_falls_with_slip(new_slave, mod
 def test_polach_2005_requires_model_polach(new_slave, model_description):
     slave, callbacks = instantiated(new_slave)
     slave.setupExperiment(startTime=0.0)
-    set_values(slave, model_description, {"traction_law": 2, "model": 3})
+    set_values(slave, model_description, {"traction_law": 2, "creep_force_model": 3})
     slave.enterInitializationMode()
     expect_error(slave.exitInitializationMode)
     assert callbacks.texts()[-1] == ("fmi2ExitInitializationMode: traction_law = 2 is invalid: Polach 2005 needs "
-                                     "model = 1 (polach), not model = 3 (shen_hedrick_elkins)")
+                                     "creep_force_model = 1 (polach), not creep_force_model = 3 (shen_hedrick_elkins)")
 
 
 def test_hertz_contact_equals_the_core_and_ignores_the_semi_axis_inputs(new_slave, model_description):
@@ -189,9 +189,9 @@ def test_reset_clears_the_relaxed_force(new_slave, model_description):
 
 
 @pytest.mark.parametrize("parameters, message", [
-    ({"model": 4, "fastsim_strips": 0}, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
-    ({"model": 5, "exact_elements_lateral": -2}, "exact_elements_lateral = -2 is invalid: must lie in [1, 200]"),
-    ({"model": 6}, "model = 6 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), "
+    ({"creep_force_model": 4, "fastsim_strips": 0}, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
+    ({"creep_force_model": 5, "exact_elements_lateral": -2}, "exact_elements_lateral = -2 is invalid: must lie in [1, 200]"),
+    ({"creep_force_model": 6}, "creep_force_model = 6 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), "
                    "4 (fastsim), 5 (exact)"),
     ({"traction_law": 4, "adhesion_reduction_factor": 0.0},
      "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]"),
@@ -222,8 +222,8 @@ def test_structural_parameters_are_fixed_after_initialization(new_slave, model_d
     slave.setupExperiment(startTime=0.0)
     slave.enterInitializationMode()
     slave.exitInitializationMode()
-    expect_error(slave.setInteger, [vr["model"]], [2])
-    assert callbacks.texts()[-1] == "fmi2SetInteger: model is a fixed parameter and cannot be set after initialization"
+    expect_error(slave.setInteger, [vr["creep_force_model"]], [2])
+    assert callbacks.texts()[-1] == "fmi2SetInteger: creep_force_model is a fixed parameter and cannot be set after initialization"
     slave.setReal([vr["relaxation_length"]], [0.01])  # tunable
 
 
