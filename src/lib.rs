@@ -26,12 +26,11 @@
 //! assert!(forces.force_longitudinal < 0.0 && forces.adhesion_utilisation < 1.0);
 //! ```
 
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 mod contact_input;
 mod creep_force_model;
 mod creep_forces;
-pub mod fmi;
 mod invalid_input;
 mod kalker_coefficients;
 pub mod models;

@@ -4,8 +4,8 @@
 
 use std::fmt::Write as _;
 
-use wheel_rail_contact::fmi::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
-use wheel_rail_contact::fmi::scene::contact_input;
+use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
+use wheel_rail_contact_fmu::scene::contact_input;
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 
 use crate::plot::{escape, line_plot, Series};

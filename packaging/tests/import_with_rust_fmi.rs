@@ -9,7 +9,7 @@ use fmi::traits::{FmiImport, FmiInstance};
 use packaging::default_scene::{default_creepages, sweep};
 use packaging::documentation::default_contact_input;
 use packaging::fmu::{package, Profile};
-use wheel_rail_contact::fmi::model_description::{value_reference as vr, GUID, VARIABLES};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID, VARIABLES};
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 
 fn packaged_fmu() -> (tempfile::TempDir, std::path::PathBuf) {

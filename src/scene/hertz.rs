@@ -35,6 +35,7 @@
 
 use std::f64::consts::PI;
 
+use crate::contact_input::hertz_max_pressure;
 use crate::InvalidInput;
 
 /// Largest ratio of the two relative curvatures accepted (b/a ≈ 2.5·10⁻⁷ there). Hertz's
@@ -170,7 +171,7 @@ impl HertzContact {
         let load_per_stiffness = normal_force.cbrt() / (contact_modulus.cbrt() * curvature.rolling.cbrt());
         let semi_axis_a = load_per_stiffness * (carlson_rd(0.0, b_over_a * b_over_a, 1.0) / (2.0 * PI)).cbrt();
         let semi_axis_b = b_over_a * semi_axis_a;
-        let max_pressure = 3.0 * normal_force / (2.0 * PI * semi_axis_a) / semi_axis_b;
+        let max_pressure = hertz_max_pressure(normal_force, semi_axis_a, semi_axis_b);
         // δ = 3Q·R_F(0, a², b²)/(2π E*) = 3Q·R_F(0, 1, k²)/(2π E* a) by homogeneity (degree −1/2).
         let approach =
             3.0 * normal_force / (2.0 * PI * contact_modulus) * carlson_rf(0.0, 1.0, b_over_a * b_over_a) / semi_axis_a;

@@ -21,10 +21,11 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use serde::{Deserialize, Serialize};
 
-use super::derivative::directional_derivative;
+use super::scene::directional_derivative;
 use super::fmu_state::{decode, encode, FmuState, RunState};
 use super::model_description::{self, variable, Causality, Kind, Outputs, Values, Variability, LOG_CATEGORIES};
-use super::scene::{compute_outputs, Evaluation, ModelCache};
+use super::scene::{compute_outputs, ModelCache};
+use wheel_rail_contact::scene::Evaluation;
 
 /// What an FMI call returns (`fmi2Status` without `fmi2Pending`: every call is synchronous).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -137,10 +138,11 @@ pub trait LogSink {
 /// Which messages reach the logger: one flag per status (each status has one category),
 /// decided when the selection changes, so a call checks one bool.
 ///
-/// With debug logging off, only messages with a non-OK status (warnings, discards, errors,
-/// fatal): the standard's status descriptions say the FMU calls the logger for those, and leaves
-/// it to the logger whether to show them. With debug logging on, all categories, or only those
-/// given to fmi2SetDebugLogging (`logAll` selects all).
+/// A message with a non-OK status (warning, discard, error, fatal) always reaches the logger,
+/// whatever fmi2SetDebugLogging selected: the standard's status descriptions say the FMU calls
+/// the logger for those, and a master must learn why its call failed (as the Reference FMUs'
+/// logError). The selection filters the call traces (status OK, category logCalls) only: they
+/// pass with debug logging on and no category given, `logCalls` or `logAll` selected.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct LogFilter {
     passes: [bool; 5],
@@ -148,10 +150,13 @@ struct LogFilter {
 
 impl LogFilter {
     fn new(debug_logging: bool, categories: Option<&[&str]>) -> LogFilter {
-        let passes = |status: Status| match (debug_logging, categories) {
-            (false, _) => status != Status::Ok,
-            (true, None) => true,
-            (true, Some(selected)) => selected.iter().any(|c| *c == status_category(status) || *c == "logAll"),
+        let passes = |status: Status| match (status, debug_logging, categories) {
+            (Status::Warning | Status::Discard | Status::Error | Status::Fatal, _, _) => true,
+            (Status::Ok, false, _) => false,
+            (Status::Ok, true, None) => true,
+            (Status::Ok, true, Some(selected)) => {
+                selected.iter().any(|c| *c == status_category(status) || *c == "logAll")
+            }
         };
         LogFilter { passes: STATUSES.map(passes) }
     }
@@ -576,6 +581,12 @@ impl Instance {
             return self.fail(CALL, &format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
         }
         let end = t + h;
+        if !end.is_finite() {
+            return self.fail(
+                CALL,
+                &format!("the step would end at {end}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is not finite"),
+            );
+        }
         if let Some(stop) = self.run.stop_time.filter(|stop| end > stop + tolerance) {
             return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
         }
@@ -838,7 +849,7 @@ fn is_known(causality: Causality, variability: Variability, kind: &Kind) -> bool
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fmi::model_description::{value_reference as vr, Inputs, GUID, VARIABLES};
+    use crate::model_description::{value_reference as vr, Inputs, GUID, VARIABLES};
     use std::cell::RefCell;
     use std::rc::Rc;
 
@@ -993,7 +1004,7 @@ mod tests {
 
     struct StiffnessSourceValue;
     impl StiffnessSourceValue {
-        const MEASURED: i32 = crate::fmi::model_description::StiffnessSource::MeasuredCurve as i32;
+        const MEASURED: i32 = crate::model_description::StiffnessSource::MeasuredCurve as i32;
     }
 
     #[test]
@@ -1150,17 +1161,24 @@ mod tests {
         assert_eq!(instance.set_debug_logging(true, &[]), Status::Ok);
         instance.enter_initialization_mode();
         assert_eq!(last_message(&log), "fmi2EnterInitializationMode");
-        // Only warnings: errors and traces are filtered out.
+        // A selection filters the call traces only: an error reaches the logger whatever is
+        // selected, the trace of a successful call does not.
         log.borrow_mut().clear();
         assert_eq!(instance.set_debug_logging(true, &["logStatusWarning"]), Status::Ok);
-        instance.do_step(0.0, 1.0);
+        assert_eq!(instance.do_step(0.0, 1.0), Status::Error);
         instance.exit_initialization_mode();
-        assert!(log.borrow().is_empty(), "{:?}", log.borrow());
-        // Only errors.
-        instance.set_debug_logging(true, &["logStatusError"]);
+        assert_eq!(log.borrow().len(), 1, "{:?}", log.borrow());
+        assert_eq!(last_message(&log), "fmi2DoStep: illegal call in state initializationMode");
+        // Only the traces: errors still reach the logger.
+        log.borrow_mut().clear();
+        instance.set_debug_logging(true, &["logCalls"]);
         instance.exit_initialization_mode();
         assert_eq!(last_message(&log), "fmi2ExitInitializationMode: illegal call in state stepComplete");
-        assert_eq!(log.borrow().len(), 1);
+        assert_eq!(log.borrow().len(), 2, "the trace, then the error: {:?}", log.borrow());
+        // An unknown category alone: the call's own warning reaches the logger.
+        log.borrow_mut().clear();
+        assert_eq!(instance.set_debug_logging(true, &["bogus"]), Status::Warning);
+        assert!(last_message(&log).starts_with("fmi2SetDebugLogging: unknown log categories [\"bogus\"] ignored"));
         // logAll: everything; an unknown category is a warning.
         assert_eq!(instance.set_debug_logging(true, &["logAll", "noSuchCategory"]), Status::Warning);
         assert!(
@@ -1187,8 +1205,8 @@ mod tests {
         let rates = [1.0, -0.5, 2e3, 0.25];
         let mut derivative = [f64::NAN; 3];
         assert_eq!(instance.get_directional_derivative(&OUTPUTS, &knowns, &rates, &mut derivative), Status::Ok);
-        let input = crate::fmi::scene::contact_input(instance.values());
-        let direction = crate::ContactInput {
+        let input = crate::scene::contact_input(instance.values());
+        let direction = wheel_rail_contact::ContactInput {
             creepage_longitudinal: 1.25, // a known given twice adds its rates
             creepage_lateral: 0.0,
             spin_creepage: -0.5,
@@ -1199,8 +1217,8 @@ mod tests {
             shear_modulus: 0.0,
             poisson_ratio: 0.0,
         };
-        use crate::CreepForceModel;
-        let expected = crate::Polach::default().directional_derivative(&input, &direction).unwrap();
+        use wheel_rail_contact::CreepForceModel;
+        let expected = wheel_rail_contact::Polach::default().directional_derivative(&input, &direction).unwrap();
         assert_eq!(derivative, [expected.force_longitudinal, expected.force_lateral, expected.adhesion_utilisation]);
         // Unknowns in any order and subset.
         let mut lateral = [f64::NAN];
@@ -1266,7 +1284,7 @@ mod tests {
     /// does change its output somewhere is tested in `scene.rs` by perturbation.)
     #[test]
     fn every_non_zero_derivative_is_a_declared_dependency() {
-        use crate::fmi::model_description::Model;
+        use crate::model_description::Model;
         for model in [Model::Polach, Model::KalkerLinear, Model::ShenHedrickElkins] {
             let (mut instance, _) = new_instance();
             assert_eq!(instance.set_integer(&[vr::CREEP_FORCE_MODEL], &[model as i32]), Status::Ok);
@@ -1338,7 +1356,7 @@ mod tests {
         assert_eq!(last_message(&log), expected);
         assert_eq!(instance.deserialize_fmu_state(b"WRCst").unwrap_err(), Status::Error);
         let expected =
-            "fmi2DeSerializeFMUstate: serializedState rejected: truncated: 5 bytes, the state needs at least 11";
+            "fmi2DeSerializeFMUstate: serializedState rejected: truncated: 5 bytes, the state needs at least 19";
         assert_eq!(last_message(&log), expected);
     }
 

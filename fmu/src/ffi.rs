@@ -20,52 +20,13 @@ use std::ffi::{c_char, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::ptr::null_mut;
 
-use fmi_sys::fmi2::*;
+use crate::fmi2::*;
 
 use super::fmu_state::FmuState;
 use super::instance::{Instance, InstantiateArguments, LogSink, Status, StatusKind, Unsupported, ValueType};
 
 #[cfg(not(panic = "unwind"))]
 compile_error!("the FMU must be built with panic = \"unwind\": every export turns a panic into fmi2Fatal");
-
-/// Every export's signature, checked against the FMI 2.0 headers' function types (bindgen's
-/// `fmi2*TYPE` from fmi-sys): a mismatch does not compile.
-const _: () = {
-    let _: fmi2GetTypesPlatformTYPE = Some(fmi2GetTypesPlatform);
-    let _: fmi2GetVersionTYPE = Some(fmi2GetVersion);
-    let _: fmi2SetDebugLoggingTYPE = Some(fmi2SetDebugLogging);
-    let _: fmi2InstantiateTYPE = Some(fmi2Instantiate);
-    let _: fmi2FreeInstanceTYPE = Some(fmi2FreeInstance);
-    let _: fmi2SetupExperimentTYPE = Some(fmi2SetupExperiment);
-    let _: fmi2EnterInitializationModeTYPE = Some(fmi2EnterInitializationMode);
-    let _: fmi2ExitInitializationModeTYPE = Some(fmi2ExitInitializationMode);
-    let _: fmi2TerminateTYPE = Some(fmi2Terminate);
-    let _: fmi2ResetTYPE = Some(fmi2Reset);
-    let _: fmi2GetRealTYPE = Some(fmi2GetReal);
-    let _: fmi2GetIntegerTYPE = Some(fmi2GetInteger);
-    let _: fmi2GetBooleanTYPE = Some(fmi2GetBoolean);
-    let _: fmi2GetStringTYPE = Some(fmi2GetString);
-    let _: fmi2SetRealTYPE = Some(fmi2SetReal);
-    let _: fmi2SetIntegerTYPE = Some(fmi2SetInteger);
-    let _: fmi2SetBooleanTYPE = Some(fmi2SetBoolean);
-    let _: fmi2SetStringTYPE = Some(fmi2SetString);
-    let _: fmi2GetFMUstateTYPE = Some(fmi2GetFMUstate);
-    let _: fmi2SetFMUstateTYPE = Some(fmi2SetFMUstate);
-    let _: fmi2FreeFMUstateTYPE = Some(fmi2FreeFMUstate);
-    let _: fmi2SerializedFMUstateSizeTYPE = Some(fmi2SerializedFMUstateSize);
-    let _: fmi2SerializeFMUstateTYPE = Some(fmi2SerializeFMUstate);
-    let _: fmi2DeSerializeFMUstateTYPE = Some(fmi2DeSerializeFMUstate);
-    let _: fmi2GetDirectionalDerivativeTYPE = Some(fmi2GetDirectionalDerivative);
-    let _: fmi2SetRealInputDerivativesTYPE = Some(fmi2SetRealInputDerivatives);
-    let _: fmi2GetRealOutputDerivativesTYPE = Some(fmi2GetRealOutputDerivatives);
-    let _: fmi2DoStepTYPE = Some(fmi2DoStep);
-    let _: fmi2CancelStepTYPE = Some(fmi2CancelStep);
-    let _: fmi2GetStatusTYPE = Some(fmi2GetStatus);
-    let _: fmi2GetRealStatusTYPE = Some(fmi2GetRealStatus);
-    let _: fmi2GetIntegerStatusTYPE = Some(fmi2GetIntegerStatus);
-    let _: fmi2GetBooleanStatusTYPE = Some(fmi2GetBooleanStatus);
-    let _: fmi2GetStringStatusTYPE = Some(fmi2GetStringStatus);
-};
 
 const NULL_ARRAY: &str = "NULL array pointer with n > 0";
 
@@ -724,8 +685,8 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
 mod tests {
     //! The exports themselves, called in-process as a master would.
     use super::*;
-    use crate::fmi::instance::PANIC_CATEGORY_FOR_TESTS;
-    use crate::fmi::model_description::{value_reference as vr, GUID};
+    use crate::instance::PANIC_CATEGORY_FOR_TESTS;
+    use crate::model_description::{value_reference as vr, GUID};
     use std::cell::RefCell;
 
     /// (status, category, format, message) of every logger call.

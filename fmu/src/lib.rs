@@ -1,0 +1,21 @@
+//! # wheel-rail-contact-fmu
+//!
+//! The FMI 2.0 Co-Simulation adapter around the physics core (`wheel_rail_contact`): the FMU's
+//! shared library. It decodes FMI values into the core's typed [`wheel_rail_contact::scene::Scene`]
+//! and encodes the outputs; all physics is the core's. It alone holds `unsafe` code, in [`ffi`].
+//!
+//! - [`model_description`]: the interface, generated from `modelDescription.xml`.
+//! - [`scene`]: the instance's values ↔ the core's scene (decode parameters and inputs, encode
+//!   outputs, directional derivatives).
+//! - [`fmu_state`]: what an FMU state holds and its checked byte format.
+//! - [`instance`]: one FMU instance: its values, the standard's state machine, logging.
+//! - [`fmi2`]: the FMI 2.0 C types; [`ffi`]: the C exports, the only file with `unsafe`.
+
+#![deny(unsafe_code)]
+
+pub mod ffi;
+pub mod fmi2;
+pub mod fmu_state;
+pub mod instance;
+pub mod model_description;
+pub mod scene;
