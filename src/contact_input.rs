@@ -67,7 +67,7 @@ impl<T: Scalar> ContactInput<T> {
         value(self.normal_force) <= 0.0 || value(self.friction_coefficient) == 0.0
     }
 
-    /// Hertz's maximum pressure p₀ of this ellipse \[Pa\] ([`hertz_max_pressure`]).
+    /// Hertz's maximum pressure p₀ = 3Q/(2πab) of this ellipse \[Pa\], 0 after lift-off.
     pub fn max_pressure(&self) -> T {
         hertz_max_pressure(self.normal_force, self.semi_axis_a, self.semi_axis_b)
     }

@@ -22,8 +22,9 @@ use std::ptr::null_mut;
 
 use crate::fmi2::*;
 
-use super::fmu_state::FmuState;
-use super::instance::{Instance, InstantiateArguments, LogSink, Status, StatusKind, Unsupported, ValueType};
+use crate::instance::{FmuState, Instance, InstantiateArguments, StatusKind, Unsupported, ValueType};
+use crate::logging::{LogSink, Status};
+use crate::mode::Call;
 
 #[cfg(not(panic = "unwind"))]
 compile_error!("the FMU must be built with panic = \"unwind\": every export turns a panic into fmi2Fatal");
@@ -101,7 +102,7 @@ unsafe fn slice_mut<'a, T>(pointer: *mut T, n: usize) -> Option<&'a mut [T]> {
 /// Runs `body` on the instance behind `c` (NULL: `fmi2Error`, nothing to log to).
 /// SAFETY: `c` is NULL or a live instance from [`fmi2Instantiate`].
 #[inline]
-unsafe fn with_instance(c: fmi2Component, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> fmi2Status {
+unsafe fn with_instance(c: fmi2Component, call: Call, body: impl FnOnce(&mut Instance) -> Status) -> fmi2Status {
     // SAFETY: by the caller's contract; the master does not call into one instance concurrently.
     match unsafe { c.cast::<Instance>().as_mut() } {
         Some(instance) => to_c(instance.guarded(call, body)),
@@ -122,7 +123,7 @@ fn status_kind(kind: fmi2StatusKind) -> Option<StatusKind> {
 /// Common checks of the fmi2GetXXXStatus functions: a known kind and a value pointer.
 fn status_arguments<T>(
     instance: &mut Instance,
-    call: &str,
+    call: Call,
     kind: fmi2StatusKind,
     value: *mut T,
 ) -> Result<StatusKind, Status> {
@@ -198,7 +199,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     nCategories: usize,
     categories: *const fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetDebugLogging";
+    const CALL: Call = Call::SetDebugLogging;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| {
@@ -225,31 +226,31 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 ) -> fmi2Status {
     let stop_time = (stopTimeDefined != 0).then_some(stopTime);
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2SetupExperiment", |instance| instance.setup_experiment(startTime, stop_time)) }
+    unsafe { with_instance(c, Call::SetupExperiment, |instance| instance.setup_experiment(startTime, stop_time)) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2EnterInitializationMode", Instance::enter_initialization_mode) }
+    unsafe { with_instance(c, Call::EnterInitializationMode, Instance::enter_initialization_mode) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2ExitInitializationMode", Instance::exit_initialization_mode) }
+    unsafe { with_instance(c, Call::ExitInitializationMode, Instance::exit_initialization_mode) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2Terminate", Instance::terminate) }
+    unsafe { with_instance(c, Call::Terminate, Instance::terminate) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2Reset", Instance::reset) }
+    unsafe { with_instance(c, Call::Reset, Instance::reset) }
 }
 
 #[no_mangle]
@@ -259,7 +260,7 @@ pub unsafe extern "C" fn fmi2GetReal(
     nvr: usize,
     value: *mut fmi2Real,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetReal";
+    const CALL: Call = Call::GetReal;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -276,7 +277,7 @@ pub unsafe extern "C" fn fmi2GetInteger(
     nvr: usize,
     value: *mut fmi2Integer,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetInteger";
+    const CALL: Call = Call::GetInteger;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -293,7 +294,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     nvr: usize,
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetBoolean";
+    const CALL: Call = Call::GetBoolean;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -310,7 +311,7 @@ pub unsafe extern "C" fn fmi2GetString(
     nvr: usize,
     value: *mut fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetString";
+    const CALL: Call = Call::GetString;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -327,7 +328,7 @@ pub unsafe extern "C" fn fmi2SetReal(
     nvr: usize,
     value: *const fmi2Real,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetReal";
+    const CALL: Call = Call::SetReal;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -344,7 +345,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
     nvr: usize,
     value: *const fmi2Integer,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetInteger";
+    const CALL: Call = Call::SetInteger;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -361,7 +362,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     nvr: usize,
     value: *const fmi2Boolean,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetBoolean";
+    const CALL: Call = Call::SetBoolean;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -378,7 +379,7 @@ pub unsafe extern "C" fn fmi2SetString(
     nvr: usize,
     value: *const fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetString";
+    const CALL: Call = Call::SetString;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -389,7 +390,7 @@ pub unsafe extern "C" fn fmi2SetString(
 }
 
 /// SAFETY: see the module's contract.
-unsafe fn unsupported(c: fmi2Component, capability: Unsupported, call: &str) -> fmi2Status {
+unsafe fn unsupported(c: fmi2Component, capability: Unsupported, call: Call) -> fmi2Status {
     // SAFETY: by the caller's contract.
     unsafe { with_instance(c, call, |instance| instance.unsupported(capability)) }
 }
@@ -414,7 +415,7 @@ unsafe fn store_fmu_state(slot: &mut fmi2FMUstate, state: FmuState) {
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2GetFMUstate";
+    const CALL: Call = Call::GetFMUstate;
     // SAFETY: see the module's contract; `FMUstate` is NULL or points to the master's slot.
     unsafe {
         with_instance(c, CALL, |instance| match FMUstate.as_mut() {
@@ -432,7 +433,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FM
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2SetFMUstate";
+    const CALL: Call = Call::SetFMUstate;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match fmu_state(FMUstate) {
@@ -444,7 +445,7 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2FreeFMUstate";
+    const CALL: Call = Call::FreeFMUstate;
     // SAFETY: see the module's contract; `*FMUstate` came from Box::into_raw in this file and is
     // released once: the slot is set to NULL.
     unsafe {
@@ -469,7 +470,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     FMUstate: fmi2FMUstate,
     size: *mut usize,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SerializedFMUstateSize";
+    const CALL: Call = Call::SerializedFMUstateSize;
     // SAFETY: see the module's contract; `size` is NULL or writable.
     unsafe {
         with_instance(c, CALL, |instance| match (fmu_state(FMUstate), size.as_mut()) {
@@ -492,7 +493,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     serializedState: *mut fmi2Byte,
     size: usize,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SerializeFMUstate";
+    const CALL: Call = Call::SerializeFMUstate;
     // SAFETY: see the module's contract; `serializedState` is valid for `size` writes.
     unsafe {
         with_instance(c, CALL, |instance| match (fmu_state(FMUstate), slice_mut(serializedState.cast::<u8>(), size)) {
@@ -510,7 +511,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2DeSerializeFMUstate";
+    const CALL: Call = Call::DeSerializeFMUstate;
     // SAFETY: see the module's contract; `serializedState` is valid for `size` reads, `FMUstate`
     // is NULL or points to the master's slot (NULL or an FMU state of this FMU).
     unsafe {
@@ -538,7 +539,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     dvKnown: *const fmi2Real,
     dvUnknown: *mut fmi2Real,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetDirectionalDerivative";
+    const CALL: Call = Call::GetDirectionalDerivative;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| {
@@ -563,7 +564,7 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     _value: *const fmi2Real,
 ) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::RealInputDerivatives, "fmi2SetRealInputDerivatives") }
+    unsafe { unsupported(c, Unsupported::RealInputDerivatives, Call::SetRealInputDerivatives) }
 }
 
 #[no_mangle]
@@ -575,7 +576,7 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     _value: *mut fmi2Real,
 ) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::RealOutputDerivatives, "fmi2GetRealOutputDerivatives") }
+    unsafe { unsupported(c, Unsupported::RealOutputDerivatives, Call::GetRealOutputDerivatives) }
 }
 
 #[no_mangle]
@@ -587,19 +588,19 @@ pub unsafe extern "C" fn fmi2DoStep(
 ) -> fmi2Status {
     // SAFETY: see the module's contract.
     unsafe {
-        with_instance(c, "fmi2DoStep", |instance| instance.do_step(currentCommunicationPoint, communicationStepSize))
+        with_instance(c, Call::DoStep, |instance| instance.do_step(currentCommunicationPoint, communicationStepSize))
     }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2CancelStep", Instance::cancel_step) }
+    unsafe { with_instance(c, Call::CancelStep, Instance::cancel_step) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Status) -> fmi2Status {
-    const CALL: &str = "fmi2GetStatus";
+    const CALL: Call = Call::GetStatus;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -611,7 +612,7 @@ pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, valu
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
-    const CALL: &str = "fmi2GetRealStatus";
+    const CALL: Call = Call::GetRealStatus;
     // SAFETY: see the module's contract; `value` was checked for NULL.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -633,7 +634,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     s: fmi2StatusKind,
     value: *mut fmi2Integer,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetIntegerStatus";
+    const CALL: Call = Call::GetIntegerStatus;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -649,7 +650,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     s: fmi2StatusKind,
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetBooleanStatus";
+    const CALL: Call = Call::GetBooleanStatus;
     // SAFETY: see the module's contract; `value` was checked for NULL.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -671,7 +672,7 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     s: fmi2StatusKind,
     value: *mut fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetStringStatus";
+    const CALL: Call = Call::GetStringStatus;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {

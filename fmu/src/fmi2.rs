@@ -51,7 +51,8 @@ pub type fmi2CallbackLogger = Option<
 >;
 pub type fmi2CallbackAllocateMemory = Option<unsafe extern "C" fn(nobj: usize, size: usize) -> *mut c_void>;
 pub type fmi2CallbackFreeMemory = Option<unsafe extern "C" fn(obj: *mut c_void)>;
-pub type fmi2StepFinished = Option<unsafe extern "C" fn(componentEnvironment: fmi2ComponentEnvironment, status: fmi2Status)>;
+pub type fmi2StepFinished =
+    Option<unsafe extern "C" fn(componentEnvironment: fmi2ComponentEnvironment, status: fmi2Status)>;
 
 /// `fmi2CallbackFunctions` of `fmi2FunctionTypes.h`.
 #[repr(C)]

@@ -7,15 +7,23 @@
 //! - [`model_description`]: the interface, generated from `modelDescription.xml`.
 //! - [`scene`]: the instance's values ↔ the core's scene (decode parameters and inputs, encode
 //!   outputs, directional derivatives).
-//! - [`fmu_state`]: what an FMU state holds and its checked byte format.
-//! - [`instance`]: one FMU instance: its values, the standard's state machine, logging.
+//! - [`mode`]: the Co-Simulation state machine: modes, and the typed call table saying which
+//!   modes allow each call.
+//! - [`logging`]: statuses, and which messages reach the master's logger.
+//! - [`snapshot`]: what an FMU state holds and its checked byte format.
+//! - [`instance`]: one FMU instance: lifecycle, values, the step, FMU states, derivatives (one
+//!   file each).
+//! - [`options`]: which variables each model choice and option uses, declared once.
 //! - [`fmi2`]: the FMI 2.0 C types; [`ffi`]: the C exports, the only file with `unsafe`.
 
 #![deny(unsafe_code)]
 
 pub mod ffi;
 pub mod fmi2;
-pub mod fmu_state;
 pub mod instance;
+pub mod logging;
+pub mod mode;
 pub mod model_description;
+pub mod options;
 pub mod scene;
+pub mod snapshot;

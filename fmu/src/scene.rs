@@ -21,17 +21,8 @@ use wheel_rail_contact::{
 };
 
 /// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`): the scene's state
-/// ([`SceneState::relaxed_forces`]).
+/// ([`SceneState::relaxed_forces`]), saved with the FMU state.
 pub type RelaxedForces = [f64; 2];
-
-/// State the model carries from one step to the next, held by the instance and saved and
-/// restored whole with the FMU state (`fmu_state::RunState`); `Default` (unrelaxed) after
-/// instantiation and fmi2Reset. Plain values only. Its layout is part of the FMU-state format.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
-pub struct ModelState {
-    /// The creep-relaxation state.
-    pub relaxed_forces: RelaxedForces,
-}
 
 /// The plan for the last parameter values it was asked for: built (the measured-curve fit, FASTSIM's
 /// load normalisation, every check of the parameters) once when the parameters are first needed
@@ -130,23 +121,25 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
                     .map_err(|e| e.to_string())?
             }
         };
-    let traction = match enumeration("traction_law", traction_law, TractionLawChoice::from_value, TractionLawChoice::ITEMS)? {
-        TractionLawChoice::Coulomb => None,
-        TractionLawChoice::Polach2005Dry => Some(Polach2005::DRY),
-        TractionLawChoice::Polach2005Wet => Some(Polach2005::WET),
-        TractionLawChoice::Polach2005User => Some(
-            Polach2005::new(
-                adhesion_reduction_factor,
-                slip_reduction_factor,
-                friction_limit_ratio,
-                friction_decay_rate,
-            )
-            .map_err(|e| e.to_string())?,
-        ),
-    };
+    let traction =
+        match enumeration("traction_law", traction_law, TractionLawChoice::from_value, TractionLawChoice::ITEMS)? {
+            TractionLawChoice::Coulomb => None,
+            TractionLawChoice::Polach2005Dry => Some(Polach2005::DRY),
+            TractionLawChoice::Polach2005Wet => Some(Polach2005::WET),
+            TractionLawChoice::Polach2005User => Some(
+                Polach2005::new(
+                    adhesion_reduction_factor,
+                    slip_reduction_factor,
+                    friction_limit_ratio,
+                    friction_decay_rate,
+                )
+                .map_err(|e| e.to_string())?,
+            ),
+        };
     // Both are Polach's: rejected rather than silently ignored with another model.
     if selected != Model::Polach {
-        let name = Model::ITEMS.iter().find(|(_, value, _)| *value == creep_force_model).map_or("?", |(name, _, _)| name);
+        let name =
+            Model::ITEMS.iter().find(|(_, value, _)| *value == creep_force_model).map_or("?", |(name, _, _)| name);
         let model_text = format!("creep_force_model = {creep_force_model} ({name})");
         if traction.is_some() {
             return Err(format!(
@@ -234,7 +227,8 @@ pub(crate) fn compute_outputs(
 ) -> Result<Outputs, String> {
     let scene = cache.plan(&values.parameters)?;
     cache.state.relaxed_forces = *relaxed_forces;
-    let output = scene.evaluate(&scene_input(&values.inputs), &mut cache.state, evaluation).map_err(|e| e.to_string())?;
+    let output =
+        scene.evaluate(&scene_input(&values.inputs), &mut cache.state, evaluation).map_err(|e| e.to_string())?;
     *relaxed_forces = cache.state.relaxed_forces;
     Ok(outputs(&output))
 }
@@ -354,9 +348,9 @@ mod tests {
     use crate::model_description::{value_reference as vr, Causality, TractionLaw, VARIABLES};
     use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
     use wheel_rail_contact::scene::kinematics::WheelKinematics;
+    use wheel_rail_contact::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
     use wheel_rail_contact::scene::relaxation::RelaxationLengths;
     use wheel_rail_contact::{CreepForceModel, LargeCreepage};
-    use wheel_rail_contact::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 
     fn outputs_of(values: &Values) -> Result<Outputs, String> {
         compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)

@@ -18,10 +18,10 @@ use std::ffi::{c_char, CString};
 use std::ptr::{null, null_mut};
 
 use c_abi::{callbacks, LogCounter};
-use wheel_rail_contact_fmu::fmi2::*;
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use wheel_rail_contact_fmu::ffi::*;
+use wheel_rail_contact_fmu::fmi2::*;
 use wheel_rail_contact_fmu::model_description::{Causality, GUID, VARIABLES};
 
 const DEFAULT_SEED: u64 = 0x5EED_2026_0006;

@@ -109,7 +109,7 @@ fn zero_outputs_are_positive_zeros() {
         assert_eq!(fmu.set_real(&[vr::CREEPAGE_LONGITUDINAL, vr::NORMAL_FORCE], &[xi, q]), OK);
         assert_eq!(fmu.do_step(0.0, 1e-3), OK);
         let outputs = fmu.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::SPIN_MOMENT, vr::SLIP_VELOCITY]);
-        assert!(outputs.iter().any(|v| *v == 0.0));
+        assert!(outputs.contains(&0.0));
         for value in outputs.iter().filter(|v| **v == 0.0) {
             assert!(value.is_sign_positive(), "ξ = {xi}, Q = {q}: {outputs:?}");
         }

@@ -4,8 +4,8 @@
 mod c_abi;
 
 use c_abi::{bits, run_scene, Fmu, ERROR, OK, OUTPUTS};
-use fmi_sys::fmi2::fmi2FMUstate;
 use wheel_rail_contact_fmu::ffi::{fmi2GetFMUstate, fmi2Terminate};
+use wheel_rail_contact_fmu::fmi2::fmi2FMUstate;
 
 const STEP: f64 = 1e-3;
 

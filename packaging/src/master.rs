@@ -10,8 +10,8 @@ use std::io::Read as _;
 use std::path::{Path, PathBuf};
 use std::ptr::{null, null_mut};
 
-use libloading::Library;
 use crate::fmu::platform_folder;
+use libloading::Library;
 use wheel_rail_contact_fmu::fmi2::*;
 use wheel_rail_contact_fmu::model_description::{GUID, MODEL_IDENTIFIER};
 
@@ -49,8 +49,7 @@ impl Drop for TempFolder {
 impl LoadedFmu {
     /// Extracts `binaries/<platform>/<modelIdentifier>.<ext>` of `fmu_path` and loads it.
     pub fn open(fmu_path: &Path) -> Result<Self, String> {
-        let entry =
-            format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform_folder()?, std::env::consts::DLL_EXTENSION);
+        let entry = format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform_folder()?, std::env::consts::DLL_EXTENSION);
         let file = std::fs::File::open(fmu_path).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
         let mut archive = zip::ZipArchive::new(file).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
         let mut bytes = Vec::new();
@@ -87,7 +86,15 @@ impl LoadedFmu {
         let instantiate: Instantiate = self.function("fmi2Instantiate")?;
         // SAFETY: valid NUL-terminated strings and callbacks that outlive the instance.
         let component = unsafe {
-            instantiate(name.as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, fmi2False, fmi2False)
+            instantiate(
+                name.as_ptr(),
+                fmi2Type_fmi2CoSimulation,
+                guid.as_ptr(),
+                null(),
+                &*callbacks,
+                fmi2False,
+                fmi2False,
+            )
         };
         if component.is_null() {
             return Err("fmi2Instantiate returned NULL".into());
@@ -125,7 +132,9 @@ impl Instance<'_> {
         assert_eq!(references.len(), values.len());
         let set: SetReal = self.fmu.function("fmi2SetReal")?;
         // SAFETY: a live instance; arrays valid for their length.
-        self.check("fmi2SetReal", unsafe { set(self.component, references.as_ptr(), references.len(), values.as_ptr()) })
+        self.check("fmi2SetReal", unsafe {
+            set(self.component, references.as_ptr(), references.len(), values.as_ptr())
+        })
     }
 
     pub fn get_real(&self, references: &[u32]) -> Result<Vec<f64>, String> {

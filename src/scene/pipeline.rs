@@ -61,7 +61,7 @@ pub enum TractionLaw {
 pub enum Relaxation {
     /// The forces follow the creepages at once.
     Off,
-    /// The forces relax over `length` [m] of rolling (0: derived from the contact,
+    /// The forces relax over `length` \[m\] of rolling (0: derived from the contact,
     /// [`RelaxationLengths::from_contact`]).
     On { length: f64 },
 }
@@ -246,7 +246,9 @@ impl Scene {
         // Lift-off with Hertz on: no contact, zero forces, and nothing of Hertz's is computed.
         let hertz_lift_off = matches!(self.ellipse, EllipseSource::Hertz { .. }) && input.normal_force <= 0.0;
         let ellipse = match self.ellipse {
-            _ if hertz_lift_off => HertzContact { semi_axis_a: 0.0, semi_axis_b: 0.0, max_pressure: 0.0, approach: 0.0 },
+            _ if hertz_lift_off => {
+                HertzContact { semi_axis_a: 0.0, semi_axis_b: 0.0, max_pressure: 0.0, approach: 0.0 }
+            }
             EllipseSource::Hertz { wheel_profile_curvature, rail_profile_curvature } => {
                 let curvature =
                     relative_curvature(input.wheel_rolling_radius, wheel_profile_curvature, rail_profile_curvature)?;

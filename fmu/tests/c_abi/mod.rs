@@ -7,8 +7,8 @@ use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use wheel_rail_contact_fmu::fmi2::*;
 use wheel_rail_contact_fmu::ffi::*;
+use wheel_rail_contact_fmu::fmi2::*;
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID};
 
 pub const OK: fmi2Status = fmi2Status_fmi2OK;
@@ -119,7 +119,8 @@ impl Fmu {
 
     /// An instance whose messages are recorded in `log`.
     pub fn instantiate_logged(name: &str, log: &MessageLog) -> Fmu {
-        type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+        type Named =
+            extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
         type Variadic =
             unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
         let callbacks = Box::new(fmi2CallbackFunctions {
