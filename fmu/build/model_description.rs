@@ -568,4 +568,39 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
          VARIABLES.get(usize::from(*position))\n}}"
     )
     .unwrap();
+    // What Get/Set check per value, as bits in one byte per value reference: the hot path reads
+    // one byte instead of a whole table row.
+    let mut access = vec![0u8; largest as usize + 1];
+    for v in variables {
+        let base = match v.base_type {
+            BaseType::Real => 1,
+            BaseType::Integer | BaseType::Enumeration => 2,
+        };
+        let writable = match (v.causality, v.variability.as_str()) {
+            (Causality::Output, _) => 0,
+            (Causality::Parameter, "fixed") => 4 | 16,
+            (Causality::Parameter, _) => 4 | 8,
+            (Causality::Input, _) => 8,
+        };
+        let output = if v.causality == Causality::Output { 32 } else { 0 };
+        access[v.value_reference as usize] = base | writable | output;
+    }
+    writeln!(
+        source,
+        "\n/// Per value reference, what Get/Set need to know, as [`access`] bits (0: no such variable).\n\
+         pub const ACCESS: [u8; {}] = {access:?};\n\
+         /// The bits of [`ACCESS`].\n\
+         pub mod access {{\n    \
+         /// A Real variable.\n    pub const REAL: u8 = 1;\n    \
+         /// An Integer or Enumeration variable.\n    pub const INTEGER: u8 = 2;\n    \
+         /// A parameter.\n    pub const PARAMETER: u8 = 4;\n    \
+         /// Writable in every mode that allows Set (inputs, tunable parameters).\n    pub const WRITABLE: u8 = 8;\n    \
+         /// Writable only before initialisation ends (fixed parameters).\n    pub const FIXED: u8 = 16;\n    \
+         /// An output.\n    pub const OUTPUT: u8 = 32;\n}}\n\
+         /// The [`ACCESS`] bits of a value reference (0 if there is none).\n\
+         #[inline]\npub fn access_of(value_reference: u32) -> u8 {{\n    \
+         usize::try_from(value_reference).ok().and_then(|i| ACCESS.get(i)).copied().unwrap_or(0)\n}}",
+        access.len()
+    )
+    .unwrap();
 }

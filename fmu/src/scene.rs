@@ -24,28 +24,40 @@ use wheel_rail_contact::{
 /// ([`SceneState::relaxed_forces`]), saved with the FMU state.
 pub type RelaxedForces = [f64; 2];
 
-/// The plan for the last parameter values it was asked for: built (the measured-curve fit, FASTSIM's
-/// load normalisation, every check of the parameters) once when the parameters are first needed
-/// and again only when one changes, not at every step; and Polach's shape factors (Kalker's
-/// coefficients, K_S) for the last ellipse shape, recomputed only when a/b or ν change. Derived
-/// data, so not part of the FMU's state.
+/// The scene the parameters select, built (the measured-curve fit, FASTSIM's load
+/// normalisation, every check of the parameters) when first needed and again only after
+/// [`ModelCache::parameters_changed`] — the instance calls it whenever a parameter is written or
+/// an FMU state is set — so a step pays no comparison of the parameters; and Polach's shape
+/// factors (Kalker's coefficients, K_S) for the last ellipse shape, recomputed only when a/b or ν
+/// change. Derived data, so not part of the FMU's state.
 #[derive(Debug, Clone, Default)]
 pub struct ModelCache {
+    /// The parameters it was built for (checked against the current ones in debug builds: a
+    /// missed `parameters_changed` fails every test) and the scene or why there is none.
     built: Option<(Parameters, Result<Scene, String>)>,
     /// The scene's derived data (Polach's shape factors); its relaxed forces are the instance's.
     state: SceneState,
 }
 
 impl ModelCache {
-    fn plan(&mut self, parameters: &Parameters) -> Result<Scene, String> {
-        // A NaN parameter never equals itself, so it is rebuilt and reported every time.
-        match &self.built {
-            Some((built_for, plan)) if built_for == parameters => plan.clone(),
-            _ => {
-                let plan = scene_of(parameters);
-                self.built = Some((*parameters, plan.clone()));
-                plan
-            }
+    /// Forgets the scene: the next evaluation builds it from the parameters it is given.
+    #[inline]
+    pub fn parameters_changed(&mut self) {
+        self.built = None;
+    }
+
+    /// The scene for `parameters` and the scene's derived state; the error names the parameter.
+    #[inline]
+    fn plan(&mut self, parameters: &Parameters) -> Result<(&Scene, &mut SceneState), String> {
+        let (built_for, scene) = self.built.get_or_insert_with(|| (*parameters, scene_of(parameters)));
+        // A NaN parameter never equals itself: such a scene is an error, rebuilt and reported alike.
+        debug_assert!(
+            built_for == parameters || parameters != parameters,
+            "a parameter changed without ModelCache::parameters_changed"
+        );
+        match scene {
+            Ok(scene) => Ok((scene, &mut self.state)),
+            Err(reason) => Err(reason.clone()),
         }
     }
 }
@@ -225,11 +237,10 @@ pub(crate) fn compute_outputs(
     relaxed_forces: &mut RelaxedForces,
     evaluation: Evaluation,
 ) -> Result<Outputs, String> {
-    let scene = cache.plan(&values.parameters)?;
-    cache.state.relaxed_forces = *relaxed_forces;
-    let output =
-        scene.evaluate(&scene_input(&values.inputs), &mut cache.state, evaluation).map_err(|e| e.to_string())?;
-    *relaxed_forces = cache.state.relaxed_forces;
+    let (scene, state) = cache.plan(&values.parameters)?;
+    state.relaxed_forces = *relaxed_forces;
+    let output = scene.evaluate(&scene_input(&values.inputs), state, evaluation).map_err(|e| e.to_string())?;
+    *relaxed_forces = state.relaxed_forces;
     Ok(outputs(&output))
 }
 
@@ -242,7 +253,7 @@ pub(crate) fn directional_derivative(
     cache: &mut ModelCache,
     direction: &Inputs,
 ) -> Result<Outputs, String> {
-    let scene = cache.plan(&values.parameters)?;
+    let (scene, _) = cache.plan(&values.parameters)?;
     let rates = scene
         .directional_derivative(&scene_input(&values.inputs), &scene_input(direction))
         .map_err(|e: SceneError| e.to_string())?;
@@ -745,6 +756,7 @@ mod tests {
         assert!((after.adhesion_utilisation - magnitude / (0.3 * 100e3)).abs() < 1e-15);
         // A given length is used in both directions; lift-off clears the state.
         values.parameters.relaxation_length = 0.05;
+        cache.parameters_changed();
         let mut state = before;
         compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
         let uniform = RelaxationLengths::uniform(0.05).unwrap();
@@ -755,12 +767,15 @@ mod tests {
     }
 
     #[test]
-    fn the_plan_is_rebuilt_when_a_parameter_changes() {
+    fn the_scene_is_rebuilt_after_parameters_changed() {
         let mut values = Values::default();
         values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
         let mut cache = ModelCache::default();
         let mut state = RelaxedForces::default();
-        let mut evaluate = |values: &Values| compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3));
+        let mut evaluate = |values: &Values| {
+            cache.parameters_changed();
+            compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3))
+        };
         let before = evaluate(&values).unwrap();
         values.parameters.measured_peak_adhesion = 0.36;
         let after = evaluate(&values).unwrap();

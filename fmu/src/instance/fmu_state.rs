@@ -28,6 +28,7 @@ impl Instance {
         }
         self.trace(|| format!("{CALL}: state {}, time {}", state.0.mode.name(), state.0.time));
         self.run.clone_from(&state.0);
+        self.model.parameters_changed();
         Status::Ok
     }
 

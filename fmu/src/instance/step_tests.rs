@@ -98,3 +98,23 @@ fn an_overflowing_coulomb_limit_is_an_error_and_keeps_the_last_valid_values() {
     );
     assert_eq!(instance.values().outputs, before);
 }
+
+/// A tunable parameter written between steps applies from the next step on (the scene built
+/// from the parameters is rebuilt), and writing it back restores the outputs bit for bit.
+#[test]
+fn a_tunable_parameter_applies_from_the_next_step() {
+    let (mut instance, _) = stepping();
+    assert_eq!(instance.do_step(0.0, 1e-3), Status::Ok);
+    let kalker = get(&mut instance, vr::FORCE_LONGITUDINAL);
+    assert_eq!(instance.set_integer(&[vr::STIFFNESS_SOURCE], &[MEASURED_CURVE]), Status::Ok);
+    assert_eq!(instance.do_step(1e-3, 1e-3), Status::Ok);
+    let measured = get(&mut instance, vr::FORCE_LONGITUDINAL);
+    assert!((measured - kalker).abs() > 1.0, "{kalker} vs {measured}");
+    assert_eq!(instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.36]), Status::Ok);
+    assert_eq!(instance.do_step(2e-3, 1e-3), Status::Ok);
+    assert_ne!(get(&mut instance, vr::FORCE_LONGITUDINAL), measured);
+    let kalker_source = crate::model_description::StiffnessSource::Kalker as i32;
+    assert_eq!(instance.set_integer(&[vr::STIFFNESS_SOURCE], &[kalker_source]), Status::Ok);
+    assert_eq!(instance.do_step(3e-3, 1e-3), Status::Ok);
+    assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL).to_bits(), kalker.to_bits());
+}

@@ -5,7 +5,7 @@
 use super::Instance;
 use crate::logging::Status;
 use crate::mode::{Call, Mode};
-use crate::model_description::{variable, Causality, Kind, Variability};
+use crate::model_description::{access, access_of, variable, Causality, Kind};
 use wheel_rail_contact::scene::Evaluation;
 
 /// The FMI base types of the Get/Set functions.
@@ -25,6 +25,17 @@ impl ValueType {
         }
     }
 
+    /// The [`ACCESS`](crate::model_description::ACCESS) bit of the type (none for Boolean and
+    /// String: this FMU has no such variables).
+    #[inline]
+    fn access_bit(self) -> u8 {
+        match self {
+            ValueType::Real => access::REAL,
+            ValueType::Integer => access::INTEGER,
+            ValueType::Boolean | ValueType::String => 0,
+        }
+    }
+
     fn name(self) -> &'static str {
         match self {
             ValueType::Real => "Real",
@@ -36,17 +47,13 @@ impl ValueType {
 }
 
 impl Instance {
-    /// Whether `value_reference` can be written as `value_type` now.
+    /// Whether `value_reference` can be written as `value_type` now: one byte of the generated
+    /// access table.
     #[inline]
     fn settable(&self, value_reference: u32, value_type: ValueType) -> bool {
-        variable(value_reference).is_some_and(|v| {
-            ValueType::of(&v.kind) == value_type
-                && match (v.causality, v.variability) {
-                    (Causality::Output, _) => false,
-                    (Causality::Parameter, Variability::Fixed) => self.run.mode != Mode::StepComplete,
-                    _ => true,
-                }
-        })
+        let bits = access_of(value_reference);
+        bits & value_type.access_bit() != 0
+            && (bits & access::WRITABLE != 0 || (bits & access::FIXED != 0 && self.run.mode != Mode::StepComplete))
     }
 
     /// Why `value_reference` cannot be written as `value_type` now (only called when it cannot).
@@ -64,7 +71,7 @@ impl Instance {
 
     #[inline]
     fn readable(value_reference: u32, value_type: ValueType) -> bool {
-        variable(value_reference).is_some_and(|v| ValueType::of(&v.kind) == value_type)
+        access_of(value_reference) & value_type.access_bit() != 0
     }
 
     #[cold]
@@ -75,17 +82,19 @@ impl Instance {
         }
     }
 
-    /// Checks every reference first, so that a call sets either all its values or none.
+    /// Checks every reference first, so that a call sets either all its values or none; when
+    /// one is a parameter, the scene built from the parameters is forgotten.
     #[inline]
     fn prepare_set(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
         self.require(call)?;
-        match value_references.iter().find(|&&r| !self.settable(r, value_type)) {
-            None => Ok(()),
-            Some(&value_reference) => {
-                let reason = self.not_settable(value_reference, value_type);
-                Err(self.fail(call, &reason))
-            }
+        if let Some(&value_reference) = value_references.iter().find(|&&r| !self.settable(r, value_type)) {
+            let reason = self.not_settable(value_reference, value_type);
+            return Err(self.fail(call, &reason));
         }
+        if value_references.iter().any(|&r| access_of(r) & access::PARAMETER != 0) {
+            self.model.parameters_changed();
+        }
+        Ok(())
     }
 
     /// Checks the references and, in initialization mode, brings the outputs up to date with
@@ -97,8 +106,7 @@ impl Instance {
             let reason = Self::not_readable(value_reference, value_type);
             return Err(self.fail(call, &reason));
         }
-        let reads_output =
-            || value_references.iter().any(|&r| variable(r).is_some_and(|v| v.causality == Causality::Output));
+        let reads_output = || value_references.iter().any(|&r| access_of(r) & access::OUTPUT != 0);
         if self.run.mode == Mode::InitializationMode && reads_output() {
             self.update_outputs(call, Evaluation::Initialise)?;
         }
