@@ -50,11 +50,11 @@ impl ModelCache {
     #[inline]
     fn plan(&mut self, parameters: &Parameters) -> Result<(&Scene, &mut SceneState), String> {
         let (built_for, scene) = self.built.get_or_insert_with(|| (*parameters, scene_of(parameters)));
-        // A NaN parameter never equals itself: such a scene is an error, rebuilt and reported alike.
-        debug_assert!(
-            built_for == parameters || parameters != parameters,
-            "a parameter changed without ModelCache::parameters_changed"
-        );
+        // A NaN parameter never equals itself (`parameters != parameters`): such a scene is an
+        // error, reported alike whether cached or rebuilt.
+        #[allow(clippy::eq_op)]
+        let unchanged_or_nan = built_for == parameters || parameters != parameters;
+        debug_assert!(unchanged_or_nan, "a parameter changed without ModelCache::parameters_changed");
         match scene {
             Ok(scene) => Ok((scene, &mut self.state)),
             Err(reason) => Err(reason.clone()),
