@@ -69,8 +69,8 @@ fn combined_lateral_creepage_and_spin_match_the_papers_equations() {
 
 /// Eq. (25) with the measured curve's stiffness (E7): ε = κ s_C with κ = ε_max f_k/(f s_max),
 /// and the spin gradient ε_s = κ |s_yC| / K_S. Curve: F_max/Q = 0.36, s_max = 3e-3, f_k = 0.3
-/// (f = f_k). The script finds k = f_s/f_k = 4.459546 as the root of max_ε (2/π)(kε/(k² + ε²)
-/// + arctan ε) = F_max/(Q f_k) = 1.2 (a golden-section search for the maximum, bisection for
+/// (f = f_k). The script finds k = f_s/f_k = 4.459546 as the root of
+/// max_ε (2/π)(kε/(k² + ε²) + arctan ε) = F_max/(Q f_k) = 1.2 (a golden-section search for the maximum, bisection for
 /// k: eqs. 34, 35 not used) with ε_max = 6.276695. Pure spin with aΦ = s_max/2 (Φ = 0.1875 /m):
 ///
 /// ```text
