@@ -6,6 +6,7 @@
 use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use fmi_sys::fmi2::*;
 use wheel_rail_contact::fmi::ffi::*;
@@ -69,6 +70,50 @@ pub fn callbacks(counter: Option<&LogCounter>) -> fmi2CallbackFunctions {
     }
 }
 
+/// Keeps every message the logger receives, with its status, for tests that check the text.
+#[derive(Default)]
+pub struct LogRecorder(pub Mutex<Vec<(fmi2Status, String)>>);
+
+impl LogRecorder {
+    /// The last message's status and text.
+    pub fn last(&self) -> Option<(fmi2Status, String)> {
+        self.0.lock().unwrap().last().cloned()
+    }
+}
+
+/// The recording logger; see `count_message` for the calling convention.
+extern "C" fn record_message(
+    environment: fmi2ComponentEnvironment,
+    _instance_name: fmi2String,
+    status: fmi2Status,
+    _category: fmi2String,
+    format: fmi2String,
+    text: fmi2String,
+) {
+    // SAFETY: the environment is the `LogRecorder` given at instantiation; the FMU passes
+    // NUL-terminated strings.
+    unsafe {
+        assert_eq!(CStr::from_ptr(format), c"%s");
+        let text = CStr::from_ptr(text).to_str().expect("UTF-8 message").to_owned();
+        (*environment.cast::<LogRecorder>()).0.lock().unwrap().push((status, text));
+    }
+}
+
+/// Callbacks whose logger records into `recorder`.
+pub fn recording_callbacks(recorder: &LogRecorder) -> fmi2CallbackFunctions {
+    type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+    type Variadic = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+    // SAFETY: see `count_message`.
+    let logger = Some(unsafe { std::mem::transmute::<Named, Variadic>(record_message) });
+    fmi2CallbackFunctions {
+        logger,
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: (recorder as *const LogRecorder).cast_mut().cast(),
+    }
+}
+
 /// One instance, freed on drop.
 pub struct Fmu {
     pub c: fmi2Component,
@@ -79,7 +124,16 @@ pub struct Fmu {
 
 impl Fmu {
     pub fn instantiate(name: &str, counter: Option<&LogCounter>) -> Fmu {
-        let callbacks = Box::new(callbacks(counter));
+        Self::with_callbacks(name, callbacks(counter))
+    }
+
+    /// Instantiated with a logger recording into `recorder` (which must outlive the instance).
+    pub fn recording(name: &str, recorder: &LogRecorder) -> Fmu {
+        Self::with_callbacks(name, recording_callbacks(recorder))
+    }
+
+    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions) -> Fmu {
+        let callbacks = Box::new(callbacks);
         let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
         // SAFETY: valid strings and callbacks.
         let c = unsafe {
@@ -113,6 +167,31 @@ impl Fmu {
         let status = unsafe { fmi2GetReal(self.c, references.as_ptr(), references.len(), values.as_mut_ptr()) };
         assert_eq!(status, OK);
         values
+    }
+
+    pub fn set_integer(&self, references: &[u32], values: &[i32]) -> fmi2Status {
+        assert_eq!(references.len(), values.len());
+        // SAFETY: live instance, matching lengths.
+        unsafe { fmi2SetInteger(self.c, references.as_ptr(), references.len(), values.as_ptr()) }
+    }
+
+    /// fmi2GetDirectionalDerivative of `unknowns` along the rates `seed` of `knowns`.
+    pub fn directional_derivative(&self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
+        assert_eq!(knowns.len(), seed.len());
+        let mut rates = vec![f64::NAN; unknowns.len()];
+        // SAFETY: live instance, matching lengths.
+        let status = unsafe {
+            fmi2GetDirectionalDerivative(
+                self.c,
+                unknowns.as_ptr(),
+                unknowns.len(),
+                knowns.as_ptr(),
+                knowns.len(),
+                seed.as_ptr(),
+                rates.as_mut_ptr(),
+            )
+        };
+        (status, rates)
     }
 
     pub fn do_step(&self, time: f64, step: f64) -> fmi2Status {
