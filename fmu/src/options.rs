@@ -108,7 +108,8 @@ pub const OPTION_USES: &[OptionUse] = &[
     },
     OptionUse {
         option: "creep_relaxation = on",
-        inputs: &["rolling_speed"],
+        // The renewal speed: |V|, or (|V| + |ωr|)/2 with the kinematics.
+        inputs: &["rolling_speed", "wheel_angular_speed", "wheel_rolling_radius"],
         replaces: &[],
         parameters: &["creep_relaxation", "relaxation_length"],
         outputs: &["force_longitudinal", "force_lateral", "adhesion_utilisation"],

@@ -115,3 +115,69 @@ fn zero_outputs_are_positive_zeros() {
         }
     }
 }
+
+/// One step of the FMU with creepages from the kinematics and creep relaxation (length 10 mm)
+/// on, from a contact at rest, with the wheel then turning at `angular_speed` while the vehicle
+/// moves at `rolling_speed`: the longitudinal force after each of `steps` steps of `step`, and
+/// the steady-state force of the same inputs without relaxation.
+fn spin_up(rolling_speed: f64, angular_speed: f64, step: f64, steps: usize) -> (Vec<f64>, f64) {
+    use wheel_rail_contact_fmu::model_description::Switch;
+    let on = Switch::On as i32;
+    let run = |relaxation: i32| {
+        let fmu = Fmu::instantiate("standstill", None);
+        let switches = [vr::CREEPAGES_FROM_KINEMATICS, vr::CREEP_RELAXATION];
+        assert_eq!(fmu.set_integer(&switches, &[on, relaxation]), OK);
+        assert_eq!(fmu.set_real(&[vr::RELAXATION_LENGTH], &[0.01]), OK);
+        // At rest: no slip, no force.
+        assert_eq!(fmu.set_real(&[vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED], &[0.0, 0.0]), OK);
+        fmu.initialise(0.0);
+        assert_eq!(fmu.get_real(&[vr::FORCE_LONGITUDINAL]), [0.0]);
+        assert_eq!(fmu.set_real(&[vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED], &[rolling_speed, angular_speed]), OK);
+        (0..steps)
+            .map(|k| {
+                assert_eq!(fmu.do_step(k as f64 * step, step), OK);
+                fmu.get_real(&[vr::FORCE_LONGITUDINAL])[0]
+            })
+            .collect::<Vec<f64>>()
+    };
+    let steady = run(Switch::Off as i32);
+    (run(on), *steady.last().unwrap())
+}
+
+/// 14.2: a wheel spun up at standstill (V = 0, ω = 5 rad/s, r = 0.46 m: slip 2.3 m/s) builds up
+/// its force over the relaxation length of its own rolling — the renewal speed
+/// V_r = (|V| + |ωr|)/2 = 1.15 m/s — instead of staying at 0: after one step of 1 ms,
+/// F = F_ss·(1 − e^{−V_r h/L}) exactly; after 0.1 s (11.5 lengths) it is the steady force.
+#[test]
+fn a_wheel_spinning_at_standstill_builds_up_its_force() {
+    let (forces, steady) = spin_up(0.0, 5.0, 1e-3, 100);
+    // Full slip at μ = 0.3, Q = 100 kN: the steady force is μQ (in Kalker's convention, opposing
+    // the negative creepage of a wheel turning faster than it travels).
+    assert!((steady - 0.3 * 100e3).abs() < 0.01 * 0.3 * 100e3, "{steady}");
+    let first = steady * -(-(1.15e-3 / 0.01_f64)).exp_m1();
+    assert!((forces[0] / first - 1.0).abs() < 1e-12, "{} vs {first}", forces[0]);
+    assert!((forces[99] / steady - 1.0).abs() < 1e-4, "{} vs {steady}", forces[99]);
+    // Creeping vehicles: V = 1 mm/s and 10 mm/s build up just as fast (V_r ≈ |ωr|/2).
+    for rolling_speed in [1e-3, 1e-2] {
+        let (forces, steady) = spin_up(rolling_speed, 5.0, 1e-3, 100);
+        assert!((forces[99] / steady - 1.0).abs() < 1e-4, "V = {rolling_speed}: {} vs {steady}", forces[99]);
+    }
+}
+
+/// 14.2, the other side: a contact at rest (V = ω = 0) keeps its force like a spring.
+#[test]
+fn a_contact_at_rest_holds_its_force() {
+    use wheel_rail_contact_fmu::model_description::Switch;
+    let on = Switch::On as i32;
+    let fmu = Fmu::instantiate("holding", None);
+    assert_eq!(fmu.set_integer(&[vr::CREEPAGES_FROM_KINEMATICS, vr::CREEP_RELAXATION], &[on, on]), OK);
+    assert_eq!(fmu.set_real(&[vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED], &[0.0, 5.0]), OK);
+    fmu.initialise(0.0);
+    let loaded = fmu.get_real(&[vr::FORCE_LONGITUDINAL])[0];
+    assert!(loaded > 1e4, "{loaded}");
+    assert_eq!(fmu.set_real(&[vr::WHEEL_ANGULAR_SPEED], &[0.0]), OK);
+    for k in 0..100 {
+        assert_eq!(fmu.do_step(k as f64 * 0.01, 0.01), OK);
+    }
+    assert_eq!(fmu.get_real(&[vr::FORCE_LONGITUDINAL])[0], loaded);
+}

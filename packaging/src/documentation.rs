@@ -228,12 +228,16 @@ stiff damper; for low-speed transients switch on the relaxation. Outputs: <code>
 (first-order relaxation-length model; Pacejka, <i>Tire and Vehicle Dynamics</i>; Knothe &amp; Gross-Thebing,
 VSD 15, 1986):</p>
 <pre>
-dF/dt = (|V| / L) (F_ss − F),     F(t + h) = F_ss + (F(t) − F_ss) e^(−|V| h / L)
+dF/dt = (V_r / L) (F_ss − F),     F(t + h) = F_ss + (F(t) − F_ss) e^(−V_r h / L)
 </pre>
-<p>F<sub>ss</sub> is the chosen model's steady-state force for the inputs set before the step and V the input
-<code>rolling_speed</code>, both held over the step (the co-simulation's zero-order hold), so the exact exponential
-update is used: stable for any step size, never overshooting, the same after one step of h as after n steps of
-h/n, frozen at V = 0. The relaxed forces are the FMU's state: set to the steady state at
+<p>F<sub>ss</sub> is the chosen model's steady-state force for the inputs set before the step and V<sub>r</sub>
+the speed at which the contact's material is renewed: |V| (<code>rolling_speed</code>) with the creepages as
+inputs, and (|V| + |ωr|)/2 with <code>creepages_from_kinematics</code> — each body carries its half of the
+elastic displacement out of the contact at its own surface speed (Kalker's rolling speed in magnitude) — so a
+wheel spinning or braking at standstill builds up its force over a few relaxation lengths of its own rolling,
+while a contact at rest (V = ω = 0) holds its force like a spring. Both are held over the step (the
+co-simulation's zero-order hold), so the exact exponential update is used: stable for any step size, never
+overshooting, the same after one step of h as after n steps of h/n. The relaxed forces are the FMU's state: set to the steady state at
 fmi2ExitInitializationMode, advanced by every fmi2DoStep, cleared by fmi2Reset, and set to zero at lift-off or
 μ = 0 (no contact, no elastic deformation). <code>relaxation_length</code> L = 0 (default) derives it from the
 contact: L<sub>x</sub> = √(ab) C11 (2 − ν)/4, L<sub>y</sub> = √(ab) C22 (2 − ν)/4 (Kalker's creep stiffness over

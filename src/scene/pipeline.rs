@@ -10,7 +10,9 @@
 //! 3. forces: the chosen [`ModelChoice`], with Polach's 2005 traction law applied at this
 //!    evaluation's speed when selected;
 //! 4. relaxation ([`super::relaxation`]): the relaxed forces, the scene's only state, advanced
-//!    exactly over the step from the steady-state forces of step 3.
+//!    exactly over the step from the steady-state forces of step 3, at the speed that renews
+//!    the contact (|V|, or (|V| + |ωr|)/2 with the kinematics: a wheel spinning at standstill
+//!    builds up its force, a contact at rest holds it).
 
 use std::fmt;
 
@@ -18,7 +20,7 @@ use num_dual::Dual64;
 
 use super::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use super::kinematics::WheelKinematics;
-use super::relaxation::RelaxationLengths;
+use super::relaxation::{renewal_speed, RelaxationLengths};
 use crate::contact_input::hertz_max_pressure;
 use crate::models::polach::resulting_creepage_at;
 use crate::{
@@ -201,6 +203,9 @@ struct Creepages {
     spin: f64,
     /// |V|, or D = √(V² + v_c²) from the kinematics (ξ·D is then the slip velocity exactly).
     speed: f64,
+    /// The speed at which the contact's material is renewed, for creep relaxation: |V|, or
+    /// (|V| + |ωr|)/2 from the kinematics ([`super::relaxation::renewal_speed`]).
+    renewal: f64,
 }
 
 impl Scene {
@@ -300,7 +305,7 @@ impl Scene {
                 &steady,
                 friction,
                 state.relaxed_forces,
-                input.rolling_speed,
+                creepages.renewal,
                 length,
                 evaluation,
             )?,
@@ -414,6 +419,7 @@ impl Scene {
                     lateral: computed.lateral,
                     spin: computed.spin,
                     speed: computed.reference_speed,
+                    renewal: renewal_speed(&kinematics),
                 }
             }
             CreepageSource::Inputs => Creepages {
@@ -421,6 +427,7 @@ impl Scene {
                 lateral: input.creepage_lateral,
                 spin: input.spin_creepage,
                 speed: input.rolling_speed.abs(),
+                renewal: input.rolling_speed.abs(),
             },
         })
     }
@@ -467,7 +474,7 @@ fn relax_forces(
     steady: &CreepForces,
     friction: f64,
     relaxed_forces: [f64; 2],
-    rolling_speed: f64,
+    renewal_speed: f64,
     relaxation_length: f64,
     evaluation: Evaluation,
 ) -> Result<(CreepForces, [f64; 2]), InvalidInput> {
@@ -481,7 +488,7 @@ fn relax_forces(
     let relaxed = match evaluation {
         // Initialised at the steady state: the outputs are the model's, exactly.
         Evaluation::Initialise => return Ok((*steady, steady_forces)),
-        Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, rolling_speed, step)?,
+        Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, renewal_speed, step)?,
     };
     let friction_limit = contact.normal_force * friction;
     Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))

@@ -77,6 +77,11 @@ impl MessageLog {
     pub fn texts(&self) -> Vec<String> {
         self.0.lock().unwrap().iter().map(|(_, _, text)| text.clone()).collect()
     }
+
+    /// The last message's status and text.
+    pub fn last(&self) -> Option<(fmi2Status, String)> {
+        self.0.lock().unwrap().last().map(|(status, _, text)| (*status, text.clone()))
+    }
 }
 
 /// The logger of [`MessageLog`] (named parameter: see `count_message`).
@@ -107,30 +112,29 @@ pub struct Fmu {
 
 impl Fmu {
     pub fn instantiate(name: &str, counter: Option<&LogCounter>) -> Fmu {
-        let callbacks = Box::new(callbacks(counter));
-        let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
-        // SAFETY: valid strings and callbacks.
-        let c = unsafe {
-            fmi2Instantiate(name.as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, 0, 0)
-        };
-        assert!(!c.is_null());
-        Fmu { c, _callbacks: callbacks }
+        Self::with_callbacks(name, callbacks(counter))
     }
 
-    /// An instance whose messages are recorded in `log`.
+    /// An instance whose messages are recorded in `log` (which must outlive it).
     pub fn instantiate_logged(name: &str, log: &MessageLog) -> Fmu {
-        type Named =
-            extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+        type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
         type Variadic =
             unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-        let callbacks = Box::new(fmi2CallbackFunctions {
-            // SAFETY: see `count_message`.
-            logger: Some(unsafe { std::mem::transmute::<Named, Variadic>(record_message) }),
-            allocateMemory: None,
-            freeMemory: None,
-            stepFinished: None,
-            componentEnvironment: (log as *const MessageLog).cast_mut().cast(),
-        });
+        Self::with_callbacks(
+            name,
+            fmi2CallbackFunctions {
+                // SAFETY: see `count_message`.
+                logger: Some(unsafe { std::mem::transmute::<Named, Variadic>(record_message) }),
+                allocateMemory: None,
+                freeMemory: None,
+                stepFinished: None,
+                componentEnvironment: (log as *const MessageLog).cast_mut().cast(),
+            },
+        )
+    }
+
+    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions) -> Fmu {
+        let callbacks = Box::new(callbacks);
         let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
         // SAFETY: valid strings and callbacks.
         let c = unsafe {
