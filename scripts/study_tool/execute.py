@@ -1,0 +1,196 @@
+"""Running a study: scenes in chunks on Dask (a LocalCluster, or any cluster by address) or
+in-process, each finished chunk written at once as its own Parquet part (resumable), then the
+parts gathered into results.parquet."""
+
+import dataclasses
+import hashlib
+import json
+import os
+import pathlib
+import shutil
+import time
+
+import cloudpickle
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+from fmpy import read_model_description
+from tqdm import tqdm
+
+from . import runner, spec
+
+# Workers get the runner's code by value: nothing of this project is needed on their disks.
+cloudpickle.register_pickle_by_value(runner)
+
+RESULTS = "results.parquet"
+PARTS = "parts"
+
+
+@dataclasses.dataclass
+class Study:
+    path: pathlib.Path
+    fmu_bytes: bytes
+    interface: dict
+    study: dict
+    scenes: list
+    key: str
+
+    @property
+    def chunks(self):
+        size = self.study["chunk_size"]
+        return [self.scenes[i:i + size] for i in range(0, len(self.scenes), size)]
+
+
+@dataclasses.dataclass
+class Outcome:
+    results: pathlib.Path
+    frame: pd.DataFrame
+    chunks: int
+    computed: int
+    reused: int
+    scenes_computed: int
+    seconds: float  # wall time of the computed chunks, from the first submission to the last part written
+
+
+def prepare(study_path, fmu_path):
+    """Reads the FMU and the study file and validates the study against the FMU's variables."""
+    fmu_bytes = pathlib.Path(fmu_path).read_bytes()
+    interface = spec.fmu_interface(read_model_description(str(fmu_path)))
+    study = spec.load(study_path, interface)
+    return Study(pathlib.Path(study_path), fmu_bytes, interface, study, spec.scenes(study, interface),
+                 spec.study_key(study, fmu_bytes))
+
+
+def part_path(out, key, index):
+    return out / PARTS / f"{key}-{index:06d}.parquet"
+
+
+def write_atomically(table, path):
+    """Writes the table to a temporary file beside `path` and renames it: a part file is either
+    complete or absent, whenever the process is killed."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    pq.write_table(table, temporary)
+    os.replace(temporary, path)
+
+
+def enumeration_names(interface):
+    return {name: {value: item for item, value in v["items"].items()}
+            for name, v in interface["variables"].items() if v["items"] is not None}
+
+
+def chunk_table(prepared, first_scene, chunk, results):
+    """One chunk's rows: scene number, case, sample, every input and parameter (start values for
+    those the study does not set; enumerations by item name), the outputs, status and message."""
+    interface = prepared.interface
+    names = spec.settable(interface)
+    enums = enumeration_names(interface)
+    variables = interface["variables"]
+    columns = {"scene": [first_scene + k for k in range(len(chunk))],
+               "case": [labels["case"] for labels, _ in chunk],
+               "sample": [labels["sample"] for labels, _ in chunk]}
+    for name in names:
+        start = variables[name]["start"]
+        values = [values.get(name, start) for _, values in chunk]
+        columns[name] = [enums[name][x] for x in values] if name in enums else values
+    for k, name in enumerate(prepared.study["outputs"]):
+        columns[name] = [values[k] for _, _, values in results]
+    columns["status"] = [status for status, _, _ in results]
+    columns["message"] = [message for _, message, _ in results]
+    types = {"scene": pa.int64(), "case": pa.string(), "sample": pa.int64(), "status": pa.string(),
+             "message": pa.string()}
+    for name in names:
+        types[name] = pa.string() if name in enums else (pa.float64() if variables[name]["type"] == "Real" else pa.int64())
+    for name in prepared.study["outputs"]:
+        types[name] = pa.float64()
+    return pa.table({name: pa.array(values, type=types[name]) for name, values in columns.items()})
+
+
+def start_dask(scheduler, workers):
+    """A client of the cluster at `scheduler`, or of a new LocalCluster of `workers` single-threaded
+    worker processes (default: one per core). Returns (client, cluster or None)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler, timeout="30s"), None
+    cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True,
+                           dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True):
+    """Runs every chunk not already written under `out`, then gathers results.parquet. The time
+    reported runs from the first chunk's start (the cluster up, the FMU on the workers) to the last
+    chunk's part written."""
+    out = pathlib.Path(out)
+    (out / PARTS).mkdir(parents=True, exist_ok=True)
+    (out / "study.json").write_text(json.dumps({"key": prepared.key, **prepared.study}, indent=2) + "\n")
+    chunks = prepared.chunks
+    size = prepared.study["chunk_size"]
+    pending = [i for i in range(len(chunks)) if not part_path(out, prepared.key, i).exists()]
+    reused = len(chunks) - len(pending)
+    bar = tqdm(total=len(prepared.scenes), initial=len(prepared.scenes) - sum(len(chunks[i]) for i in pending),
+               unit="scene", desc=prepared.study["name"], disable=not progress, dynamic_ncols=True)
+    settings = (prepared.study["outputs"], prepared.study["steps"], prepared.study["step_size"])
+
+    def finished(index, results):
+        write_atomically(chunk_table(prepared, index * size, chunks[index], results), part_path(out, prepared.key, index))
+        bar.update(len(chunks[index]))
+
+    started = time.perf_counter()
+    try:
+        if pending and serial:
+            directory = runner.unpack_fmu(prepared.fmu_bytes)
+            started = time.perf_counter()
+            try:
+                for index in pending:
+                    scenes = [values for _, values in chunks[index]]
+                    finished(index, runner.run_chunk(directory, prepared.interface, scenes, *settings, name=f"chunk{index}"))
+            finally:
+                shutil.rmtree(directory, ignore_errors=True)
+        elif pending:
+            started = run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished)
+    finally:
+        bar.close()
+    seconds = time.perf_counter() - started
+
+    frame = gather(out, prepared.key, len(chunks))
+    return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds)
+
+
+def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished):
+    """Submits the pending chunks, hands each result to `finished` as it arrives; returns the time
+    the first chunk was submitted."""
+    from distributed import as_completed
+
+    client, cluster = start_dask(scheduler, workers)
+    plugin = f"wrc-study-fmu-{hashlib.sha256(prepared.fmu_bytes).hexdigest()[:16]}"
+    try:
+        client.wait_for_workers(1, timeout=60)
+        client.register_plugin(runner.FmuOnWorkers(prepared.fmu_bytes), name=plugin)
+        started = time.perf_counter()
+        futures = {}
+        for index in pending:
+            future = client.submit(runner.run_chunk, ("plugin", plugin), prepared.interface,
+                                   [values for _, values in chunks[index]], *settings, name=f"chunk{index}",
+                                   key=f"wrc-study-{prepared.key}-{index}", pure=False)
+            futures[future] = index
+        for future in as_completed(futures):
+            finished(futures.pop(future), future.result())
+        return started
+    finally:
+        if cluster is None:
+            try:
+                client.unregister_worker_plugin(plugin)
+            except Exception:  # the cluster may already be gone; its workers clean up on close
+                pass
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def gather(out, key, count):
+    """Every part of the study, in scene order, as one table written atomically to results.parquet."""
+    tables = [pq.read_table(part_path(out, key, i)) for i in range(count)]
+    table = pa.concat_tables(tables)
+    write_atomically(table, out / RESULTS)
+    return table.to_pandas()

@@ -1,0 +1,135 @@
+"""The worker side of a study: runs one chunk of scenes on one FMU instance.
+
+Self-contained on purpose (imports only the standard library, fmpy and distributed): the client
+ships this module's code to the workers by value (cloudpickle), so a Dask worker needs the
+packages installed but nothing of this project on its disk. The FMU itself reaches a worker as
+bytes in a worker plugin, which unpacks it once per worker into a worker-local temporary directory.
+"""
+
+import ctypes
+import io
+import shutil
+import tempfile
+import zipfile
+
+from distributed.diagnostics.plugin import WorkerPlugin
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+from fmpy.logging import addLoggerProxy
+
+STATUS_LABELS = ["ok", "warning", "discard", "error", "fatal", "pending"]
+
+
+def unpack_fmu(fmu_bytes, prefix="wrc-study-"):
+    """Unpacks the FMU's bytes into a fresh temporary directory; returns its path."""
+    directory = tempfile.mkdtemp(prefix=prefix)
+    with zipfile.ZipFile(io.BytesIO(fmu_bytes)) as archive:
+        archive.extractall(directory)
+    return directory
+
+
+class FmuOnWorkers(WorkerPlugin):
+    """Carries the FMU's bytes to every worker (also to workers that join later) and unpacks them
+    there once; removes the directory when the worker closes or the plugin is replaced."""
+
+    def __init__(self, fmu_bytes):
+        self.fmu_bytes = fmu_bytes
+        self.directory = None
+
+    def setup(self, worker):
+        self.directory = unpack_fmu(self.fmu_bytes)
+
+    def teardown(self, worker):
+        if self.directory is not None:
+            shutil.rmtree(self.directory, ignore_errors=True)
+
+
+def plugin_directory(plugin_name):
+    """The directory the named FmuOnWorkers plugin unpacked on the worker running this task."""
+    from distributed import get_worker
+
+    return get_worker().plugins[plugin_name].directory
+
+
+class Instance:
+    """One FMU instance whose log messages are kept (fmpy's logger proxy formats the FMU's
+    printf-style message before the Python callback sees it)."""
+
+    def __init__(self, directory, interface, name):
+        self.messages = []
+
+        def log(environment, instance_name, status, category, message):
+            label = STATUS_LABELS[status] if 0 <= status < len(STATUS_LABELS) else str(status)
+            if label != "ok":
+                self.messages.append(f"[{label}] {message.decode('utf-8', 'replace')}")
+
+        self.callbacks = fmi2CallbackFunctions()
+        self.callbacks.logger = fmi2CallbackLoggerTYPE(log)
+        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(ctypes.CDLL(None).calloc)
+        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(ctypes.CDLL(None).free)
+        addLoggerProxy(ctypes.byref(self.callbacks))
+        self.slave = FMU2Slave(guid=interface["guid"], unzipDirectory=directory,
+                               modelIdentifier=interface["model_identifier"], instanceName=name)
+        self.slave.instantiate(callbacks=self.callbacks, loggingOn=False)
+
+    def free(self):
+        self.slave.freeInstance()
+
+
+def set_values(slave, interface, values):
+    """Sets Real variables with setReal, Integer and Enumeration ones with setInteger."""
+    variables = interface["variables"]
+    reals = [(variables[n]["vr"], float(x)) for n, x in values.items() if variables[n]["type"] == "Real"]
+    integers = [(variables[n]["vr"], int(x)) for n, x in values.items() if variables[n]["type"] != "Real"]
+    if reals:
+        slave.setReal([vr for vr, _ in reals], [x for _, x in reals])
+    if integers:
+        slave.setInteger([vr for vr, _ in integers], [x for _, x in integers])
+
+
+def run_scene(slave, interface, scene, outputs, steps, step_size):
+    """One scene on an instance that is fresh or just reset: parameters set before
+    initialisation, inputs in initialisation mode, then `steps` steps of `step_size`."""
+    variables = interface["variables"]
+    parameters = {n: x for n, x in scene.items() if variables[n]["causality"] == "parameter"}
+    inputs = {n: x for n, x in scene.items() if variables[n]["causality"] == "input"}
+    slave.setupExperiment(startTime=0.0)
+    set_values(slave, interface, parameters)
+    slave.enterInitializationMode()
+    set_values(slave, interface, inputs)
+    slave.exitInitializationMode()
+    for k in range(steps):
+        slave.doStep(currentCommunicationPoint=k * step_size, communicationStepSize=step_size)
+    return slave.getReal([variables[n]["vr"] for n in outputs])
+
+
+def run_chunk(fmu, interface, scenes, outputs, steps, step_size, name="chunk"):
+    """Runs `scenes` (dicts of variable values) on one instance, fmi2Reset between scenes.
+
+    `fmu` is the unpacked FMU's directory, or ("plugin", NAME) for the directory a FmuOnWorkers
+    plugin unpacked on this worker. Returns per scene (status, message, output values): a scene
+    the FMU refuses is "error" with the FMU's log messages and NaN outputs; the instance is then
+    reset (or, if even that fails, replaced) and the chunk goes on."""
+    directory = plugin_directory(fmu[1]) if isinstance(fmu, tuple) else fmu
+    nan = float("nan")
+    results = []
+    instance = Instance(directory, interface, name)
+    try:
+        for k, scene in enumerate(scenes):
+            if k > 0:
+                try:
+                    instance.slave.reset()
+                except FMICallException:
+                    instance.free()
+                    instance = Instance(directory, interface, name)
+            instance.messages.clear()
+            try:
+                values = run_scene(instance.slave, interface, scene, outputs, steps, step_size)
+                results.append(("ok", "", values))
+            except FMICallException as failure:
+                message = "; ".join(instance.messages) or str(failure)
+                results.append(("error", message, [nan] * len(outputs)))
+    finally:
+        instance.free()
+    return results
