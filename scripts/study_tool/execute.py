@@ -22,6 +22,23 @@ from . import runner, spec
 # Workers get the runner's code by value: nothing of this project is needed on their disks.
 cloudpickle.register_pickle_by_value(runner)
 
+
+class ByValue:
+    """A function that travels by value inside a Dask task. Dask pickles a task graph with the
+    standard pickle, which names a module-level function by reference (the scheduler and workers
+    would have to import this package); this wrapper pickles as `cloudpickle.loads(code)`, so the
+    receiving side rebuilds the function from its code and needs only the pinned packages."""
+
+    def __init__(self, function):
+        self.function = function
+        self.code = cloudpickle.dumps(function)
+
+    def __call__(self, *arguments, **keywords):
+        return self.function(*arguments, **keywords)
+
+    def __reduce__(self):
+        return cloudpickle.loads, (self.code,)
+
 RESULTS = "results.parquet"
 PARTS = "parts"
 
@@ -123,6 +140,8 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
     chunk's part written."""
     out = pathlib.Path(out)
     (out / PARTS).mkdir(parents=True, exist_ok=True)
+    for stale in (out / PARTS).glob(".*.tmp"):  # left by a run killed while writing a part
+        stale.unlink()
     (out / "study.json").write_text(json.dumps({"key": prepared.key, **prepared.study}, indent=2) + "\n")
     chunks = prepared.chunks
     size = prepared.study["chunk_size"]
@@ -169,8 +188,9 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
         client.register_plugin(runner.FmuOnWorkers(prepared.fmu_bytes), name=plugin)
         started = time.perf_counter()
         futures = {}
+        run_chunk = ByValue(runner.run_chunk)
         for index in pending:
-            future = client.submit(runner.run_chunk, ("plugin", plugin), prepared.interface,
+            future = client.submit(run_chunk, ("plugin", plugin), prepared.interface,
                                    [values for _, values in chunks[index]], *settings, name=f"chunk{index}",
                                    key=f"wrc-study-{prepared.key}-{index}", pure=False)
             futures[future] = index

@@ -13,6 +13,7 @@ from matplotlib.colors import LogNorm  # noqa: E402
 
 MODEL = "creep_force_model"
 # Derived columns a plot may use besides the FMU's variables.
+LABELS = {"friction_coefficient": "μ", "creepage_longitudinal": "ξ", "creepage_lateral": "η", "spin_creepage": "φ [1/m]"}
 DERIVED = {"a_over_b": ("a/b", lambda frame: frame["semi_axis_a"] / frame["semi_axis_b"]),
            "adhesion_coefficient": ("adhesion coefficient |F|/Q",
                                     lambda frame: np.hypot(frame["force_longitudinal"], frame["force_lateral"])
@@ -31,7 +32,7 @@ def with_derived(frame):
 
 
 def label(name):
-    return DERIVED[name][0] if name in DERIVED else name
+    return DERIVED[name][0] if name in DERIVED else LABELS.get(name, name)
 
 
 def panels(frame):
@@ -65,11 +66,18 @@ def creep_curves(frame, plot, out):
                                 figsize=(3.6 * len(groups) + 1, 3.0 * len(outputs) + 0.6))
     family = plot["family"]
     family_values = list(dict.fromkeys(ok[family].itertuples(index=False, name=None))) if family else [()]
-    colours = plt.cm.viridis(np.linspace(0, 0.9, max(len(family_values), 1)))
+    # Colour by the first family variable, line style by the rest (a colour per combination
+    # would make nine shades of one colour map).
+    first = list(dict.fromkeys(v[:1] for v in family_values))
+    rest = list(dict.fromkeys(v[1:] for v in family_values))
+    palette = plt.cm.viridis(np.linspace(0, 0.85, max(len(first), 1)))
+    styles = ["-", "--", ":", "-."]
+    colours = [palette[first.index(v[:1])] for v in family_values]
+    linestyles = [styles[rest.index(v[1:]) % len(styles)] for v in family_values]
     for column, (title, rows) in enumerate(groups):
         for row, output in enumerate(outputs):
             ax = axes[row][column]
-            for colour, values in zip(colours, family_values):
+            for colour, linestyle, values in zip(colours, linestyles, family_values):
                 subset = rows
                 for name, value in zip(family, values):
                     subset = subset[subset[name] == value]
@@ -78,7 +86,7 @@ def creep_curves(frame, plot, out):
                 statistics = subset.groupby(x)[output].quantile([0.05, 0.5, 0.95]).unstack()
                 name = ", ".join(f"{label(n)} = {v:.4g}" if isinstance(v, float) else f"{label(n)} = {v}"
                                  for n, v in zip(family, values)) or None
-                ax.plot(statistics.index, statistics[0.5], color=colour, label=name, linewidth=1.2)
+                ax.plot(statistics.index, statistics[0.5], color=colour, linestyle=linestyle, label=name, linewidth=1.2)
                 if (subset.groupby(x)[output].size() > 1).any():
                     ax.fill_between(statistics.index, statistics[0.05], statistics[0.95], color=colour, alpha=0.2, linewidth=0)
             if geometric(ok[x]):
@@ -128,17 +136,22 @@ def error_map(frame, study, out):
     errors = errors_against_reference(frame, study, spec["output"])
     if not errors:
         return [], {}
-    figure, axes = plt.subplots(1, len(errors), squeeze=False, figsize=(4.2 * len(errors) + 1.2, 3.8))
-    worst = max(np.nanmax(t["error"]) for t in errors.values())
-    norm = LogNorm(vmin=ERROR_FLOOR, vmax=max(worst, 10 * ERROR_FLOOR))
+    figure, axes = plt.subplots(1, len(errors), squeeze=False, figsize=(3.6 * len(errors) + 1.4, 3.8),
+                                layout="constrained")
+    every = np.concatenate([t["error"].to_numpy() for t in errors.values()])
+    worst = max(np.nanmax(every), 10 * ERROR_FLOOR)
+    positive = every[every > 0]
+    best = np.nanmin(positive) if positive.size else ERROR_FLOOR
+    norm = LogNorm(vmin=max(best, worst * 1e-4, ERROR_FLOOR), vmax=worst)
     for ax, (model, table) in zip(axes[0], errors.items()):
         grid = table.groupby([spec["y"], spec["x"]])["error"].max().unstack()
         image = ax.pcolormesh(np.arange(grid.shape[1] + 1), np.arange(grid.shape[0] + 1),
-                              np.clip(grid.to_numpy(), ERROR_FLOOR, None), norm=norm, cmap="magma")
+                              np.clip(grid.to_numpy(), norm.vmin, None), norm=norm, cmap="magma")
         ax.set_xticks(np.arange(grid.shape[1]) + 0.5, [f"{v:.3g}" for v in grid.columns], rotation=90, fontsize=7)
         ax.set_yticks(np.arange(grid.shape[0]) + 0.5, [f"{v:.3g}" for v in grid.index], fontsize=7)
         ax.set_xlabel(label(spec["x"]))
-        ax.set_ylabel(label(spec["y"]))
+        if ax is axes[0][0]:
+            ax.set_ylabel(label(spec["y"]))
         ax.set_title(f"{model} vs {study['reference_model']}", fontsize=9)
     figure.colorbar(image, ax=axes[0].tolist(), label=f"|Δ {spec['output']}| / (μQ), max over other axes")
     return save(figure, out / "error_map"), errors

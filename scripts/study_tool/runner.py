@@ -12,11 +12,12 @@ import shutil
 import tempfile
 import zipfile
 
+# Modules, not names from them: shipped by value, this code refers to fmpy's ctypes types through
+# their modules (cloudpickle sends a module by name; a ctypes type by value it cannot).
+import fmpy.fmi1
+import fmpy.fmi2
+import fmpy.logging
 from distributed.diagnostics.plugin import WorkerPlugin
-from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
-from fmpy.logging import addLoggerProxy
 
 STATUS_LABELS = ["ok", "warning", "discard", "error", "fatal", "pending"]
 
@@ -64,12 +65,12 @@ class Instance:
             if label != "ok":
                 self.messages.append(f"[{label}] {message.decode('utf-8', 'replace')}")
 
-        self.callbacks = fmi2CallbackFunctions()
-        self.callbacks.logger = fmi2CallbackLoggerTYPE(log)
-        self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(ctypes.CDLL(None).calloc)
-        self.callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(ctypes.CDLL(None).free)
-        addLoggerProxy(ctypes.byref(self.callbacks))
-        self.slave = FMU2Slave(guid=interface["guid"], unzipDirectory=directory,
+        self.callbacks = fmpy.fmi2.fmi2CallbackFunctions()
+        self.callbacks.logger = fmpy.fmi2.fmi2CallbackLoggerTYPE(log)
+        self.callbacks.allocateMemory = fmpy.fmi2.fmi2CallbackAllocateMemoryTYPE(ctypes.CDLL(None).calloc)
+        self.callbacks.freeMemory = fmpy.fmi2.fmi2CallbackFreeMemoryTYPE(ctypes.CDLL(None).free)
+        fmpy.logging.addLoggerProxy(ctypes.byref(self.callbacks))
+        self.slave = fmpy.fmi2.FMU2Slave(guid=interface["guid"], unzipDirectory=directory,
                                modelIdentifier=interface["model_identifier"], instanceName=name)
         self.slave.instantiate(callbacks=self.callbacks, loggingOn=False)
 
@@ -120,14 +121,14 @@ def run_chunk(fmu, interface, scenes, outputs, steps, step_size, name="chunk"):
             if k > 0:
                 try:
                     instance.slave.reset()
-                except FMICallException:
+                except fmpy.fmi1.FMICallException:
                     instance.free()
                     instance = Instance(directory, interface, name)
             instance.messages.clear()
             try:
                 values = run_scene(instance.slave, interface, scene, outputs, steps, step_size)
                 results.append(("ok", "", values))
-            except FMICallException as failure:
+            except fmpy.fmi1.FMICallException as failure:
                 message = "; ".join(instance.messages) or str(failure)
                 results.append(("error", message, [nan] * len(outputs)))
     finally:
