@@ -1,4 +1,5 @@
-"""scripts/study run STUDY.toml [--scheduler ADDRESS] [--workers N] [--out DIR] [--serial]"""
+"""scripts/study run STUDY.toml [--scheduler ADDRESS] [--workers N] [--out DIR] [--serial]
+scripts/study bench [--models polach exact] [--workers 1 2]"""
 
 import argparse
 import pathlib
@@ -22,7 +23,17 @@ def main(argv=None):
     run.add_argument("--out", type=pathlib.Path, help="results directory (default: target/studies/STUDY-NAME)")
     run.add_argument("--fmu", type=pathlib.Path, default=FMU, help=f"the FMU (default: {FMU.relative_to(ROOT)})")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    bench = commands.add_parser("bench", help="scenes per second per model, in-process and on LocalClusters")
+    bench.add_argument("--models", nargs="+", default=["polach", "exact"])
+    bench.add_argument("--workers", type=int, nargs="+", default=[1, 2], help="LocalCluster sizes (default: 1 2)")
+    bench.add_argument("--fmu", type=pathlib.Path, default=FMU)
     arguments = parser.parse_args(argv)
+    if arguments.command == "bench":
+        from . import bench as benchmark
+
+        rows = benchmark.bench(arguments.fmu, arguments.models, arguments.workers)
+        print(benchmark.table(rows, arguments.workers))
+        return 0
     if arguments.workers is not None and (arguments.workers < 1 or arguments.scheduler or arguments.serial):
         parser.error("--workers takes a number >= 1 and goes with neither --scheduler nor --serial")
     if arguments.scheduler and arguments.serial:
