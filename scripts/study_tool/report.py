@@ -13,7 +13,7 @@ from matplotlib.colors import LogNorm  # noqa: E402
 
 MODEL = "creep_force_model"
 # Derived columns a plot may use besides the FMU's variables.
-LABELS = {"friction_coefficient": "μ", "creepage_longitudinal": "ξ", "creepage_lateral": "η", "spin_creepage": "φ [1/m]"}
+LABELS = {"friction_coefficient": "μ", "creepage_longitudinal": "ξ", "creepage_lateral": "η", "spin_creepage": "φ"}
 DERIVED = {"a_over_b": ("a/b", lambda frame: frame["semi_axis_a"] / frame["semi_axis_b"]),
            "adhesion_coefficient": ("adhesion coefficient |F|/Q",
                                     lambda frame: np.hypot(frame["force_longitudinal"], frame["force_lateral"])
@@ -31,8 +31,14 @@ def with_derived(frame):
     return frame
 
 
-def label(name):
+def symbol(name):
+    """Short name for legends."""
     return DERIVED[name][0] if name in DERIVED else LABELS.get(name, name)
+
+
+def label(name):
+    """Axis label: the symbol and the variable's name."""
+    return f"{LABELS[name]} ({name})" if name in LABELS else symbol(name)
 
 
 def panels(frame):
@@ -74,6 +80,7 @@ def creep_curves(frame, plot, out):
     styles = ["-", "--", ":", "-."]
     colours = [palette[first.index(v[:1])] for v in family_values]
     linestyles = [styles[rest.index(v[1:]) % len(styles)] for v in family_values]
+    banded = False
     for column, (title, rows) in enumerate(groups):
         for row, output in enumerate(outputs):
             ax = axes[row][column]
@@ -84,10 +91,11 @@ def creep_curves(frame, plot, out):
                 if subset.empty:
                     continue
                 statistics = subset.groupby(x)[output].quantile([0.05, 0.5, 0.95]).unstack()
-                name = ", ".join(f"{label(n)} = {v:.4g}" if isinstance(v, float) else f"{label(n)} = {v}"
+                name = ", ".join(f"{symbol(n)} = {v:.4g}" if isinstance(v, float) else f"{symbol(n)} = {v}"
                                  for n, v in zip(family, values)) or None
                 ax.plot(statistics.index, statistics[0.5], color=colour, linestyle=linestyle, label=name, linewidth=1.2)
                 if (subset.groupby(x)[output].size() > 1).any():
+                    banded = True
                     ax.fill_between(statistics.index, statistics[0.05], statistics[0.95], color=colour, alpha=0.2, linewidth=0)
             if geometric(ok[x]):
                 ax.set_xscale("log")
@@ -100,6 +108,8 @@ def creep_curves(frame, plot, out):
                 ax.set_ylabel(label(output))
     if family:
         axes[0][0].legend(fontsize=7)
+    if banded:
+        figure.suptitle("lines: median, bands: 5 % to 95 % of the scenes at each point", fontsize=9)
     figure.tight_layout()
     return save(figure, out / "creep_curves")
 
