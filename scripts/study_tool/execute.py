@@ -5,6 +5,7 @@ parts gathered into results.parquet."""
 import dataclasses
 import hashlib
 import json
+import logging
 import os
 import pathlib
 import shutil
@@ -90,38 +91,6 @@ def write_atomically(table, path):
     os.replace(temporary, path)
 
 
-def enumeration_names(interface):
-    return {name: {value: item for item, value in v["items"].items()}
-            for name, v in interface["variables"].items() if v["items"] is not None}
-
-
-def chunk_table(prepared, first_scene, chunk, results):
-    """One chunk's rows: scene number, case, sample, every input and parameter (start values for
-    those the study does not set; enumerations by item name), the outputs, status and message."""
-    interface = prepared.interface
-    names = spec.settable(interface)
-    enums = enumeration_names(interface)
-    variables = interface["variables"]
-    columns = {"scene": [first_scene + k for k in range(len(chunk))],
-               "case": [labels["case"] for labels, _ in chunk],
-               "sample": [labels["sample"] for labels, _ in chunk]}
-    for name in names:
-        start = variables[name]["start"]
-        values = [values.get(name, start) for _, values in chunk]
-        columns[name] = [enums[name][x] for x in values] if name in enums else values
-    for k, name in enumerate(prepared.study["outputs"]):
-        columns[name] = [values[k] for _, _, values in results]
-    columns["status"] = [status for status, _, _ in results]
-    columns["message"] = [message for _, message, _ in results]
-    types = {"scene": pa.int64(), "case": pa.string(), "sample": pa.int64(), "status": pa.string(),
-             "message": pa.string()}
-    for name in names:
-        types[name] = pa.string() if name in enums else (pa.float64() if variables[name]["type"] == "Real" else pa.int64())
-    for name in prepared.study["outputs"]:
-        types[name] = pa.float64()
-    return pa.table({name: pa.array(values, type=types[name]) for name, values in columns.items()})
-
-
 def start_dask(scheduler, workers):
     """A client of the cluster at `scheduler`, or of a new LocalCluster of `workers` single-threaded
     worker processes (default: one per core). Returns (client, cluster or None)."""
@@ -130,7 +99,7 @@ def start_dask(scheduler, workers):
     if scheduler:
         return Client(scheduler, timeout="30s"), None
     cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True,
-                           dashboard_address=None)
+                           dashboard_address=None, silence_logs=logging.ERROR)
     return Client(cluster), cluster
 
 
@@ -151,8 +120,8 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
                unit="scene", desc=prepared.study["name"], disable=not progress, dynamic_ncols=True)
     settings = (prepared.study["outputs"], prepared.study["steps"], prepared.study["step_size"])
 
-    def finished(index, results):
-        write_atomically(chunk_table(prepared, index * size, chunks[index], results), part_path(out, prepared.key, index))
+    def finished(index, table):
+        write_atomically(table, part_path(out, prepared.key, index))
         bar.update(len(chunks[index]))
 
     started = time.perf_counter()
@@ -162,8 +131,7 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
             started = time.perf_counter()
             try:
                 for index in pending:
-                    scenes = [values for _, values in chunks[index]]
-                    finished(index, runner.run_chunk(directory, prepared.interface, scenes, *settings, name=f"chunk{index}"))
+                    finished(index, runner.chunk_table(directory, prepared.interface, index * size, chunks[index], *settings))
             finally:
                 shutil.rmtree(directory, ignore_errors=True)
         elif pending:
@@ -188,11 +156,11 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
         client.register_plugin(runner.FmuOnWorkers(prepared.fmu_bytes), name=plugin)
         started = time.perf_counter()
         futures = {}
-        run_chunk = ByValue(runner.run_chunk)
+        chunk_table = ByValue(runner.chunk_table)
+        size = prepared.study["chunk_size"]
         for index in pending:
-            future = client.submit(run_chunk, ("plugin", plugin), prepared.interface,
-                                   [values for _, values in chunks[index]], *settings, name=f"chunk{index}",
-                                   key=f"wrc-study-{prepared.key}-{index}", pure=False)
+            future = client.submit(chunk_table, ("plugin", plugin), prepared.interface, index * size, chunks[index],
+                                   *settings, key=f"wrc-study-{prepared.key}-{index}", pure=False)
             futures[future] = index
         for future in as_completed(futures):
             finished(futures.pop(future), future.result())

@@ -17,6 +17,7 @@ import zipfile
 import fmpy.fmi1
 import fmpy.fmi2
 import fmpy.logging
+import pyarrow as pa
 from distributed.diagnostics.plugin import WorkerPlugin
 
 STATUS_LABELS = ["ok", "warning", "discard", "error", "fatal", "pending"]
@@ -134,3 +135,38 @@ def run_chunk(fmu, interface, scenes, outputs, steps, step_size, name="chunk"):
     finally:
         instance.free()
     return results
+
+
+def enumeration_names(interface):
+    return {name: {value: item for item, value in v["items"].items()}
+            for name, v in interface["variables"].items() if v["items"] is not None}
+
+
+def chunk_table(fmu, interface, first_scene, chunk, outputs, steps, step_size):
+    """Runs a chunk of (labels, values) scenes; returns its rows as an Arrow table (built here, on
+    the worker, so the client only writes it): scene number, case, sample, every input and
+    parameter (start values for those the study does not set; enumerations by item name), the
+    outputs, status and message."""
+    results = run_chunk(fmu, interface, [values for _, values in chunk], outputs, steps, step_size,
+                        name=f"scene{first_scene}")
+    names = [n for n, v in interface["variables"].items() if v["causality"] in ("input", "parameter")]
+    enums = enumeration_names(interface)
+    variables = interface["variables"]
+    columns = {"scene": [first_scene + k for k in range(len(chunk))],
+               "case": [labels["case"] for labels, _ in chunk],
+               "sample": [labels["sample"] for labels, _ in chunk]}
+    for name in names:
+        start = variables[name]["start"]
+        values = [values.get(name, start) for _, values in chunk]
+        columns[name] = [enums[name][x] for x in values] if name in enums else values
+    for k, name in enumerate(outputs):
+        columns[name] = [values[k] for _, _, values in results]
+    columns["status"] = [status for status, _, _ in results]
+    columns["message"] = [message for _, message, _ in results]
+    types = {"scene": pa.int64(), "case": pa.string(), "sample": pa.int64(), "status": pa.string(),
+             "message": pa.string()}
+    for name in names:
+        types[name] = pa.string() if name in enums else (pa.float64() if variables[name]["type"] == "Real" else pa.int64())
+    for name in outputs:
+        types[name] = pa.float64()
+    return pa.table({name: pa.array(values, type=types[name]) for name, values in columns.items()})
