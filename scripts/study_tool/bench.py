@@ -3,8 +3,10 @@ LocalClusters of 1 and 2 workers (or --workers ...), and the speedup over 1 work
 figures for the notes. The time runs from the first chunk submitted (cluster up, FMU on the
 workers) to the last part written, so it includes Dask's scheduling and the client writing Parquet."""
 
+import multiprocessing
 import pathlib
 import tempfile
+import time
 
 from . import execute
 
@@ -21,6 +23,28 @@ semi_axis_b = 0.0054
 """
 # Creepage points and chunk size per model: enough scenes for a few seconds on one worker.
 SIZES = {"polach": (2000, 1000), "exact": (20, 20)}
+
+
+def burn(_):
+    """A fixed amount of pure-Python CPU work; returns nothing of interest."""
+    total = 0
+    for i in range(5_000_000):
+        total += i
+    return total
+
+
+def machine_speedup():
+    """What 2 processes gain over 1 on pure CPU work right now: the ceiling for any 2-worker
+    speedup on this (shared) machine at the time of the run."""
+    started = time.perf_counter()
+    burn(0)
+    one = time.perf_counter() - started
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        pool.map(burn, [0, 1])  # warm both processes up
+        started = time.perf_counter()
+        pool.map(burn, [0, 1])
+        two = time.perf_counter() - started
+    return 2 * one / two
 
 
 def study_text(model, points, chunk_size):
@@ -40,6 +64,8 @@ def bench(fmu, models, workers, serial=True):
             runs = ([("in-process", {"serial": True})] if serial else []) + \
                    [(f"{n} worker{'s' if n > 1 else ''}", {"workers": n}) for n in workers]
             for label, options in runs:
+                if label == f"{max(workers)} workers":
+                    rows.append((model, "control", 0, 0.0, machine_speedup()))
                 out = directory / f"{model}-{label.replace(' ', '-')}"
                 outcome = execute.run(prepared, out, progress=False, **options)
                 assert (outcome.frame["status"] == "ok").all()
@@ -51,6 +77,9 @@ def bench(fmu, models, workers, serial=True):
 def table(rows, workers):
     lines = [f"{'model':<8} {'run':<12} {'scenes':>7} {'seconds':>8} {'scenes/s':>9} {'speedup':>8}"]
     for model, label, scenes, seconds, rate in rows:
+        if label == "control":
+            lines.append(f"{model:<8} {'(2 processes of pure CPU work: ' + format(rate, '.2f') + 'x, the machine now)':<48}")
+            continue
         one = next((r for m, l, _, _, r in rows if m == model and l == f"{min(workers)} worker"), None)
         speedup = f"{rate / one:.2f}x" if one and label.endswith("workers") else ""
         lines.append(f"{model:<8} {label:<12} {scenes:>7} {seconds:>8.2f} {rate:>9.1f} {speedup:>8}")
