@@ -68,6 +68,7 @@ class Outcome:
     reused: int
     scenes_computed: int
     seconds: float  # wall time of the computed chunks, from the first submission to the last part written
+    cpu_seconds: float  # the workers' CPU time for the computed chunks (running the scenes, building the tables)
 
 
 def prepare(study_path, fmu_path):
@@ -120,8 +121,11 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
                unit="scene", desc=prepared.study["name"], disable=not progress, dynamic_ncols=True)
     settings = (prepared.study["outputs"], prepared.study["steps"], prepared.study["step_size"])
 
+    cpu_seconds = []
+
     def finished(index, table):
-        write_atomically(table, part_path(out, prepared.key, index))
+        cpu_seconds.append(float(table.schema.metadata[runner.CPU_SECONDS.encode()]))
+        write_atomically(table.replace_schema_metadata(None), part_path(out, prepared.key, index))
         bar.update(len(chunks[index]))
 
     started = time.perf_counter()
@@ -141,7 +145,8 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
     seconds = time.perf_counter() - started
 
     frame = gather(out, prepared.key, len(chunks))
-    return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds)
+    return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds,
+                   sum(cpu_seconds))
 
 
 def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished):

@@ -182,7 +182,8 @@ def summary(outcome, prepared, errors):
              f"up to {study['chunk_size']}; {outcome.computed} chunks computed, {outcome.reused} reused from an earlier run"]
     if outcome.computed:
         rate = f": {outcome.scenes_computed / outcome.seconds:.1f} scenes/s" if outcome.seconds > 0 else ""
-        lines.append(f"computed {outcome.scenes_computed} scenes in {outcome.seconds:.2f} s{rate}")
+        lines.append(f"computed {outcome.scenes_computed} scenes in {outcome.seconds:.2f} s{rate}; the workers' CPU "
+                     f"time {1e3 * outcome.cpu_seconds / outcome.scenes_computed:.3g} ms per scene")
     failed = frame[frame["status"] != "ok"]
     lines.append(f"status: {len(frame) - len(failed)} ok, {len(failed)} failed")
     for message, count in failed["message"].value_counts().head(5).items():
