@@ -37,6 +37,7 @@ import hashlib
 import itertools
 import json
 import math
+import pathlib
 import tomllib
 
 import numpy as np
@@ -216,14 +217,14 @@ def load(path, interface):
             raw = tomllib.load(file)
     except tomllib.TOMLDecodeError as error:
         raise StudyError("", f"not valid TOML: {error}") from None
-    return parse(raw, interface)
+    return parse(raw, interface, default_name=pathlib.Path(path).stem)
 
 
-def parse(raw, interface):
+def parse(raw, interface, default_name="study"):
     check_keys("", raw, TOP_LEVEL)
     variables = interface["variables"]
     model_items = variables[MODEL_PARAMETER]["items"]
-    study = {"name": raw.get("name", "study"), "description": raw.get("description", "")}
+    study = {"name": raw.get("name", default_name), "description": raw.get("description", "")}
     for key in ("name", "description"):
         if not isinstance(study[key], str):
             raise StudyError(key, "must be a string")
@@ -411,9 +412,14 @@ def scenes(study, interface):
     return result
 
 
+# What fixes the scenes, their chunks and the columns of a part; the name, description, reference
+# model and plots do not (changing them re-uses the chunks).
+KEYED = ("models", "outputs", "chunk_size", "steps", "step_size", "fixed", "grid", "random", "cases")
+
+
 def study_key(study, fmu_bytes):
-    """Names a study's chunks: the normalised study (which fixes its scenes and chunks) and the
+    """Names a study's chunks: what of the normalised study fixes its scenes and chunks, and the
     FMU's bytes; a re-run with the same key reuses the chunks already written."""
-    digest = hashlib.sha256(json.dumps(study, sort_keys=True).encode())
+    digest = hashlib.sha256(json.dumps({k: study[k] for k in KEYED}, sort_keys=True).encode())
     digest.update(hashlib.sha256(fmu_bytes).digest())
     return digest.hexdigest()[:16]

@@ -69,6 +69,12 @@ def test_a_finished_study_is_not_recomputed(study_file, fmu_path, tmp_path):
     assert (first.computed, first.reused) == (12, 0)
     assert (second.computed, second.reused) == (0, 12)
     pd.testing.assert_frame_equal(first.frame, second.frame, check_exact=True)
+    # Other plots, name or reference model: the same scenes, the chunks are reused.
+    replotted = study_file(STUDY.replace('name = "resume"', 'name = "renamed"\nreference_model = "polach"')
+                           .replace("[0.25, 0.35]", "[0.3]").replace(", 0.0108, 0.0144", "")
+                           + '[plot]\nx = "semi_axis_a"\nfamily = "creepage_longitudinal"\n', name="replotted.toml")
+    fourth = run_in_process(replotted, fmu_path, tmp_path / "out")
+    assert (fourth.computed, fourth.reused) == (0, 12)
     # Another study in the same directory has another key: nothing of the first is reused.
     other = study_file(STUDY.replace("[0.25, 0.35]", "[0.2]").replace(", 0.0108, 0.0144", ""), name="other.toml")
     third = run_in_process(other, fmu_path, tmp_path / "out")
