@@ -2,8 +2,6 @@
 creep-curve families (creep_curves.png/.svg) and, when models are compared against the
 reference model, error maps (error_map.png/.svg)."""
 
-import math
-
 import matplotlib
 
 matplotlib.use("Agg")
@@ -144,8 +142,8 @@ def error_map(frame, study, out):
     if spec is None:
         return [], {}
     errors = errors_against_reference(frame, study, spec["output"])
-    if not errors:
-        return [], {}
+    if not errors or all(t["error"].isna().all() for t in errors.values()):
+        return [], errors
     figure, axes = plt.subplots(1, len(errors), squeeze=False, figsize=(3.6 * len(errors) + 1.4, 3.8),
                                 layout="constrained")
     every = np.concatenate([t["error"].to_numpy() for t in errors.values()])
@@ -196,10 +194,11 @@ def summary(outcome, prepared, errors):
             if len(values):
                 lines.append(f"  {title:<28} {output:<28} {values.mean():.6g} [{values.min():.6g}, {values.max():.6g}]")
     for model, table in errors.items():
-        error = table["error"]
+        error = table["error"].dropna()
+        unmatched = len(table) - len(error)
         lines.append(f"error of {model} against {study['reference_model']} in {study['plot']['error_map']['output']}, "
-                     f"|Δ|/(μQ): max {np.nanmax(error):.3g}, mean {np.nanmean(error):.3g}"
-                     + ("" if math.isfinite(np.nanmax(error)) else " (some scenes unmatched)"))
+                     f"|Δ|/(μQ): max {error.max():.3g}, mean {error.mean():.3g} over {len(error)} scenes"
+                     + (f" ({unmatched} without a reference value)" if unmatched else ""))
     return "\n".join(lines)
 
 
