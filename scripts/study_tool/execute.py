@@ -40,6 +40,7 @@ class ByValue:
     def __reduce__(self):
         return cloudpickle.loads, (self.code,)
 
+
 RESULTS = "results.parquet"
 PARTS = "parts"
 
@@ -162,9 +163,11 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
         started = time.perf_counter()
         futures = {}
         chunk_table = ByValue(runner.chunk_table)
+        # Sent to the workers once, not with every chunk (a list, as scatter splits a dict by keys).
+        interface, = client.scatter([prepared.interface], broadcast=True)
         size = prepared.study["chunk_size"]
         for index in pending:
-            future = client.submit(chunk_table, ("plugin", plugin), prepared.interface, index * size, chunks[index],
+            future = client.submit(chunk_table, ("plugin", plugin), interface, index * size, chunks[index],
                                    *settings, key=f"wrc-study-{prepared.key}-{index}", pure=False)
             futures[future] = index
         for future in as_completed(futures):
