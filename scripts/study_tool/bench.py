@@ -65,22 +65,22 @@ def bench(fmu, models, workers, serial=True):
                    [(f"{n} worker{'s' if n > 1 else ''}", {"workers": n}) for n in workers]
             for label, options in runs:
                 if label == f"{max(workers)} workers":
-                    rows.append((model, "control", 0, 0.0, machine_speedup(), 0.0))
+                    rows.append((model, "control", 0, 0.0, machine_speedup(), 0.0, 0.0))
                 out = directory / f"{model}-{label.replace(' ', '-')}"
                 outcome = execute.run(prepared, out, progress=False, **options)
                 assert (outcome.frame["status"] == "ok").all()
                 rows.append((model, label, outcome.scenes_computed, outcome.seconds,
-                             outcome.scenes_computed / outcome.seconds, outcome.cpu_seconds))
+                             outcome.scenes_computed / outcome.seconds, outcome.cpu_seconds, outcome.client_cpu_seconds))
     return rows
 
 
 def table(rows, workers):
-    lines = [f"{'model':<8} {'run':<12} {'scenes':>7} {'seconds':>8} {'scenes/s':>9} {'speedup':>8} {'CPU ms/scene':>13}"]
-    for model, label, scenes, seconds, rate, cpu in rows:
+    lines = [f"{'model':<8} {'run':<12} {'scenes':>7} {'seconds':>8} {'scenes/s':>9} {'speedup':>8} {'CPU ms/scene: workers':>22} {'client':>7}"]
+    for model, label, scenes, seconds, rate, cpu, client in rows:
         if label == "control":
             lines.append(f"{model:<8} {'(2 processes of pure CPU work: ' + format(rate, '.2f') + 'x, the machine now)':<48}")
             continue
-        one = next((r for m, l, _, _, r, _ in rows if m == model and l == f"{min(workers)} worker"), None)
+        one = next((r for m, l, _, _, r, _, _ in rows if m == model and l == f"{min(workers)} worker"), None)
         speedup = f"{rate / one:.2f}x" if one and label.endswith("workers") else ""
-        lines.append(f"{model:<8} {label:<12} {scenes:>7} {seconds:>8.2f} {rate:>9.1f} {speedup:>8} {1e3 * cpu / scenes:>13.3f}")
+        lines.append(f"{model:<8} {label:<12} {scenes:>7} {seconds:>8.2f} {rate:>9.1f} {speedup:>8} {1e3 * cpu / scenes:>22.3f} {1e3 * client / scenes:>7.3f}")
     return "\n".join(lines)

@@ -70,6 +70,7 @@ class Outcome:
     scenes_computed: int
     seconds: float  # wall time of the computed chunks, from the first submission to the last part written
     cpu_seconds: float  # the workers' CPU time for the computed chunks (running the scenes, building the tables)
+    client_cpu_seconds: float  # this process's CPU time meanwhile (client, LocalCluster's scheduler, writing parts)
 
 
 def prepare(study_path, fmu_path):
@@ -107,8 +108,8 @@ def start_dask(scheduler, workers):
 
 def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True):
     """Runs every chunk not already written under `out`, then gathers results.parquet. The time
-    reported runs from the first chunk's start (the cluster up, the FMU on the workers) to the last
-    chunk's part written."""
+    reported runs from the first chunk's submission (the cluster up, the FMU on the workers) to the
+    last chunk's part written; so does the CPU time of this process reported."""
     out = pathlib.Path(out)
     (out / PARTS).mkdir(parents=True, exist_ok=True)
     for stale in (out / PARTS).glob(".*.tmp"):  # left by a run killed while writing a part
@@ -129,30 +130,31 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
         write_atomically(table.replace_schema_metadata(None), part_path(out, prepared.key, index))
         bar.update(len(chunks[index]))
 
-    started = time.perf_counter()
+    started, client_cpu = time.perf_counter(), time.process_time()
     try:
         if pending and serial:
             directory = runner.unpack_fmu(prepared.fmu_bytes)
-            started = time.perf_counter()
+            started, client_cpu = time.perf_counter(), time.process_time()
             try:
                 for index in pending:
                     finished(index, runner.chunk_table(directory, prepared.interface, index * size, chunks[index], *settings))
             finally:
                 shutil.rmtree(directory, ignore_errors=True)
         elif pending:
-            started = run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished)
+            started, client_cpu = run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished)
     finally:
         bar.close()
     seconds = time.perf_counter() - started
+    client_cpu = time.process_time() - client_cpu - (sum(cpu_seconds) if serial else 0.0)
 
     frame = gather(out, prepared.key, len(chunks))
     return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds,
-                   sum(cpu_seconds))
+                   sum(cpu_seconds), client_cpu)
 
 
 def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished):
-    """Submits the pending chunks, hands each result to `finished` as it arrives; returns the time
-    the first chunk was submitted."""
+    """Submits the pending chunks, hands each result to `finished` as it arrives; returns the wall
+    and CPU clocks' readings when the first chunk was submitted."""
     from distributed import as_completed
 
     client, cluster = start_dask(scheduler, workers)
@@ -160,7 +162,7 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
     try:
         client.wait_for_workers(1, timeout=60)
         client.register_plugin(runner.FmuOnWorkers(prepared.fmu_bytes), name=plugin)
-        started = time.perf_counter()
+        started, client_cpu = time.perf_counter(), time.process_time()
         futures = {}
         chunk_table = ByValue(runner.chunk_table)
         # Sent to the workers once, not with every chunk (a list, as scatter splits a dict by keys).
@@ -172,7 +174,7 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
             futures[future] = index
         for future in as_completed(futures):
             finished(futures.pop(future), future.result())
-        return started
+        return started, client_cpu
     finally:
         if cluster is None:
             try:
