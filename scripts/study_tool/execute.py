@@ -8,6 +8,7 @@ import json
 import logging
 import os
 import pathlib
+import pickle
 import shutil
 import time
 
@@ -137,7 +138,8 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
             started, client_cpu = time.perf_counter(), time.process_time()
             try:
                 for index in pending:
-                    finished(index, runner.chunk_table(directory, prepared.interface, index * size, chunks[index], *settings))
+                    finished(index, runner.chunk_table(directory, prepared.interface, index * size,
+                                                       pickle.dumps(chunks[index]), *settings))
             finally:
                 shutil.rmtree(directory, ignore_errors=True)
         elif pending:
@@ -169,7 +171,7 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
         interface, = client.scatter([prepared.interface], broadcast=True)
         size = prepared.study["chunk_size"]
         for index in pending:
-            future = client.submit(chunk_table, ("plugin", plugin), interface, index * size, chunks[index],
+            future = client.submit(chunk_table, ("plugin", plugin), interface, index * size, pickle.dumps(chunks[index]),
                                    *settings, key=f"wrc-study-{prepared.key}-{index}", pure=False)
             futures[future] = index
         for future in as_completed(futures):

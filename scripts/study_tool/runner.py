@@ -8,6 +8,7 @@ bytes in a worker plugin, which unpacks it once per worker into a worker-local t
 
 import ctypes
 import io
+import pickle
 import shutil
 import tempfile
 import time
@@ -144,11 +145,13 @@ def enumeration_names(interface):
             for name, v in interface["variables"].items() if v["items"] is not None}
 
 
-def chunk_table(fmu, interface, first_scene, chunk, outputs, steps, step_size):
-    """Runs a chunk of (labels, values) scenes; returns its rows as an Arrow table (built here, on
-    the worker, so the client only writes it): scene number, case, sample, every input and
-    parameter (start values for those the study does not set; enumerations by item name), the
+def chunk_table(fmu, interface, first_scene, pickled_chunk, outputs, steps, step_size):
+    """Runs a chunk of (labels, values) scenes, pickled (Dask would otherwise walk every value of
+    every scene looking for futures: seconds per study); returns its rows as an Arrow table (built
+    here, on the worker, so the client only writes it): scene number, case, sample, every input
+    and parameter (start values for those the study does not set; enumerations by item name), the
     outputs, status and message."""
+    chunk = pickle.loads(pickled_chunk)
     cpu = time.process_time()
     results = run_chunk(fmu, interface, [values for _, values in chunk], outputs, steps, step_size,
                         name=f"scene{first_scene}")
