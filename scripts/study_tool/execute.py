@@ -1,0 +1,196 @@
+"""Running a study: scenes in chunks on Dask (a LocalCluster, or any cluster by address) or
+in-process, each finished chunk written at once as its own Parquet part (resumable), then the
+parts gathered into results.parquet."""
+
+import dataclasses
+import hashlib
+import json
+import logging
+import os
+import pathlib
+import pickle
+import shutil
+import time
+
+import cloudpickle
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+from fmpy import read_model_description
+from tqdm import tqdm
+
+from . import runner, spec
+
+# Workers get the runner's code by value: nothing of this project is needed on their disks.
+cloudpickle.register_pickle_by_value(runner)
+
+
+class ByValue:
+    """A function that travels by value inside a Dask task. Dask pickles a task graph with the
+    standard pickle, which names a module-level function by reference (the scheduler and workers
+    would have to import this package); this wrapper pickles as `cloudpickle.loads(code)`, so the
+    receiving side rebuilds the function from its code and needs only the pinned packages."""
+
+    def __init__(self, function):
+        self.function = function
+        self.code = cloudpickle.dumps(function)
+
+    def __call__(self, *arguments, **keywords):
+        return self.function(*arguments, **keywords)
+
+    def __reduce__(self):
+        return cloudpickle.loads, (self.code,)
+
+
+RESULTS = "results.parquet"
+PARTS = "parts"
+
+
+@dataclasses.dataclass
+class Study:
+    path: pathlib.Path
+    fmu_bytes: bytes
+    interface: dict
+    study: dict
+    scenes: list
+    key: str
+
+    @property
+    def chunks(self):
+        size = self.study["chunk_size"]
+        return [self.scenes[i:i + size] for i in range(0, len(self.scenes), size)]
+
+
+@dataclasses.dataclass
+class Outcome:
+    results: pathlib.Path
+    frame: pd.DataFrame
+    chunks: int
+    computed: int
+    reused: int
+    scenes_computed: int
+    seconds: float  # wall time of the computed chunks, from the first submission to the last part written
+    cpu_seconds: float  # the workers' CPU time for the computed chunks (running the scenes, building the tables)
+    client_cpu_seconds: float  # this process's CPU time meanwhile (client, LocalCluster's scheduler, writing parts)
+
+
+def prepare(study_path, fmu_path):
+    """Reads the FMU and the study file and validates the study against the FMU's variables."""
+    fmu_bytes = pathlib.Path(fmu_path).read_bytes()
+    interface = spec.fmu_interface(read_model_description(str(fmu_path)))
+    study = spec.load(study_path, interface)
+    return Study(pathlib.Path(study_path), fmu_bytes, interface, study, spec.scenes(study, interface),
+                 spec.study_key(study, fmu_bytes))
+
+
+def part_path(out, key, index):
+    return out / PARTS / f"{key}-{index:06d}.parquet"
+
+
+def write_atomically(table, path):
+    """Writes the table to a temporary file beside `path` and renames it: a part file is either
+    complete or absent, whenever the process is killed."""
+    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    pq.write_table(table, temporary)
+    os.replace(temporary, path)
+
+
+def start_dask(scheduler, workers):
+    """A client of the cluster at `scheduler`, or of a new LocalCluster of `workers` single-threaded
+    worker processes (default: one per core). Returns (client, cluster or None)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler, timeout="30s"), None
+    cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True):
+    """Runs every chunk not already written under `out`, then gathers results.parquet. The time
+    reported runs from the first chunk's submission (the cluster up, the FMU on the workers) to the
+    last chunk's part written; so does the CPU time of this process reported."""
+    out = pathlib.Path(out)
+    (out / PARTS).mkdir(parents=True, exist_ok=True)
+    for stale in (out / PARTS).glob(".*.tmp"):  # left by a run killed while writing a part
+        stale.unlink()
+    (out / "study.json").write_text(json.dumps({"key": prepared.key, **prepared.study}, indent=2) + "\n")
+    chunks = prepared.chunks
+    size = prepared.study["chunk_size"]
+    pending = [i for i in range(len(chunks)) if not part_path(out, prepared.key, i).exists()]
+    reused = len(chunks) - len(pending)
+    bar = tqdm(total=len(prepared.scenes), initial=len(prepared.scenes) - sum(len(chunks[i]) for i in pending),
+               unit="scene", desc=prepared.study["name"], disable=not progress, dynamic_ncols=True)
+    settings = (prepared.study["outputs"], prepared.study["steps"], prepared.study["step_size"])
+
+    cpu_seconds = []
+
+    def finished(index, table):
+        cpu_seconds.append(float(table.schema.metadata[runner.CPU_SECONDS.encode()]))
+        write_atomically(table.replace_schema_metadata(None), part_path(out, prepared.key, index))
+        bar.update(len(chunks[index]))
+
+    started, client_cpu = time.perf_counter(), time.process_time()
+    try:
+        if pending and serial:
+            directory = runner.unpack_fmu(prepared.fmu_bytes)
+            started, client_cpu = time.perf_counter(), time.process_time()
+            try:
+                for index in pending:
+                    finished(index, runner.chunk_table(directory, prepared.interface, index * size,
+                                                       pickle.dumps(chunks[index]), *settings))
+            finally:
+                shutil.rmtree(directory, ignore_errors=True)
+        elif pending:
+            started, client_cpu = run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished)
+    finally:
+        bar.close()
+    seconds = time.perf_counter() - started
+    client_cpu = time.process_time() - client_cpu - (sum(cpu_seconds) if serial else 0.0)
+
+    frame = gather(out, prepared.key, len(chunks))
+    return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds,
+                   sum(cpu_seconds), client_cpu)
+
+
+def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished):
+    """Submits the pending chunks, hands each result to `finished` as it arrives; returns the wall
+    and CPU clocks' readings when the first chunk was submitted."""
+    from distributed import as_completed
+
+    client, cluster = start_dask(scheduler, workers)
+    plugin = f"wrc-study-fmu-{hashlib.sha256(prepared.fmu_bytes).hexdigest()[:16]}"
+    try:
+        client.wait_for_workers(1, timeout=60)
+        client.register_plugin(runner.FmuOnWorkers(prepared.fmu_bytes), name=plugin)
+        started, client_cpu = time.perf_counter(), time.process_time()
+        futures = {}
+        chunk_table = ByValue(runner.chunk_table)
+        # Sent to the workers once, not with every chunk (a list, as scatter splits a dict by keys).
+        interface, = client.scatter([prepared.interface], broadcast=True)
+        size = prepared.study["chunk_size"]
+        for index in pending:
+            future = client.submit(chunk_table, ("plugin", plugin), interface, index * size, pickle.dumps(chunks[index]),
+                                   *settings, key=f"wrc-study-{prepared.key}-{index}", pure=False)
+            futures[future] = index
+        for future in as_completed(futures):
+            finished(futures.pop(future), future.result())
+        return started, client_cpu
+    finally:
+        if cluster is None:
+            try:
+                client.unregister_worker_plugin(plugin)
+            except Exception:  # the cluster may already be gone; its workers clean up on close
+                pass
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def gather(out, key, count):
+    """Every part of the study, in scene order, as one table written atomically to results.parquet."""
+    tables = [pq.read_table(part_path(out, key, i)) for i in range(count)]
+    table = pa.concat_tables(tables)
+    write_atomically(table, out / RESULTS)
+    return table.to_pandas()

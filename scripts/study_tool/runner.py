@@ -1,0 +1,182 @@
+"""The worker side of a study: runs one chunk of scenes on one FMU instance.
+
+Self-contained on purpose (imports only the standard library, fmpy and distributed): the client
+ships this module's code to the workers by value (cloudpickle), so a Dask worker needs the
+packages installed but nothing of this project on its disk. The FMU itself reaches a worker as
+bytes in a worker plugin, which unpacks it once per worker into a worker-local temporary directory.
+"""
+
+import ctypes
+import io
+import pickle
+import shutil
+import tempfile
+import time
+import zipfile
+
+# Modules, not names from them: shipped by value, this code refers to fmpy's ctypes types through
+# their modules (cloudpickle sends a module by name; a ctypes type by value it cannot).
+import fmpy.fmi1
+import fmpy.fmi2
+import fmpy.logging
+import pyarrow as pa
+from distributed.diagnostics.plugin import WorkerPlugin
+
+CPU_SECONDS = "wrc_study_cpu_seconds"
+STATUS_LABELS = ["ok", "warning", "discard", "error", "fatal", "pending"]
+
+
+def unpack_fmu(fmu_bytes, prefix="wrc-study-"):
+    """Unpacks the FMU's bytes into a fresh temporary directory; returns its path."""
+    directory = tempfile.mkdtemp(prefix=prefix)
+    with zipfile.ZipFile(io.BytesIO(fmu_bytes)) as archive:
+        archive.extractall(directory)
+    return directory
+
+
+class FmuOnWorkers(WorkerPlugin):
+    """Carries the FMU's bytes to every worker (also to workers that join later) and unpacks them
+    there once; removes the directory when the worker closes or the plugin is replaced."""
+
+    def __init__(self, fmu_bytes):
+        self.fmu_bytes = fmu_bytes
+        self.directory = None
+
+    def setup(self, worker):
+        self.directory = unpack_fmu(self.fmu_bytes)
+
+    def teardown(self, worker):
+        if self.directory is not None:
+            shutil.rmtree(self.directory, ignore_errors=True)
+
+
+def plugin_directory(plugin_name):
+    """The directory the named FmuOnWorkers plugin unpacked on the worker running this task."""
+    from distributed import get_worker
+
+    return get_worker().plugins[plugin_name].directory
+
+
+class Instance:
+    """One FMU instance whose log messages are kept (fmpy's logger proxy formats the FMU's
+    printf-style message before the Python callback sees it)."""
+
+    def __init__(self, directory, interface, name):
+        self.messages = []
+
+        def log(environment, instance_name, status, category, message):
+            label = STATUS_LABELS[status] if 0 <= status < len(STATUS_LABELS) else str(status)
+            if label != "ok":
+                self.messages.append(f"[{label}] {message.decode('utf-8', 'replace')}")
+
+        self.callbacks = fmpy.fmi2.fmi2CallbackFunctions()
+        self.callbacks.logger = fmpy.fmi2.fmi2CallbackLoggerTYPE(log)
+        self.callbacks.allocateMemory = fmpy.fmi2.fmi2CallbackAllocateMemoryTYPE(ctypes.CDLL(None).calloc)
+        self.callbacks.freeMemory = fmpy.fmi2.fmi2CallbackFreeMemoryTYPE(ctypes.CDLL(None).free)
+        fmpy.logging.addLoggerProxy(ctypes.byref(self.callbacks))
+        self.slave = fmpy.fmi2.FMU2Slave(guid=interface["guid"], unzipDirectory=directory,
+                               modelIdentifier=interface["model_identifier"], instanceName=name)
+        self.slave.instantiate(callbacks=self.callbacks, loggingOn=False)
+
+    def free(self):
+        self.slave.freeInstance()
+
+
+def set_values(slave, interface, values):
+    """Sets Real variables with setReal, Integer and Enumeration ones with setInteger."""
+    variables = interface["variables"]
+    reals = [(variables[n]["vr"], float(x)) for n, x in values.items() if variables[n]["type"] == "Real"]
+    integers = [(variables[n]["vr"], int(x)) for n, x in values.items() if variables[n]["type"] != "Real"]
+    if reals:
+        slave.setReal([vr for vr, _ in reals], [x for _, x in reals])
+    if integers:
+        slave.setInteger([vr for vr, _ in integers], [x for _, x in integers])
+
+
+def run_scene(slave, interface, scene, outputs, steps, step_size):
+    """One scene on an instance that is fresh or just reset: parameters set before
+    initialisation, inputs in initialisation mode, then `steps` steps of `step_size`."""
+    variables = interface["variables"]
+    parameters = {n: x for n, x in scene.items() if variables[n]["causality"] == "parameter"}
+    inputs = {n: x for n, x in scene.items() if variables[n]["causality"] == "input"}
+    slave.setupExperiment(startTime=0.0)
+    set_values(slave, interface, parameters)
+    slave.enterInitializationMode()
+    set_values(slave, interface, inputs)
+    slave.exitInitializationMode()
+    for k in range(steps):
+        slave.doStep(currentCommunicationPoint=k * step_size, communicationStepSize=step_size)
+    return slave.getReal([variables[n]["vr"] for n in outputs])
+
+
+def run_chunk(fmu, interface, scenes, outputs, steps, step_size, name="chunk"):
+    """Runs `scenes` (dicts of variable values) on one instance, fmi2Reset between scenes.
+
+    `fmu` is the unpacked FMU's directory, or ("plugin", NAME) for the directory a FmuOnWorkers
+    plugin unpacked on this worker. Returns per scene (status, message, output values): a scene
+    the FMU refuses is "error" with the FMU's log messages and NaN outputs; the instance is then
+    reset (or, if even that fails, replaced) and the chunk goes on."""
+    directory = plugin_directory(fmu[1]) if isinstance(fmu, tuple) else fmu
+    nan = float("nan")
+    results = []
+    instance = Instance(directory, interface, name)
+    try:
+        for k, scene in enumerate(scenes):
+            if k > 0:
+                try:
+                    instance.slave.reset()
+                except fmpy.fmi1.FMICallException:
+                    instance.free()
+                    instance = Instance(directory, interface, name)
+            instance.messages.clear()
+            try:
+                values = run_scene(instance.slave, interface, scene, outputs, steps, step_size)
+                results.append(("ok", "", values))
+            except fmpy.fmi1.FMICallException as failure:
+                message = "; ".join(instance.messages) or str(failure)
+                results.append(("error", message, [nan] * len(outputs)))
+    finally:
+        instance.free()
+    return results
+
+
+def enumeration_names(interface):
+    return {name: {value: item for item, value in v["items"].items()}
+            for name, v in interface["variables"].items() if v["items"] is not None}
+
+
+def chunk_table(fmu, interface, first_scene, pickled_chunk, outputs, steps, step_size):
+    """Runs a chunk of (labels, values) scenes, pickled (Dask would otherwise walk every value of
+    every scene looking for futures: seconds per study); returns its rows as an Arrow table (built
+    here, on the worker, so the client only writes it): scene number, case, sample, every input
+    and parameter (start values for those the study does not set; enumerations by item name), the
+    outputs, status and message."""
+    chunk = pickle.loads(pickled_chunk)
+    cpu = time.process_time()
+    results = run_chunk(fmu, interface, [values for _, values in chunk], outputs, steps, step_size,
+                        name=f"scene{first_scene}")
+    cpu = time.process_time() - cpu
+    names = [n for n, v in interface["variables"].items() if v["causality"] in ("input", "parameter")]
+    enums = enumeration_names(interface)
+    variables = interface["variables"]
+    columns = {"scene": [first_scene + k for k in range(len(chunk))],
+               "case": [labels["case"] for labels, _ in chunk],
+               "sample": [labels["sample"] for labels, _ in chunk]}
+    for name in names:
+        start = variables[name]["start"]
+        values = [values.get(name, start) for _, values in chunk]
+        columns[name] = [enums[name][x] for x in values] if name in enums else values
+    for k, name in enumerate(outputs):
+        columns[name] = [values[k] for _, _, values in results]
+    columns["status"] = [status for status, _, _ in results]
+    columns["message"] = [message for _, message, _ in results]
+    types = {"scene": pa.int64(), "case": pa.string(), "sample": pa.int64(), "status": pa.string(),
+             "message": pa.string()}
+    for name in names:
+        types[name] = pa.string() if name in enums else (pa.float64() if variables[name]["type"] == "Real" else pa.int64())
+    for name in outputs:
+        types[name] = pa.float64()
+    table = pa.table({name: pa.array(values, type=types[name]) for name, values in columns.items()})
+    # The worker's CPU time for the chunk rides along as metadata, not as a column: the results
+    # stay the same from run to run, and the benchmark can tell CPU cost from waiting for a core.
+    return table.replace_schema_metadata({CPU_SECONDS: repr(cpu)})

@@ -1,0 +1,46 @@
+"""The end-of-study report: the error against the reference model is matched scene by scene, and
+the plots are written beside the results."""
+
+import numpy as np
+import pandas as pd
+
+from conftest import command
+
+STUDY = """
+name = "report"
+models = ["exact", "polach", "fastsim"]
+outputs = ["force_longitudinal", "force_lateral"]
+chunk_size = 9
+[fixed]
+exact_elements_longitudinal = 8
+exact_elements_lateral = 8
+[grid]
+semi_axis_a = [0.0036, 0.0072]
+creepage_longitudinal = [1e-4, 1e-3, 1e-2]
+friction_coefficient = [0.2, 0.4]
+[plot]
+x = "creepage_longitudinal"
+family = ["friction_coefficient", "a_over_b"]
+error_map = { x = "a_over_b", y = "creepage_longitudinal", output = "force_longitudinal" }
+"""
+
+
+def test_errors_against_exact_and_the_plots(study_file, tmp_path):
+    out = tmp_path / "out"
+    result = command("run", study_file(STUDY), "--serial", "--no-progress", "--out", out)
+    assert result.returncode == 0, result.stderr
+    frame = pd.read_parquet(out / "results.parquet")
+    # The same scene under each model: rows k, k + 12, k + 24 (models are the outer axis).
+    exact, polach, fastsim = (frame[frame["creep_force_model"] == m].reset_index(drop=True)
+                              for m in ("exact", "polach", "fastsim"))
+    assert (exact["creepage_longitudinal"] == polach["creepage_longitudinal"]).all()
+    limit = exact["friction_coefficient"] * exact["normal_force"]
+    for name, model in (("polach", polach), ("fastsim", fastsim)):
+        error = np.abs(model["force_longitudinal"] - exact["force_longitudinal"]) / limit
+        assert error.max() > 0
+        line = f"error of {name} against exact in force_longitudinal, |Δ|/(μQ): max {error.max():.3g}, " \
+               f"mean {error.mean():.3g} over 12 scenes"
+        assert line in result.stdout, result.stdout
+    for plot in ("creep_curves.png", "creep_curves.svg", "error_map.png", "error_map.svg"):
+        assert (out / plot).stat().st_size > 1000, plot
+    assert result.stdout.startswith((out / "summary.txt").read_text())
