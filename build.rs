@@ -17,7 +17,10 @@ fn main() {
     model_description::generate("modelDescription.xml", &out_dir.join("model_description.rs"));
     // The FMU exports the 34 fmi2* functions and nothing else: fmi-sys (used for the headers'
     // types) carries a `#[no_mangle]` logger helper that would otherwise leak into the exports.
-    if std::env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("linux") {
+    // zig's linker (the old-glibc linux64 build, packaging::fmu) rejects the flag: there the helper
+    // stays exported (packaging/tests/platforms.rs names it) until the adapter drops fmi-sys.
+    let linker_is_zig = std::env::var("RUSTC_LINKER").is_ok_and(|linker| linker.contains("zig"));
+    if std::env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("linux") && !linker_is_zig {
         println!("cargo:rustc-cdylib-link-arg=-Wl,--exclude-libs,ALL");
     }
 }
