@@ -162,11 +162,11 @@ pub struct PlatformBinary {
     pub summary: String,
 }
 
-/// A platform left out, and how to add it.
+/// A platform left out, and why (with how to add it).
 #[derive(Debug, Clone)]
 pub struct Skipped {
     pub platform: Platform,
-    pub how_to_add: String,
+    pub reason: String,
 }
 
 /// Which platforms [`package`] builds.
@@ -260,7 +260,9 @@ pub fn build_shared_library(profile: Profile) -> Result<PathBuf, String> {
 fn build_platform(platform: Platform, profile: Profile) -> Result<Result<(PathBuf, Linkage), Skipped>, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let target = platform.rust_target();
-    let skipped = |how_to_add: String| Ok(Err(Skipped { platform, how_to_add }));
+    let skipped = |how_to_add: String| {
+        Ok(Err(Skipped { platform, reason: format!("its toolchain is missing; to add it: {how_to_add}") }))
+    };
     match platform {
         Platform::Linux64 => {
             let native = Platform::this_machine() == Some(Platform::Linux64);
@@ -385,7 +387,7 @@ pub fn check_library(platform: Platform, linkage: &Linkage, library: &[u8]) -> R
                 Linkage::GlibcBaseline => Ok(format!("{exports_line}, needs glibc ≥ {major}.{minor}")),
                 _ => Ok(format!(
                     "{exports_line}, needs glibc ≥ {major}.{minor} (this machine's: the {}.{} baseline was not applied, \
-                     `pip install cargo-zigbuild` applies it)",
+                     `pip install cargo-zigbuild`, on PATH or in ./.venv, applies it)",
                     GLIBC_BASELINE.0, GLIBC_BASELINE.1
                 )),
             }
@@ -445,7 +447,14 @@ pub fn package(profile: Profile, reach: Reach, out_dir: &Path) -> Result<Package
                 Ok((build_shared_library(profile)?, Linkage::ThisMachinesGlibc))
             }
             Reach::ThisMachine => continue,
-            Reach::EveryToolchainPresent => build_platform(platform, profile)?,
+            // A cross build that fails leaves its platform out, loudly, rather than the FMU
+            // (scripts/test-platforms fails if one is missing); this machine's must build.
+            Reach::EveryToolchainPresent => match build_platform(platform, profile) {
+                Err(problem) if Platform::this_machine() != Some(platform) => {
+                    Err(Skipped { platform, reason: format!("{problem} (cargo's messages above)") })
+                }
+                built => built?,
+            },
         };
         match built {
             Ok((library, linkage)) => {

@@ -29,7 +29,7 @@ fn run_package() -> Result<(), String> {
         println!("{}: {}", binary.platform.folder(), binary.summary);
     }
     for skipped in &packaged.skipped {
-        println!("{}: skipped, its toolchain is missing; to add it: {}", skipped.platform.folder(), skipped.how_to_add);
+        println!("{}: skipped, {}", skipped.platform.folder(), skipped.reason);
     }
     println!("wrote {}", packaged.fmu.display());
     Ok(())
