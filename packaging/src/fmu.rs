@@ -276,10 +276,12 @@ fn build_platform(platform: Platform, profile: Profile) -> Result<Result<(PathBu
                         &format!("{target}.{}.{}", GLIBC_BASELINE.0, GLIBC_BASELINE.1),
                     ]);
                     command.arg("--manifest-path").arg(manifest);
-                    // Run from outside the workspace: cargo-zigbuild hands build scripts (bindgen)
-                    // zig's include folders relative to its working directory when zig lives below
-                    // it (the workspace's .venv), and build scripts run elsewhere.
-                    command.current_dir(std::env::temp_dir());
+                    // Run from the file system's root: zig names its folders relative to the
+                    // working directory when it lives below it (the workspace's .venv), and
+                    // cargo-zigbuild hands these include folders to build scripts (bindgen), which
+                    // run elsewhere; below the root, every path is absolute.
+                    let root = workspace_root().ancestors().last().map(Path::to_path_buf).unwrap_or_default();
+                    command.current_dir(root);
                     if let Some(venv_bin) = zigbuild.parent().filter(|folder| folder.join("python3").is_file()) {
                         // The `ziglang` package lives beside cargo-zigbuild, in the same venv.
                         command.env("CARGO_ZIGBUILD_PYTHON_PATH", venv_bin.join("python3"));
