@@ -9,8 +9,7 @@ mod model_description;
 fn main() {
     let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     model_description::generate("../modelDescription.xml", &out_dir.join("model_description.rs"));
-    // The FMU exports the 34 fmi2* functions and nothing else (Rust's own symbols stay hidden).
-    if std::env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("linux") {
-        println!("cargo:rustc-cdylib-link-arg=-Wl,--exclude-libs,ALL");
-    }
+    // The FMU exports the 34 fmi2* functions and nothing else: rustc's export list for a cdylib
+    // holds only its `#[no_mangle]` functions, and no C library is linked in (packaging checks
+    // every binary's export table, `packaging::fmu::check_library`).
 }

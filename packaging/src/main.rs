@@ -3,12 +3,13 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use packaging::fmu::{package, workspace_root, Profile};
+use packaging::fmu::{package, workspace_root, Profile, Reach};
 use packaging::{default_scene, reference};
 
 const USAGE: &str = "usage: cargo fmu [COMMAND]
   all        (default) package, then scene
-  package    build the release library and write target/fmu/wheel_rail_contact.fmu
+  package    build the release library for every platform whose toolchain is present (linux64,
+             win64), check each, and write target/fmu/wheel_rail_contact.fmu
   scene      run the default scene (a creepage sweep) through target/fmu/wheel_rail_contact.fmu:
              prints a table, writes target/fmu/default_scene.csv and .svg
   reference  read CSV of FMU inputs and parameters (header: their names; optional step_size for
@@ -23,8 +24,14 @@ fn fmu_path() -> PathBuf {
 }
 
 fn run_package() -> Result<(), String> {
-    let path = package(Profile::Release, &out_dir())?;
-    println!("wrote {}", path.display());
+    let packaged = package(Profile::Release, Reach::EveryToolchainPresent, &out_dir())?;
+    for binary in &packaged.binaries {
+        println!("{}: {}", binary.platform.folder(), binary.summary);
+    }
+    for skipped in &packaged.skipped {
+        println!("{}: skipped, {}", skipped.platform.folder(), skipped.reason);
+    }
+    println!("wrote {}", packaged.fmu.display());
     Ok(())
 }
 

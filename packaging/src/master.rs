@@ -10,7 +10,7 @@ use std::io::Read as _;
 use std::path::{Path, PathBuf};
 use std::ptr::{null, null_mut};
 
-use crate::fmu::platform_folder;
+use crate::fmu::Platform;
 use libloading::Library;
 use wheel_rail_contact_fmu::fmi2::*;
 use wheel_rail_contact_fmu::model_description::{GUID, MODEL_IDENTIFIER};
@@ -49,7 +49,9 @@ impl Drop for TempFolder {
 impl LoadedFmu {
     /// Extracts `binaries/<platform>/<modelIdentifier>.<ext>` of `fmu_path` and loads it.
     pub fn open(fmu_path: &Path) -> Result<Self, String> {
-        let entry = format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform_folder()?, std::env::consts::DLL_EXTENSION);
+        let platform = Platform::this_machine()
+            .ok_or_else(|| format!("no FMI 2.0 platform for {}/{}", std::env::consts::OS, std::env::consts::ARCH))?;
+        let entry = format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform.folder(), platform.extension());
         let file = std::fs::File::open(fmu_path).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
         let mut archive = zip::ZipArchive::new(file).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
         let mut bytes = Vec::new();

@@ -1,0 +1,80 @@
+//! The binary checks `cargo fmu package` applies before it packs a library, read against binutils'
+//! `objdump` (an independent reader) on this machine's build of the FMU's library.
+
+use std::collections::BTreeSet;
+use std::process::Command;
+
+use packaging::fmu::{
+    build_shared_library, check_library, exported_functions, glibc_versions_needed, Linkage, Platform, Profile,
+    FMI2_FUNCTIONS, GLIBC_BASELINE,
+};
+
+/// `objdump -T`: the dynamic symbol table, one symbol a line, its version in the second last
+/// column (`GLIBC_2.3.4`, `Base`) and its section in the fourth (`*UND*` if imported).
+fn objdump_dynamic_symbols(library: &std::path::Path) -> Vec<Vec<String>> {
+    let output = Command::new("objdump").arg("-T").arg(library).output().expect("objdump (binutils) runs");
+    assert!(output.status.success(), "objdump -T {}", library.display());
+    String::from_utf8(output.stdout)
+        .unwrap()
+        .lines()
+        .map(|line| line.split_whitespace().map(str::to_owned).collect::<Vec<_>>())
+        .filter(|words| words.len() >= 6 && words[0].chars().all(|c| c.is_ascii_hexdigit()))
+        .collect()
+}
+
+#[test]
+fn glibc_versions_and_exports_agree_with_objdump_and_a_too_new_glibc_is_refused() {
+    let library = build_shared_library(Profile::Dev).unwrap();
+    let bytes = std::fs::read(&library).unwrap();
+    let symbols = objdump_dynamic_symbols(&library);
+
+    // Versions: objdump prints them per imported symbol as GLIBC_x.y[.z] (or in parentheses when
+    // hidden); the reader parses the .gnu.version_r section.
+    let objdump_versions: BTreeSet<(u32, u32)> = symbols
+        .iter()
+        .filter_map(|words| words.iter().find_map(|w| w.trim_matches(|c| c == '(' || c == ')').strip_prefix("GLIBC_")))
+        .filter_map(|version| {
+            let mut numbers = version.split('.').map(|n| n.parse::<u32>());
+            Some((numbers.next()?.ok()?, numbers.next().and_then(Result::ok).unwrap_or(0)))
+        })
+        .collect();
+    assert!(!objdump_versions.is_empty(), "the library calls glibc");
+    assert_eq!(glibc_versions_needed(&bytes).unwrap(), objdump_versions);
+
+    // Exports: the functions defined in .text and global.
+    let objdump_exports: BTreeSet<String> = symbols
+        .iter()
+        .filter(|words| words[1] == "g" && words[3] == ".text")
+        .map(|words| words.last().unwrap().clone())
+        .collect();
+    assert_eq!(exported_functions(&bytes).unwrap(), objdump_exports);
+    assert!(FMI2_FUNCTIONS.iter().all(|name| objdump_exports.contains(*name)));
+
+    // Held to the baseline as if it had been built for it: refused exactly when this machine's
+    // glibc made it need a newer version (Debian 12 here: GLIBC_2.35 for hypot).
+    let newest = *objdump_versions.last().unwrap();
+    let checked = check_library(Platform::Linux64, &Linkage::GlibcBaseline, &bytes);
+    if newest > GLIBC_BASELINE {
+        let problem = checked.unwrap_err();
+        assert!(problem.contains(&format!("GLIBC_{}.{}", newest.0, newest.1)), "{problem}");
+    } else {
+        assert!(checked.is_ok(), "{checked:?}");
+    }
+    assert!(check_library(Platform::Linux64, &Linkage::ThisMachinesGlibc, &bytes).is_ok());
+}
+
+#[test]
+fn a_library_without_the_fmi_functions_is_refused() {
+    // objdump itself: an ELF executable exporting none of them.
+    let objdump = which("objdump");
+    let problem =
+        check_library(Platform::Linux64, &Linkage::ThisMachinesGlibc, &std::fs::read(objdump).unwrap()).unwrap_err();
+    assert!(problem.starts_with("does not export fmi2GetTypesPlatform, fmi2GetVersion"), "{problem}");
+}
+
+fn which(program: &str) -> std::path::PathBuf {
+    std::env::split_paths(&std::env::var_os("PATH").unwrap())
+        .map(|folder| folder.join(program))
+        .find(|file| file.is_file())
+        .unwrap_or_else(|| panic!("{program} on PATH"))
+}
