@@ -116,27 +116,35 @@ pub const OPTION_USES: &[OptionUse] = &[
     },
 ];
 
-/// The table as Markdown (the README's copy).
-pub fn markdown_table() -> String {
+/// The table's header cells.
+pub const COLUMNS: [&str; 5] =
+    ["choice or option", "inputs used", "inputs it replaces", "parameters used", "outputs it sets"];
+
+/// The table's rows as cells, each name formatted by `code` (`—` for none): what the README's
+/// Markdown and the documentation's HTML are written from.
+pub fn rows(code: impl Fn(&str) -> String) -> Vec<[String; 5]> {
     let list = |names: &[&str]| {
         if names.is_empty() {
             "—".to_owned()
         } else {
-            names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+            names.iter().map(|name| code(name)).collect::<Vec<_>>().join(", ")
         }
     };
-    let mut table = String::from(
-        "| choice or option | inputs used | inputs it replaces | parameters used | outputs it sets |\n|---|---|---|---|---|\n",
-    );
-    for row in OPTION_USES {
-        table.push_str(&format!(
-            "| {} | {} | {} | {} | {} |\n",
-            row.option,
-            list(row.inputs),
-            list(row.replaces),
-            list(row.parameters),
-            list(row.outputs)
-        ));
+    OPTION_USES
+        .iter()
+        .map(|row| {
+            [row.option.to_owned(), list(row.inputs), list(row.replaces), list(row.parameters), list(row.outputs)]
+        })
+        .collect()
+}
+
+/// The table as Markdown (the README's copy).
+pub fn markdown_table() -> String {
+    let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
+    let mut table = line(&COLUMNS.map(str::to_owned));
+    table.push_str("|---|---|---|---|---|\n");
+    for row in rows(|name| format!("`{name}`")) {
+        table.push_str(&line(&row));
     }
     table
 }

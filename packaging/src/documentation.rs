@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
-use wheel_rail_contact_fmu::options::OPTION_USES;
+use wheel_rail_contact_fmu::options;
 use wheel_rail_contact_fmu::scene::contact_input;
 
 use crate::plot::{escape, line_plot, Series};
@@ -108,30 +108,16 @@ fn dependencies_text() -> String {
     html
 }
 
-/// The table of [`OPTION_USES`] (declared once, in the adapter) as HTML.
+/// The table of [`options::OPTION_USES`] (declared once, in the adapter) as HTML.
 fn option_table_html() -> String {
-    let list = |names: &[&str]| {
-        if names.is_empty() {
-            "—".to_owned()
-        } else {
-            names.iter().map(|n| format!("<code>{n}</code>")).collect::<Vec<_>>().join(", ")
-        }
+    let line = |tag: &str, cells: &[String]| {
+        let cells: String = cells.iter().map(|cell| format!("<{tag}>{cell}</{tag}>")).collect();
+        format!("<tr>{cells}</tr>\n")
     };
-    let mut html = String::from(
-        "<table>\n<tr><th>choice or option</th><th>inputs used</th><th>inputs it replaces</th>\
-         <th>parameters used</th><th>outputs it sets</th></tr>\n",
-    );
-    for row in OPTION_USES {
-        writeln!(
-            html,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            row.option,
-            list(row.inputs),
-            list(row.replaces),
-            list(row.parameters),
-            list(row.outputs)
-        )
-        .unwrap();
+    let mut html = String::from("<table>\n");
+    html.push_str(&line("th", &options::COLUMNS.map(str::to_owned)));
+    for row in options::rows(|name| format!("<code>{name}</code>")) {
+        html.push_str(&line("td", &row));
     }
     html.push_str("</table>");
     html
