@@ -75,8 +75,8 @@ pub(crate) fn rectangle_influence(x: f64, y: f64, length: f64, width: f64, poiss
 /// A is even under (x, y) → (−x, −y) in every component (xy/r³ included), so the table serves
 /// both A(I − J) and A(J − I).
 pub(crate) struct InfluenceTable {
-    elements_x: usize,
-    elements_y: usize,
+    pub elements_x: usize,
+    pub elements_y: usize,
     /// Components, row-major over offsets: index (dx + nx) + (dy + ny − 1)(2nx + 1).
     pub xx: Vec<f64>,
     pub xy: Vec<f64>,
