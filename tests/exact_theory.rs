@@ -291,7 +291,8 @@ fn newton_solver_equals_gauss_seidel() {
 
 /// Warm starts: from the solution of another creepage sign, of another ellipse, or from zero,
 /// the solve reaches the same answer as from zero traction (to the solver's tolerance), and a
-/// start from the answer itself converges at once.
+/// start from the answer itself needs no more than the two Newton steps of the stopping test
+/// (a loose one, then an accurate one that changes nothing).
 #[test]
 fn warm_starts_converge_to_the_same_answer() {
     let model = ExactTheory::new(32, 32);
@@ -319,7 +320,7 @@ fn warm_starts_converge_to_the_same_answer() {
         assert_eq!(warm.element_state, cold.element_state, "{name}");
     }
     let restarted = model.solve_from(&case, Some(&cold.warm_start())).unwrap();
-    assert!(restarted.iterations <= 1, "restart from the answer took {} Newton steps", restarted.iterations);
+    assert!(restarted.iterations <= 2, "restart from the answer took {} Newton steps", restarted.iterations);
 }
 
 /// Extremes stay finite, within the Coulomb bound, and return: creepage 1e300, a/b = 1e-3 and

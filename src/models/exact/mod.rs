@@ -66,6 +66,9 @@ pub enum ElementState {
 /// bounds the memory (the Newton solver keeps 60 vectors of the grid's size) and the time of a
 /// solve.
 pub const MAX_ELEMENTS_PER_AXIS: usize = 200;
+/// Smallest number of elements along both axes for which a solve without a start begins with
+/// the solution on the half grid ([`ExactTheory::solve_from`]).
+pub const NESTED_START_MINIMUM: usize = 40;
 /// Offset of the point where the spin part φx of the rigid slip is taken, in element lengths
 /// from the centre towards the leading edge; see [`rigid_slip`].
 const SPIN_SLIP_OFFSET: f64 = 1.0 / 6.0;
@@ -114,8 +117,9 @@ pub struct ExactSolution {
     pub adhesion_area: f64,
     /// Area of the slip elements \[m²\].
     pub slip_area: f64,
-    /// The traction scale μp₀ \[Pa\] (0 without contact or friction).
-    pub traction_scale: f64,
+    /// The friction coefficient μ of the solve: the Coulomb bound of element I is
+    /// μ × `pressure[I]`.
+    pub friction_coefficient: f64,
     /// Newton steps used (Gauss–Seidel sweeps for [`ExactTheory::solve_by_gauss_seidel`]).
     pub iterations: usize,
     /// Operator products (FFT convolutions) used, over all Newton steps.
@@ -137,40 +141,63 @@ impl ExactSolution {
 
     /// This solution's tractions as the start of the next solve ([`ExactTheory::solve_from`]).
     pub fn warm_start(&self) -> WarmStart {
-        let normalise = |traction: &[f64]| {
-            if self.traction_scale > 0.0 {
-                traction.iter().map(|p| p / self.traction_scale).collect()
-            } else {
-                vec![0.0; traction.len()]
-            }
+        let relative = |traction: &[f64]| -> Vec<f64> {
+            traction
+                .iter()
+                .zip(&self.pressure)
+                .map(|(&p, &pressure)| {
+                    let bound = self.friction_coefficient * pressure;
+                    if bound > 0.0 && (p / bound).is_finite() {
+                        p / bound
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
         };
         WarmStart {
             grid: Some(self.grid),
-            traction_longitudinal: normalise(&self.traction_longitudinal),
-            traction_lateral: normalise(&self.traction_lateral),
+            relative_longitudinal: relative(&self.traction_longitudinal),
+            relative_lateral: relative(&self.traction_lateral),
         }
     }
 }
 
-/// A previous solution's tangential tractions in units of its μp₀, per element of its grid: the
-/// start of the next solve on a grid of the same size (any other start, or
-/// `WarmStart::default()`, starts from zero traction).
+/// A previous solution's tangential tractions relative to their Coulomb bound μ p_n, per
+/// element of its grid: the start of the next solve ([`ExactTheory::solve_from`]).
 ///
-/// The grid spans 2.2 a × 2.2 b whatever the ellipse, so element (i, j) keeps its relative
-/// position when the semi-axes change, and tractions in units of μp₀ keep their relation to the
-/// Coulomb bound when the load or μ change: the stored field is the previous solution scaled to
-/// the new μp₀ and ellipse. Elements of it over their new bound start on the bound.
+/// The grid spans 2.2 a × 2.2 b whatever the ellipse, so an element keeps its relative position
+/// when the semi-axes change, and a traction relative to its bound keeps adhesion inside the
+/// bound and slip on it when the load, μ or the ellipse change: the start is the previous
+/// solution scaled to the new μp₀ and ellipse. On another grid size each element takes the
+/// value of the stored element that contains its centre. `WarmStart::default()` starts from
+/// zero traction.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct WarmStart {
     grid: Option<GridSize>,
-    traction_longitudinal: Vec<f64>,
-    traction_lateral: Vec<f64>,
+    relative_longitudinal: Vec<f64>,
+    relative_lateral: Vec<f64>,
 }
 
 impl WarmStart {
-    /// The field in the solver's units, if it fits `grid`.
-    fn field(&self, grid: GridSize) -> Option<[&[f64]; 2]> {
-        (self.grid == Some(grid)).then_some([&self.traction_longitudinal, &self.traction_lateral])
+    /// The start on `grid` in the solver's units (μp₀), or `None` for an empty start.
+    fn tractions(&self, grid: &ContactGrid) -> Option<[Vec<f64>; 2]> {
+        let stored = self.grid?;
+        // Element k of n covers [k/n, (k+1)/n) of the axis; the stored element holding the
+        // centre (k + ½)/n.
+        let source = |k: usize, n: usize, m: usize| ((2 * k + 1) * m / (2 * n)).min(m - 1);
+        let mut tractions = [vec![0.0; grid.pressure.len()], vec![0.0; grid.pressure.len()]];
+        for j in 0..grid.elements_y {
+            let stored_j = source(j, grid.elements_y, stored.lateral);
+            for i in 0..grid.elements_x {
+                let element = i + j * grid.elements_x;
+                let stored_element = source(i, grid.elements_x, stored.longitudinal) + stored_j * stored.longitudinal;
+                let bound = grid.pressure[element];
+                tractions[0][element] = bound * self.relative_longitudinal[stored_element];
+                tractions[1][element] = bound * self.relative_lateral[stored_element];
+            }
+        }
+        Some(tractions)
     }
 }
 
@@ -202,12 +229,29 @@ impl ExactTheory {
     }
 
     /// [`Self::solve`] starting from a previous solution's tractions (`start`, see
-    /// [`WarmStart`]); `None` or a start on another grid size starts from zero. Per step of a
-    /// co-simulation: `let solution = model.solve_from(&input, Some(&start))?;
-    /// start = solution.warm_start();`.
+    /// [`WarmStart`]). Per step of a co-simulation:
+    /// `let solution = model.solve_from(&input, Some(&start))?; start = solution.warm_start();`.
+    ///
+    /// Without a start (`None` or an empty one), grids of at least [`NESTED_START_MINIMUM`]
+    /// elements along both axes start from the solution on the grid of half as many elements
+    /// (nested iteration, recursively): it puts the division into adhesion and slip close to the
+    /// final one, which the Newton solver otherwise finds one element layer per step.
     pub fn solve_from(&self, input: &ContactInput, start: Option<&WarmStart>) -> Result<ExactSolution, InvalidInput> {
-        let field = start.and_then(|start| start.field(self.grid));
+        let GridSize { longitudinal, lateral } = self.grid;
+        let coarse_start;
+        let start = match start {
+            Some(start) if start.grid.is_some() => Some(start),
+            _ if longitudinal.min(lateral) >= NESTED_START_MINIMUM => {
+                input.validate()?;
+                coarse_start =
+                    ExactTheory::new(longitudinal.div_ceil(2), lateral.div_ceil(2)).solve(input)?.warm_start();
+                Some(&coarse_start)
+            }
+            _ => None,
+        };
         self.solve_with(input, |grid, table, rigid_slip| {
+            let field = start.and_then(|start| start.tractions(grid));
+            let field = field.as_ref().map(|[x, y]| [x.as_slice(), y.as_slice()]);
             let mut convolution = SlipConvolution::new(table);
             tangential::solve(grid, table, &mut convolution, rigid_slip, field)
         })
@@ -259,7 +303,7 @@ impl ExactTheory {
             element_state: vec![ElementState::Exterior; count],
             adhesion_area: 0.0,
             slip_area: 0.0,
-            traction_scale: 0.0,
+            friction_coefficient: input.friction_coefficient,
             iterations: 0,
             operator_products: 0,
             converged: true,
@@ -323,7 +367,6 @@ impl ExactTheory {
         for (traction, normalised) in solution.traction_lateral.iter_mut().zip(&tangential.traction_y) {
             *traction = traction_scale * normalised;
         }
-        solution.traction_scale = traction_scale;
         solution.iterations = tangential.iterations;
         solution.operator_products = tangential.products;
         solution.converged = tangential.converged;
