@@ -3,17 +3,18 @@
 //! The slip of every element is a discrete convolution of the traction steps with Love's
 //! coefficients (`influence.rs`): s_I = Σ_J T(J − I) Δp_J with T = A/δx, the same sum the
 //! Gauss–Seidel reference evaluates element by element. On a zero-padded grid of Mx × My
-//! points with Mx ≥ 2 nx and My ≥ 2 ny − 1 the circular convolution equals the linear one for
+//! points with Mx ≥ 2 nx + 1 and My ≥ 2 ny − 1 the circular convolution equals the linear one for
 //! every element (no wrap-around), so one product costs four 2-D real FFTs, O(N log N),
 //! instead of the O(N²) direct sum, with the same result to rounding.
 //!
 //! The same padded grid carries a preconditioner: the inverse of the 2 × 2 symbol of T
-//! (T truncated to |offset| ≤ n and made periodic, even, so its symbol is real), which maps a
+//! (T placed evenly on the periodic grid, so its symbol is real), which maps a
 //! slip field to the traction steps that would cancel it if the contact filled the plane.
 //! Restricted to the contact it is an approximate inverse (Strang's circulant preconditioner
 //! for Toeplitz systems, as in Vollebregt's FFT-preconditioned normal solver, J. Optim. Theory
 //! Appl. 162, 2014).
 
+use std::cell::RefCell;
 use std::sync::Arc;
 
 use realfft::num_complex::Complex;
@@ -21,6 +22,13 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 
 use super::influence::InfluenceTable;
+
+thread_local! {
+    /// FFT planners kept per thread: they cache their plans, so solves on grids of sizes met
+    /// before skip the planning.
+    static PLANNERS: RefCell<(RealFftPlanner<f64>, FftPlanner<f64>)> =
+        RefCell::new((RealFftPlanner::new(), FftPlanner::new()));
+}
 
 /// The operator on a grid of nx × ny elements, with its FFT plans and work space.
 pub(crate) struct SlipConvolution {
@@ -35,28 +43,31 @@ pub(crate) struct SlipConvolution {
     row_inverse: Arc<dyn ComplexToReal<f64>>,
     column_forward: Arc<dyn Fft<f64>>,
     column_inverse: Arc<dyn Fft<f64>>,
-    /// Spectra of T (xx, xy, yy), scaled by 1/(Mx My) for the unnormalised inverse transform.
-    /// Layout column-major over the spectrum: index y + h·My.
-    kernel: [Vec<Complex<f64>>; 3],
+    /// Symbols (real spectra) of T (xx, xy, yy), scaled by 1/(Mx My) for the unnormalised
+    /// inverse transform. Layout column-major over the spectrum: index y + h·My.
+    kernel: [Vec<f64>; 3],
     /// The preconditioner's 2 × 2 inverse symbol (xx, xy, yy), same layout and scaling.
-    inverse: [Vec<Complex<f64>>; 3],
+    inverse: [Vec<f64>; 3],
     spectra: [Vec<Complex<f64>>; 2],
     row: Vec<f64>,
     row_spectrum: Vec<Complex<f64>>,
     scratch: Vec<Complex<f64>>,
 }
 
-/// Smallest n ≥ `minimum` whose prime factors are 2, 3 and 5 (fast FFT lengths).
+/// Smallest even n ≥ `minimum` whose prime factors are 2, 3 and 5 (fast FFT lengths; real
+/// transforms of even length take half a complex transform, of odd length a whole one).
 fn fast_length(minimum: usize) -> usize {
-    (minimum.max(1)..)
+    (minimum.max(2)..)
         .find(|&n| {
-            let mut m = n;
-            for factor in [2, 3, 5] {
-                while m % factor == 0 {
-                    m /= factor;
+            n % 2 == 0 && {
+                let mut m = n;
+                for factor in [2, 3, 5] {
+                    while m % factor == 0 {
+                        m /= factor;
+                    }
                 }
+                m == 1
             }
-            m == 1
         })
         .expect("an FFT-friendly length exists above any bound")
 }
@@ -64,15 +75,18 @@ fn fast_length(minimum: usize) -> usize {
 impl SlipConvolution {
     pub fn new(table: &InfluenceTable) -> Self {
         let (nx, ny) = (table.elements_x, table.elements_y);
-        let size_x = fast_length(2 * nx);
+        // One more than the wrap-free minimum 2 nx along x, so the kernel can be placed evenly.
+        let size_x = fast_length(2 * nx + 1);
         let size_y = fast_length(2 * ny - 1);
         let half_x = size_x / 2 + 1;
-        let mut real_planner = RealFftPlanner::<f64>::new();
-        let mut planner = FftPlanner::<f64>::new();
-        let row_forward = real_planner.plan_fft_forward(size_x);
-        let row_inverse = real_planner.plan_fft_inverse(size_x);
-        let column_forward = planner.plan_fft_forward(size_y);
-        let column_inverse = planner.plan_fft_inverse(size_y);
+        let (row_forward, row_inverse, column_forward, column_inverse) = PLANNERS.with_borrow_mut(|(real, complex)| {
+            (
+                real.plan_fft_forward(size_x),
+                real.plan_fft_inverse(size_x),
+                complex.plan_fft_forward(size_y),
+                complex.plan_fft_inverse(size_y),
+            )
+        });
         let scratch_length = [
             row_forward.get_scratch_len(),
             row_inverse.get_scratch_len(),
@@ -83,6 +97,7 @@ impl SlipConvolution {
         .max()
         .unwrap_or(0);
         let spectrum = || vec![Complex::new(0.0, 0.0); half_x * size_y];
+        let real = || vec![0.0; half_x * size_y];
         let mut convolution = Self {
             elements_x: nx,
             elements_y: ny,
@@ -93,8 +108,8 @@ impl SlipConvolution {
             row_inverse,
             column_forward,
             column_inverse,
-            kernel: [spectrum(), spectrum(), spectrum()],
-            inverse: [spectrum(), spectrum(), spectrum()],
+            kernel: Default::default(),
+            inverse: [real(), real(), real()],
             spectra: [spectrum(), spectrum()],
             row: vec![0.0; size_x],
             row_spectrum: vec![Complex::new(0.0, 0.0); half_x],
@@ -103,43 +118,36 @@ impl SlipConvolution {
         let normalisation = 1.0 / (size_x * size_y) as f64;
         let (nx, ny) = (nx as isize, ny as isize);
         let wrap = |offset: isize, size: usize| offset.rem_euclid(size as isize) as usize;
-        // Kernel of the product: offsets −(nx−1) … nx along x (target minus source, the
-        // source grid starting one element behind), −(ny−1) … ny−1 along y.
-        let components = [&table.xx, &table.xy, &table.yy];
+        // The product needs offsets −(nx−1) … nx along x (target minus source, the source grid
+        // starting one element behind) and −(ny−1) … ny−1 along y. The kernel is placed at
+        // −nx … nx (the extra offset −nx meets no pair of target and source): T is even under
+        // point reflection, so the placed kernel is even and its symbol real. The same symbol,
+        // inverted, is the preconditioner's.
         let mut field = vec![0.0; size_x * size_y];
-        for (component, values) in components.iter().enumerate() {
-            field.iter_mut().for_each(|v| *v = 0.0);
-            for dy in -(ny - 1)..ny {
-                for dx in -(nx - 1)..=nx {
-                    field[wrap(dx, size_x) + wrap(dy, size_y) * size_x] = values[table.index(dx, dy)] * normalisation;
-                }
-            }
-            convolution.forward(&field, 0);
-            convolution.kernel[component].clone_from(&convolution.spectra[0]);
-        }
-        // Even kernel of the preconditioner: |dx| ≤ min(nx, Mx/2), |dy| ≤ ny − 1 (< My/2).
-        let reach_x = nx.min(size_x as isize / 2);
         let mut symbols = Vec::new();
-        for values in components {
+        for values in [&table.xx, &table.xy, &table.yy] {
             field.iter_mut().for_each(|v| *v = 0.0);
             for dy in -(ny - 1)..ny {
-                for dx in -reach_x..=reach_x {
+                for dx in -nx..=nx {
                     field[wrap(dx, size_x) + wrap(dy, size_y) * size_x] = values[table.index(dx, dy)];
                 }
             }
             convolution.forward(&field, 0);
-            symbols.push(convolution.spectra[0].clone());
+            symbols.push(convolution.spectra[0].iter().map(|c| c.re).collect::<Vec<f64>>());
         }
-        // The symbol of an even real kernel is real; its 2 × 2 matrix is inverted per
-        // frequency. Love's kernel is positive definite, but truncation can leave a few
-        // symbols near zero or negative: those frequencies are floored at a small fraction of
-        // the largest eigenvalue, so the preconditioner stays bounded and positive.
-        let largest = symbols[0].iter().chain(&symbols[2]).map(|c| c.re.abs()).fold(0.0, f64::max);
+        for (kernel, symbol) in convolution.kernel.iter_mut().zip(&symbols) {
+            *kernel = symbol.iter().map(|value| value * normalisation).collect();
+        }
+        // The 2 × 2 symbol is inverted per frequency. Love's kernel is positive definite, but
+        // truncation can leave a few symbols near zero or negative: those frequencies are
+        // floored at a small fraction of the largest eigenvalue, so the preconditioner stays
+        // bounded and positive.
+        let largest = symbols[0].iter().chain(&symbols[2]).map(|value| value.abs()).fold(0.0, f64::max);
         let floor = 1e-3 * largest;
         let [inverse_xx, inverse_xy, inverse_yy] = &mut convolution.inverse;
         let symbol_matrices = symbols[0].iter().zip(&symbols[1]).zip(&symbols[2]);
         for (k, ((xx, xy), yy)) in symbol_matrices.enumerate() {
-            let (xx, xy, yy) = (xx.re, xy.re, yy.re);
+            let (xx, xy, yy) = (*xx, *xy, *yy);
             // Eigen-decomposition of the symmetric 2 × 2 symbol, eigenvalues floored.
             let mean = 0.5 * (xx + yy);
             let radius = (0.25 * (xx - yy) * (xx - yy) + xy * xy).sqrt();
@@ -147,9 +155,9 @@ impl SlipConvolution {
             let angle = 0.5 * (2.0 * xy).atan2(xx - yy);
             let (c, s) = (angle.cos(), angle.sin());
             let (inv_large, inv_small) = (normalisation / large, normalisation / small);
-            inverse_xx[k] = Complex::new(c * c * inv_large + s * s * inv_small, 0.0);
-            inverse_xy[k] = Complex::new(c * s * (inv_large - inv_small), 0.0);
-            inverse_yy[k] = Complex::new(s * s * inv_large + c * c * inv_small, 0.0);
+            inverse_xx[k] = c * c * inv_large + s * s * inv_small;
+            inverse_xy[k] = c * s * (inv_large - inv_small);
+            inverse_yy[k] = s * s * inv_large + c * c * inv_small;
         }
         convolution
     }
@@ -216,7 +224,7 @@ impl SlipConvolution {
     }
 
     /// spectra ← [[k_xx, k_xy], [k_xy, k_yy]] · spectra, per frequency.
-    fn multiply(&mut self, [xx, xy, yy]: &[Vec<Complex<f64>>; 3]) {
+    fn multiply(&mut self, [xx, xy, yy]: &[Vec<f64>; 3]) {
         let [first, second] = &mut self.spectra;
         for k in 0..first.len() {
             let (u, v) = (first[k], second[k]);
@@ -285,8 +293,8 @@ mod tests {
     #[test]
     fn fast_lengths() {
         assert_eq!(fast_length(7), 8);
-        assert_eq!(fast_length(81), 81);
+        assert_eq!(fast_length(81), 90);
         assert_eq!(fast_length(161), 162);
-        assert_eq!(fast_length(401), 405);
+        assert_eq!(fast_length(401), 432);
     }
 }

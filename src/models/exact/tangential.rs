@@ -135,6 +135,8 @@ struct Newton<'a> {
     steps: [Vec<f64>; 2],
     product: [Vec<f64>; 2],
     unscaled: [Vec<f64>; 2],
+    krylov_basis: Vec<Field>,
+    krylov_preconditioned: Vec<Field>,
     iterations: usize,
     products: usize,
 }
@@ -165,6 +167,8 @@ impl<'a> Newton<'a> {
             steps: [vec![0.0; steps], vec![0.0; steps]],
             product: [vec![0.0; count], vec![0.0; count]],
             unscaled: [vec![0.0; count], vec![0.0; count]],
+            krylov_basis: Vec::new(),
+            krylov_preconditioned: Vec::new(),
             iterations: 0,
             products: 0,
         };
@@ -431,29 +435,29 @@ impl<'a> Newton<'a> {
         let mut solution = vec![0.0; size];
         let mut residual = right_side.to_vec();
         let target = tolerance * norm(right_side);
-        let mut basis: Vec<Field> = Vec::with_capacity(RESTART + 1);
-        let mut preconditioned: Vec<Field> = Vec::with_capacity(RESTART);
+        // Krylov vectors are kept between solves (allocating them anew each iteration costs
+        // page faults on large grids).
+        let mut basis = std::mem::take(&mut self.krylov_basis);
+        let mut preconditioned = std::mem::take(&mut self.krylov_preconditioned);
+        basis.resize_with(RESTART + 1, || vec![0.0; size]);
+        preconditioned.resize_with(RESTART, || vec![0.0; size]);
         let mut work = vec![0.0; size];
         loop {
             let beta = norm(&residual);
             if beta <= target || !beta.is_finite() || self.products >= MAX_PRODUCTS {
-                return solution;
+                break;
             }
-            basis.clear();
-            preconditioned.clear();
-            basis.push(residual.iter().map(|r| r / beta).collect());
+            basis[0].iter_mut().zip(&residual).for_each(|(v, r)| *v = r / beta);
             // Hessenberg columns, Givens rotations (c, s), and the rotated right side.
             let mut hessenberg: Vec<Vec<f64>> = Vec::with_capacity(RESTART);
             let mut rotations: Vec<(f64, f64)> = Vec::with_capacity(RESTART);
             let mut rotated = vec![beta];
             for k in 0..RESTART {
-                let mut z = vec![0.0; size];
-                self.precondition(&basis[k], &mut z);
-                self.apply_operator(&z, &mut work);
-                preconditioned.push(z);
+                self.precondition(&basis[k], &mut preconditioned[k]);
+                self.apply_operator(&preconditioned[k], &mut work);
                 // Modified Gram–Schmidt.
                 let mut column = Vec::with_capacity(k + 2);
-                for vector in &basis {
+                for vector in &basis[..=k] {
                     let h = dot(&work, vector);
                     work.iter_mut().zip(vector).for_each(|(w, v)| *w -= h * v);
                     column.push(h);
@@ -478,7 +482,7 @@ impl<'a> Newton<'a> {
                 if estimate <= target || next_norm == 0.0 || self.products >= MAX_PRODUCTS {
                     break;
                 }
-                basis.push(work.iter().map(|w| w / next_norm).collect());
+                basis[k + 1].iter_mut().zip(&work).for_each(|(v, w)| *v = w / next_norm);
             }
             // Back substitution for the coefficients, then the update from the preconditioned
             // vectors.
@@ -495,12 +499,15 @@ impl<'a> Newton<'a> {
                 solution.iter_mut().zip(vector).for_each(|(x, z)| *x += coefficient * z);
             }
             if rotated[used].abs() <= target || self.products >= MAX_PRODUCTS {
-                return solution;
+                break;
             }
             // Restart from the true residual.
             self.apply_operator(&solution, &mut work);
             residual.iter_mut().zip(right_side.iter().zip(&work)).for_each(|(r, (b, w))| *r = b - w);
         }
+        self.krylov_basis = basis;
+        self.krylov_preconditioned = preconditioned;
+        solution
     }
 
     /// Applies the Newton step; adhesion elements pushed over their bound start slipping.
