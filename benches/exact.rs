@@ -1,27 +1,96 @@
-//! Kalker's exact theory on CONTACT's published spin case (partial slip, F_y ≈ −0.61 μN) at
-//! 20 × 20, 40 × 40, 44 × 44 (CONTACT's grid) and 80 × 80 elements over the potential contact
-//! area. Work grows as N² per sweep times sweeps ∝ √N.
+//! Kalker's exact theory (FFT Newton–GMRES solver), one thread: CONTACT's published spin case
+//! (η with spin, partial slip, F_y ≈ −0.61 μN) and a pure-ξ partial-slip case (ξ = 1e-3 on
+//! CONTACT's ellipse, F_x ≈ −0.47 μN) at 40 × 40, 80 × 80 and 160 × 160 elements over the
+//! potential contact area; and a warm-started co-simulation on 40 × 40, each step starting from
+//! the previous one's tractions while the creepages and the ellipse vary slowly.
+//!
+//! Run: `cargo bench --bench exact`. The solver's iterations and operator products per case are
+//! printed before the timings.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use wheel_rail_contact::{CreepForceModel, ExactTheory};
+use wheel_rail_contact::{ContactInput, ExactTheory, WarmStart};
 
 #[allow(dead_code)] // the bench uses one of the published cases
 #[path = "../tests/data/contact_published_cases.rs"]
 mod published;
 
-fn exact_theory_spin_case(c: &mut Criterion) {
-    let input = published::FASTSIM_CASE;
-    let mut group = c.benchmark_group("exact_theory_spin_case");
-    group.sample_size(10);
-    for elements in [20, 40, 44, 80] {
-        let model = ExactTheory::new(elements, elements);
-        group.bench_with_input(BenchmarkId::from_parameter(elements), &model, |bencher, model| {
-            bencher.iter(|| model.creep_forces(black_box(&input)))
-        });
+const GRIDS: [usize; 3] = [40, 80, 160];
+
+fn cases() -> [(&'static str, ContactInput); 2] {
+    let spin = published::FASTSIM_CASE;
+    let pure_xi = ContactInput {
+        creepage_longitudinal: 1e-3,
+        creepage_lateral: 0.0,
+        spin_creepage: 0.0,
+        ..published::FASTSIM_CASE
+    };
+    [("spin_case", spin), ("pure_xi_partial_slip", pure_xi)]
+}
+
+fn exact_theory_cases(c: &mut Criterion) {
+    for (name, input) in cases() {
+        let mut group = c.benchmark_group(format!("exact_theory_{name}"));
+        group.sample_size(10);
+        for elements in GRIDS {
+            let model = ExactTheory::new(elements, elements);
+            let solution = model.solve(&input).unwrap();
+            println!(
+                "{name} {elements}x{elements}: {} Newton steps, {} operator products",
+                solution.iterations, solution.operator_products
+            );
+            group.bench_with_input(BenchmarkId::from_parameter(elements), &model, |bencher, model| {
+                bencher.iter(|| model.solve(black_box(&input)).unwrap().forces)
+            });
+        }
+        group.finish();
     }
+}
+
+/// Step k of a slowly varying scene: creepages and ellipse drift by ≈ 0.1–0.3 % per step
+/// around CONTACT's spin case (with some longitudinal creepage).
+fn scene_step(k: usize) -> ContactInput {
+    let t = k as f64 * 0.01;
+    let base = published::FASTSIM_CASE;
+    ContactInput {
+        creepage_longitudinal: 4e-4 * (1.0 + 0.3 * t.sin()),
+        creepage_lateral: base.creepage_lateral * (1.0 + 0.2 * (0.7 * t).sin()),
+        spin_creepage: base.spin_creepage * (1.0 + 0.2 * (1.3 * t).cos()),
+        semi_axis_a: base.semi_axis_a * (1.0 + 0.05 * (0.5 * t).sin()),
+        normal_force: base.normal_force * (1.0 + 0.1 * (0.9 * t).sin()),
+        ..base
+    }
+}
+
+fn exact_theory_warm_steps(c: &mut Criterion) {
+    let model = ExactTheory::new(40, 40);
+    let mut start = model.solve(&scene_step(0)).unwrap().warm_start();
+    let (mut products, mut iterations) = (0, 0);
+    for k in 1..=100 {
+        let solution = model.solve_from(&scene_step(k), Some(&start)).unwrap();
+        products += solution.operator_products;
+        iterations += solution.iterations;
+        start = solution.warm_start();
+    }
+    println!(
+        "warm steps 40x40: {:.1} Newton steps, {:.1} operator products per step",
+        iterations as f64 / 100.0,
+        products as f64 / 100.0
+    );
+    let mut group = c.benchmark_group("exact_theory_warm_step");
+    group.sample_size(20);
+    group.bench_function("40", |bencher| {
+        let mut k = 0;
+        let mut start = WarmStart::default();
+        bencher.iter(|| {
+            k += 1;
+            let solution = model.solve_from(black_box(&scene_step(k)), Some(&start)).unwrap();
+            start = solution.warm_start();
+            solution.forces
+        })
+    });
     group.finish();
 }
 
-criterion_group!(benches, exact_theory_spin_case);
+criterion_group!(benches, exact_theory_cases, exact_theory_warm_steps);
 criterion_main!(benches);

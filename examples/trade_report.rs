@@ -1,7 +1,8 @@
 //! The speed–accuracy trade, measured: evaluates every model of the ladder over the fixed case
 //! set of docs/trade.md against the reference, Kalker's exact theory (`ExactTheory`) on two grids
-//! extrapolated in the grid size (Richardson), checks the reference against CONTACT's published
-//! values, and writes tables and SVG plots under docs/trade/.
+//! extrapolated in the grid size (Richardson, solved in parallel with
+//! `ExactTheory::creep_forces_many`), checks the reference against CONTACT's published values,
+//! and writes tables and SVG plots under docs/trade/.
 //!
 //! Run: `cargo run --release --example trade_report` (or `-- --quick` for the reduced CI set).
 
@@ -36,6 +37,9 @@ struct Settings {
     levels: &'static [f64],
     /// The exact theory's coarse and fine grids (n × n); the reference is 2 F_fine − F_coarse.
     exact_grids: (usize, usize),
+    /// Further exact-theory grids (longitudinal × lateral) timed and compared, one case at a
+    /// time on one thread.
+    exact_rows: &'static [(usize, usize)],
     fastsim_grids: &'static [usize],
     repetitions: usize,
     out_dir: &'static str,
@@ -52,6 +56,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ratios: &[0.5, 2.0],
             levels: &[0.1, 1.0, 5.0],
             exact_grids: (10, 20),
+            exact_rows: &[(40, 10)],
             fastsim_grids: &[5, 10, 20],
             repetitions: 3,
             out_dir: "target/trade-quick",
@@ -61,7 +66,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             quick,
             ratios: &[0.2, 0.5, 1.0, 2.0, 5.0],
             levels: &[0.02, 0.1, 0.3, 0.6, 1.0, 1.5, 2.5, 5.0, 20.0],
-            exact_grids: (40, 80),
+            exact_grids: (80, 160),
+            exact_rows: &[(40, 40), (200, 50)],
             fastsim_grids: &[5, 10, 20, 40, 70, 100],
             repetitions: 15,
             out_dir: "docs/trade",
@@ -70,22 +76,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     std::fs::create_dir_all(settings.out_dir)?;
     let cases = case_set(&settings);
     let (coarse, fine) = settings.exact_grids;
+    // The coarse grid is timed one case at a time (it is a row of the table); the fine one only
+    // serves the reference and runs on every core.
     let exact_coarse = evaluate(&exact(coarse), &cases, 1);
-    let exact_fine = evaluate(&exact(fine), &cases, 1);
-    let reference: Vec<CreepForces> = exact_coarse.0.iter().zip(&exact_fine.0).map(|(c, f)| richardson(c, f)).collect();
+    let exact_fine: Vec<CreepForces> =
+        exact(fine).creep_forces_many(&cases).into_iter().collect::<Result<_, _>>().expect("valid cases");
+    let reference: Vec<CreepForces> = exact_coarse.0.iter().zip(&exact_fine).map(|(c, f)| richardson(c, f)).collect();
 
     let mut rows = Vec::new();
     for (name, model) in ladder(settings.fastsim_grids) {
         let (results, nanoseconds) = evaluate(model.as_ref(), &cases, settings.repetitions);
         rows.push(Row::new(name, &results, &reference, nanoseconds));
     }
-    for (grid, (results, nanoseconds)) in [(coarse, &exact_coarse), (fine, &exact_fine)] {
-        rows.push(Row::new(format!("exact_{grid}x{grid}"), results, &reference, *nanoseconds));
+    for &(longitudinal, lateral) in settings.exact_rows {
+        let (results, nanoseconds) = evaluate(&ExactTheory::new(longitudinal, lateral), &cases, 1);
+        rows.push(Row::new(format!("exact_{longitudinal}x{lateral}"), &results, &reference, nanoseconds));
     }
+    rows.push(Row::new(format!("exact_{coarse}x{coarse}"), &exact_coarse.0, &reference, exact_coarse.1));
     let polach_time = rows[0].nanoseconds;
     let finest_fastsim =
         ladder_results(&rows, &format!("fastsim_elliptic_{0}x{0}", settings.fastsim_grids.last().unwrap()));
-    let reference_accuracy = deviations(&exact_fine.0, &reference);
+    let reference_accuracy = deviations(&exact_fine, &reference);
     let mut report = String::new();
     write_header(&mut report, &settings, cases.len(), reference_accuracy);
     write_trade_table(&mut report, &rows, polach_time);
@@ -278,10 +289,9 @@ fn write_header(report: &mut String, settings: &Settings, case_count: usize, acc
          and {fine} × {fine} elements over 1.1 a × 1.1 b, extrapolated to the zero grid size assuming its \
          first-order grid error (Richardson: F = 2 F_{fine} − F_{coarse}). The extrapolation moves the \
          {fine} × {fine} forces by median {:.4} / max {:.4} (F_x), {:.4} / {:.4} (F_y), max {:.4} (M_z) in \
-         the units below. Accuracy of the reference, checked against 160 × 160 on two cases \
-         ([../trade.md](../trade.md)): ≈ 0.002 μQ in pure ξ, up to ≈ 0.015 μQ with spin, where the exact \
-         theory's grid convergence is slow and irregular; smaller differences between models are not \
-         resolved there. Every FASTSIM row uses CONTACT's blended flexibilities. Errors are \
+         the units below. Accuracy of the reference, checked against the 160/320 and 120/240 \
+         extrapolations on four cases ([../trade.md](../trade.md)): ≈ 0.0005 μQ in pure creepage, ≈ 0.001 μQ \
+         with spin. Every FASTSIM row uses CONTACT's blended flexibilities. Errors are \
          |Δ F|/(μQ) for forces and |Δ M_z|/(μQ·c) for the spin moment (\"—\": the model has no M_z). Time: \
          median over {} passes through all cases in one process, per evaluation (exact theory: one pass); \
          ratio = time / Polach's time.\n",
@@ -382,17 +392,24 @@ fn write_contact_comparison(report: &mut String, settings: &Settings) -> std::io
         writeln!(report, "| {name} | {max_error:.4} | {:.4} | {mz} |", f.force_lateral / FASTSIM_CASE.friction_limit())
             .unwrap();
     }
-    let extrapolated = |input: &ContactInput| {
-        richardson(&exact(coarse).creep_forces(input).unwrap(), &exact(fine).creep_forces(input).unwrap())
+    let mut inputs: Vec<ContactInput> = TRACTCURV_EXACT
+        .iter()
+        .map(|&(xi_percent, _)| ContactInput { creepage_longitudinal: xi_percent / 100.0, ..TRACTCURV_CONTACT })
+        .collect();
+    inputs.push(FASTSIM_CASE);
+    let solve_all = |n: usize| -> Vec<CreepForces> {
+        exact(n).creep_forces_many(&inputs).into_iter().collect::<Result<_, _>>().expect("valid cases")
     };
+    let extrapolated: Vec<CreepForces> =
+        solve_all(coarse).iter().zip(&solve_all(fine)).map(|(c, f)| richardson(c, f)).collect();
     let tractcurv_reference = TRACTCURV_EXACT
         .iter()
-        .map(|&(xi_percent, published)| {
-            let input = ContactInput { creepage_longitudinal: xi_percent / 100.0, ..TRACTCURV_CONTACT };
-            (extrapolated(&input).force_longitudinal / input.friction_limit() - published).abs()
+        .zip(&extrapolated)
+        .map(|(&(_, published), forces)| {
+            (forces.force_longitudinal / TRACTCURV_CONTACT.friction_limit() - published).abs()
         })
         .fold(0.0, f64::max);
-    let f = extrapolated(&FASTSIM_CASE);
+    let f = extrapolated[TRACTCURV_EXACT.len()];
     writeln!(
         report,
         "| the reference: exact, {coarse}/{fine} extrapolated | {tractcurv_reference:.4} | {:.4} | {:.2} |",
@@ -530,11 +547,11 @@ fn plot_curves(
     chart.configure_mesh().x_desc("creepage / characteristic creepage").y_desc("force / (μQ)").draw()?;
     let mut models = ladder(settings.fastsim_grids);
     models.retain(|(name, _)| !name.starts_with("fastsim") || name.ends_with("_5x5") || name.ends_with("_20x20"));
-    let (_, fine) = settings.exact_grids;
-    models.push((format!("exact ({fine} × {fine})"), Box::new(exact(fine))));
+    let (coarse, _) = settings.exact_grids;
+    models.push((format!("exact ({coarse} × {coarse})"), Box::new(exact(coarse))));
     for (i, (name, model)) in models.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
-        // The exact theory costs seconds per point: every fourth point.
+        // The exact theory costs ≈ 0.1 s per point: every fourth point.
         let stride = if name.starts_with("exact") { 4 } else { 1 };
         let curve: Vec<(f64, f64)> = (0..=CURVE_POINTS)
             .step_by(stride)

@@ -1,7 +1,7 @@
 //! Kalker's exact theory (`ExactTheory`) against Kalker's linear coefficients, CONTACT's
 //! published cases, and the invariants of the contact problem.
 
-use wheel_rail_contact::{ContactInput, CreepForceModel, ElementState, ExactTheory, KalkerCoefficients};
+use wheel_rail_contact::{ContactInput, CreepForceModel, ElementState, ExactTheory, KalkerCoefficients, WarmStart};
 
 const SHEAR_MODULUS: f64 = 82e9;
 
@@ -225,6 +225,125 @@ fn degenerate_and_invalid_inputs() {
             assert!(forces.force_longitudinal.is_finite() && forces.force_lateral.is_finite());
             assert!(forces.spin_moment.unwrap().is_finite());
             assert!(forces.adhesion_utilisation <= 1.0 + 1e-12, "{case:?}: {forces:?}");
+        }
+    }
+}
+
+/// Cases of every regime: full adhesion, partial slip under ξ, full slip, pure spin, CONTACT's
+/// spin case, and thin ellipses (a/b = 0.1 and 10) with creepage and spin.
+fn regime_cases() -> Vec<(&'static str, ContactInput)> {
+    let base = input(8e-3, 4e-3, 82e3, 0.3, 0.28);
+    vec![
+        ("full adhesion", ContactInput { creepage_longitudinal: 1e-7, creepage_lateral: -1e-7, ..base }),
+        ("partial slip", ContactInput { creepage_longitudinal: 1e-3, ..base }),
+        ("full slip", ContactInput { creepage_longitudinal: 0.05, creepage_lateral: 0.03, ..base }),
+        ("pure spin", ContactInput { spin_creepage: 1.0, ..base }),
+        ("spin case", contact_spin_case()),
+        (
+            "a/b = 0.1",
+            ContactInput {
+                creepage_longitudinal: 5e-4,
+                creepage_lateral: 5e-4,
+                spin_creepage: 0.3,
+                ..input(2e-3, 20e-3, 82e3, 0.3, 0.28)
+            },
+        ),
+        (
+            "a/b = 10",
+            ContactInput {
+                creepage_longitudinal: 5e-4,
+                creepage_lateral: 5e-4,
+                spin_creepage: 0.3,
+                ..input(20e-3, 2e-3, 82e3, 0.3, 0.28)
+            },
+        ),
+    ]
+}
+
+/// Largest difference of the forces in units of μQ (the moment in μQa).
+fn force_difference(
+    case: &ContactInput,
+    a: &wheel_rail_contact::CreepForces,
+    b: &wheel_rail_contact::CreepForces,
+) -> f64 {
+    let limit = case.friction_limit();
+    let moment = (a.spin_moment.unwrap() - b.spin_moment.unwrap()).abs() / (limit * case.semi_axis_a);
+    ((a.force_longitudinal - b.force_longitudinal).abs() / limit)
+        .max((a.force_lateral - b.force_lateral).abs() / limit)
+        .max(moment)
+}
+
+/// Same grid, same answer: the FFT Newton solver equals CONTACT's Gauss–Seidel method
+/// (swept to a 1e-11 relative change) to 1e-6 μQ, with the same adhesion and slip areas.
+#[test]
+fn newton_solver_equals_gauss_seidel() {
+    for grid in [ExactTheory::new(24, 24), ExactTheory::new(30, 18)] {
+        for (name, case) in regime_cases() {
+            let fast = grid.solve(&case).unwrap();
+            let reference = grid.solve_by_gauss_seidel(&case, 1e-11).unwrap();
+            assert!(fast.converged && reference.converged, "{name}: not converged");
+            let difference = force_difference(&case, &fast.forces, &reference.forces);
+            assert!(difference < 1e-6, "{name} on {:?}: differs by {difference:.2e} μQ", grid.grid);
+            assert_eq!(fast.element_state, reference.element_state, "{name}: other adhesion/slip division");
+        }
+    }
+}
+
+/// Warm starts: from the solution of another creepage sign, of another ellipse, or from zero,
+/// the solve reaches the same answer as from zero traction (to the solver's tolerance), and a
+/// start from the answer itself needs no more than the two Newton steps of the stopping test
+/// (a loose one, then an accurate one that changes nothing).
+#[test]
+fn warm_starts_converge_to_the_same_answer() {
+    let model = ExactTheory::new(32, 32);
+    let case = contact_spin_case();
+    let cold = model.solve(&case).unwrap();
+    let mirrored = ContactInput {
+        creepage_lateral: -case.creepage_lateral,
+        spin_creepage: -case.spin_creepage,
+        creepage_longitudinal: 1e-3,
+        ..case
+    };
+    let other_ellipse = ContactInput { semi_axis_a: 3e-3, semi_axis_b: 9e-3, friction_coefficient: 0.1, ..mirrored };
+    let starts = [
+        ("other creepage sign", model.solve(&mirrored).unwrap().warm_start()),
+        ("other ellipse and μ", model.solve(&other_ellipse).unwrap().warm_start()),
+        ("zero", WarmStart::default()),
+        ("other grid", ExactTheory::new(20, 20).solve(&case).unwrap().warm_start()),
+        ("the answer", cold.warm_start()),
+    ];
+    for (name, start) in starts {
+        let warm = model.solve_from(&case, Some(&start)).unwrap();
+        assert!(warm.converged, "{name}");
+        let difference = force_difference(&case, &warm.forces, &cold.forces);
+        assert!(difference < 1e-8, "{name}: differs by {difference:.2e} μQ");
+        assert_eq!(warm.element_state, cold.element_state, "{name}");
+    }
+    let restarted = model.solve_from(&case, Some(&cold.warm_start())).unwrap();
+    assert!(restarted.iterations <= 2, "restart from the answer took {} Newton steps", restarted.iterations);
+}
+
+/// Extremes stay finite, within the Coulomb bound, and return: creepage 1e300, a/b = 1e-3 and
+/// 1e3, μ → 0, each with spin, on a coarse and a fine grid. (The iteration limits bound the
+/// time of every call; these converge well within them.)
+#[test]
+fn extremes_are_finite_and_bounded() {
+    let base = ContactInput { creepage_longitudinal: 1e-3, spin_creepage: 0.3, ..input(6e-3, 4e-3, 80e3, 0.3, 0.28) };
+    let cases = [
+        ContactInput { creepage_longitudinal: 1e300, creepage_lateral: -1e300, spin_creepage: 1e300, ..base },
+        ContactInput { semi_axis_a: 0.4e-3, semi_axis_b: 0.4, ..base },
+        ContactInput { semi_axis_a: 0.4, semi_axis_b: 0.4e-3, ..base },
+        ContactInput { friction_coefficient: 1e-300, ..base },
+        ContactInput { friction_coefficient: 1e-12, ..base },
+    ];
+    for model in [ExactTheory::new(12, 12), ExactTheory::new(60, 60)] {
+        for case in cases {
+            let solution = model.solve(&case).unwrap();
+            let forces = solution.forces;
+            assert!(forces.force_longitudinal.is_finite() && forces.force_lateral.is_finite(), "{case:?}");
+            assert!(forces.spin_moment.unwrap().is_finite(), "{case:?}");
+            assert!(forces.adhesion_utilisation <= 1.0 + 1e-12, "{case:?}: {forces:?}");
+            assert!(solution.converged, "{case:?}: not converged");
         }
     }
 }

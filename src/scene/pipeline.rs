@@ -25,7 +25,7 @@ use crate::contact_input::hertz_max_pressure;
 use crate::models::polach::resulting_creepage_at;
 use crate::{
     ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, ModelChoice, Polach, Polach2005,
-    ShapeCache,
+    ShapeCache, WarmStart,
 };
 
 /// Where the creepages ξ, η, φ come from.
@@ -148,12 +148,16 @@ pub struct SceneState {
     pub relaxed_forces: [f64; 2],
     /// Polach's shape factors for the last ellipse shape (bit-identical reuse).
     shape: ShapeCache,
+    /// The exact theory's last tractions, the start of its next solve ([`WarmStart`]): in a
+    /// co-simulation with slowly varying creepages a step then costs a few iterations. It
+    /// changes the result only within the solver's tolerance (1e-9 of the largest traction).
+    exact_start: WarmStart,
 }
 
 impl SceneState {
     /// A state with these relaxed forces and no cached data.
     pub fn with_relaxed_forces(relaxed_forces: [f64; 2]) -> Self {
-        Self { relaxed_forces, shape: ShapeCache::default() }
+        Self { relaxed_forces, ..Self::default() }
     }
 }
 
@@ -297,18 +301,17 @@ impl Scene {
             (TractionLaw::Coulomb, ModelChoice::Polach(polach)) => {
                 (polach.creep_forces_with_cache(&contact, &mut state.shape)?, input.friction_coefficient)
             }
+            (TractionLaw::Coulomb, ModelChoice::Exact(exact)) => {
+                let solution = exact.solve_from(&contact, Some(&state.exact_start))?;
+                state.exact_start = solution.warm_start();
+                (solution.forces, input.friction_coefficient)
+            }
             (TractionLaw::Coulomb, model) => (model.creep_forces(&contact)?, input.friction_coefficient),
         };
         let (forces, relaxed) = match self.relaxation {
-            Relaxation::On { length } => relax_forces(
-                &contact,
-                &steady,
-                friction,
-                state.relaxed_forces,
-                creepages.renewal,
-                length,
-                evaluation,
-            )?,
+            Relaxation::On { length } => {
+                relax_forces(&contact, &steady, friction, state.relaxed_forces, creepages.renewal, length, evaluation)?
+            }
             Relaxation::Off => (steady, state.relaxed_forces),
         };
         state.relaxed_forces = relaxed;

@@ -48,22 +48,39 @@ pub(crate) struct TangentialInfluence {
     pub yy: f64,
 }
 
+/// The corner function (F_xx, F_xy, F_yy) at (x, y), times π (see the module documentation).
+fn corner(x: f64, y: f64, poisson_ratio: f64) -> TangentialInfluence {
+    let along_x = x_asinh_y_over_x(x, y);
+    let along_y = x_asinh_y_over_x(y, x);
+    TangentialInfluence {
+        xx: (1.0 - poisson_ratio) * along_x + along_y,
+        xy: -poisson_ratio * x.hypot(y),
+        yy: along_x + (1.0 - poisson_ratio) * along_y,
+    }
+}
+
+/// Σ ± F over the four corners (the sign is the product of the corners' ± signs), divided by
+/// π: corners given as [(+, +), (+, −), (−, +), (−, −)].
+fn four_corner_sum(corners: [TangentialInfluence; 4]) -> TangentialInfluence {
+    let [pp, pm, mp, mm] = corners;
+    TangentialInfluence {
+        xx: (pp.xx - pm.xx - mp.xx + mm.xx) / PI,
+        xy: (pp.xy - pm.xy - mp.xy + mm.xy) / PI,
+        yy: (pp.yy - pm.yy - mp.yy + mm.yy) / PI,
+    }
+}
+
 /// Love's coefficients: displacement difference at offset (x, y) from the centre of a
 /// `length` × `width` rectangle carrying unit uniform traction, times G (dimensionless).
-pub(crate) fn rectangle_influence(x: f64, y: f64, length: f64, width: f64, poisson_ratio: f64) -> TangentialInfluence {
-    let nu = poisson_ratio;
-    let mut sum = TangentialInfluence::default();
-    for (corner_x, sign_x) in [(x + 0.5 * length, 1.0), (x - 0.5 * length, -1.0)] {
-        for (corner_y, sign_y) in [(y + 0.5 * width, 1.0), (y - 0.5 * width, -1.0)] {
-            let sign = sign_x * sign_y;
-            let along_x = x_asinh_y_over_x(corner_x, corner_y);
-            let along_y = x_asinh_y_over_x(corner_y, corner_x);
-            sum.xx += sign * ((1.0 - nu) * along_x + along_y);
-            sum.yy += sign * (along_x + (1.0 - nu) * along_y);
-            sum.xy -= sign * nu * corner_x.hypot(corner_y);
-        }
-    }
-    TangentialInfluence { xx: sum.xx / PI, xy: sum.xy / PI, yy: sum.yy / PI }
+#[cfg(test)]
+fn rectangle_influence(x: f64, y: f64, length: f64, width: f64, poisson_ratio: f64) -> TangentialInfluence {
+    let (half_length, half_width) = (0.5 * length, 0.5 * width);
+    four_corner_sum([
+        corner(x + half_length, y + half_width, poisson_ratio),
+        corner(x + half_length, y - half_width, poisson_ratio),
+        corner(x - half_length, y + half_width, poisson_ratio),
+        corner(x - half_length, y - half_width, poisson_ratio),
+    ])
 }
 
 /// Love's coefficients between all pairs of elements of a grid of `elements_x` × `elements_y`
@@ -75,8 +92,8 @@ pub(crate) fn rectangle_influence(x: f64, y: f64, length: f64, width: f64, poiss
 /// A is even under (x, y) → (−x, −y) in every component (xy/r³ included), so the table serves
 /// both A(I − J) and A(J − I).
 pub(crate) struct InfluenceTable {
-    elements_x: usize,
-    elements_y: usize,
+    pub elements_x: usize,
+    pub elements_y: usize,
     /// Components, row-major over offsets: index (dx + nx) + (dy + ny − 1)(2nx + 1).
     pub xx: Vec<f64>,
     pub xy: Vec<f64>,
@@ -93,17 +110,28 @@ impl InfluenceTable {
             xy: Vec::with_capacity(size),
             yy: Vec::with_capacity(size),
         };
-        let nx = elements_x as isize;
-        let ny = elements_y as isize;
-        for offset_y in -(ny - 1)..ny {
-            for offset_x in -nx..=nx {
-                let a = rectangle_influence(
-                    offset_x as f64 * length,
-                    offset_y as f64 * width,
-                    length,
-                    width,
-                    poisson_ratio,
-                );
+        // The corners of every rectangle lie on one lattice of (2nx + 2) × 2ny nodes: the corner
+        // function is evaluated once per node, not four times per entry.
+        let (nodes_x, nodes_y) = (2 * elements_x + 2, 2 * elements_y);
+        let node_x = |m: usize| (m as f64 - elements_x as f64 - 0.5) * length;
+        let node_y = |m: usize| (m as f64 - elements_y as f64 + 0.5) * width;
+        let mut lattice = Vec::with_capacity(nodes_x * nodes_y);
+        for m_y in 0..nodes_y {
+            for m_x in 0..nodes_x {
+                lattice.push(corner(node_x(m_x), node_y(m_y), poisson_ratio));
+            }
+        }
+        // Entry (dx, dy): corners x = (dx ± ½)δx at nodes dx + nx + 1 and dx + nx, y = (dy ± ½)δy
+        // at nodes dy + ny and dy + ny − 1.
+        for lower_y in 0..nodes_y - 1 {
+            for lower_x in 0..nodes_x - 1 {
+                let node = |m_x: usize, m_y: usize| lattice[m_x + m_y * nodes_x];
+                let a = four_corner_sum([
+                    node(lower_x + 1, lower_y + 1),
+                    node(lower_x + 1, lower_y),
+                    node(lower_x, lower_y + 1),
+                    node(lower_x, lower_y),
+                ]);
                 table.xx.push(a.xx / length);
                 table.xy.push(a.xy / length);
                 table.yy.push(a.yy / length);

@@ -13,35 +13,62 @@
 //! ```
 //!
 //! (with CONTACT's evaluation of the spin term at x + δx/6, see `rigid_slip`), discretised
-//! with piecewise-constant tractions on a rectangular grid (`grid.rs`), Love's
-//! influence coefficients (`influence.rs`) and a Gauss–Seidel march (`tangential.rs`).
+//! with piecewise-constant tractions on a rectangular grid (`grid.rs`) and Love's influence
+//! coefficients (`influence.rs`), applied as FFT convolutions (`convolution.rs`) inside an
+//! active-set Newton–GMRES solver (`tangential.rs`). CONTACT's non-linear Gauss–Seidel
+//! method on the same discretisation (`gauss_seidel.rs`) stays as the test oracle
+//! ([`ExactTheory::solve_by_gauss_seidel`]).
 //!
 //! Sign convention: tractions and forces act on the wheel (body 1) and oppose the creepages;
 //! M_z = Σ (x p_y − y p_x) δA about the contact centre.
 //!
-//! Cost: O(N²) per sweep for N elements in contact, and the number of sweeps grows like √N
-//! (30–100 on the tested grids). Measured on CONTACT's spin case (`benches/exact.rs`, release,
-//! shared 2-core machine): 7 ms at 20 × 20, 0.1 s at 40 × 40, 0.12–0.17 s at 44 × 44, 2–2.7 s at
-//! 80 × 80; 1–2 min at 160 × 160. Pure creepage in partial slip converges in fewer sweeps
-//! (0.08 s at 44 × 44, 0.9 s at 80 × 80). Meant for offline or low-rate use and as the
-//! reference of the ladder.
+//! Cost: O(N log N) per iteration for N elements (four 2-D FFTs of the zero-padded grid per
+//! operator product); measured figures in `benches/exact.rs` and the crate's README. Every
+//! solve is bounded ([`MAX_ITERATIONS`] Newton steps, [`MAX_PRODUCTS`] products).
+//!
+//! Warm starts: a solution's tractions, kept by the caller as a [`WarmStart`] and passed to
+//! [`ExactTheory::solve_from`], start the next solve. They are stored in units of μp₀ on a grid
+//! that scales with the ellipse, so they carry over to a new load, friction coefficient and
+//! ellipse; a poor start costs iterations, never accuracy (the solution is the same to the
+//! solver's tolerance).
 
+mod convolution;
+mod element;
+mod gauss_seidel;
 mod grid;
 mod influence;
 mod tangential;
 
 use std::f64::consts::PI;
 
+use rayon::prelude::*;
+
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+use convolution::SlipConvolution;
 use grid::ContactGrid;
 pub use grid::GridSize;
 use influence::InfluenceTable;
-pub use tangential::ElementState;
+use tangential::TangentialSolution;
+pub use tangential::{MAX_ITERATIONS, MAX_PRODUCTS};
 
-/// Largest number of elements along either axis (the "[1, 200]" of the validation message).
-/// Work grows as the fifth power of the elements per axis (N² per sweep, sweeps ∝ √N): about
-/// 4 s per case at 80 × 80, minutes at 200 × 200; the limit keeps a typo from running for hours.
+/// Whether an element carries traction, and if so whether it adheres or slips.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementState {
+    /// Outside the contact ellipse: no pressure, no traction.
+    Exterior,
+    /// Inside the contact, |p| < μ p_n and zero slip.
+    Adhesion,
+    /// Inside the contact, |p| = μ p_n, traction opposing the slip.
+    Slip,
+}
+
+/// Largest number of elements along either axis (the "[1, 200]" of the validation message):
+/// bounds the memory (the Newton solver keeps 60 vectors of the grid's size) and the time of a
+/// solve.
 pub const MAX_ELEMENTS_PER_AXIS: usize = 200;
+/// Smallest number of elements along both axes for which a solve without a start begins with
+/// the solution on the half grid ([`ExactTheory::solve_from`]).
+pub const NESTED_START_MINIMUM: usize = 40;
 /// Offset of the point where the spin part φx of the rigid slip is taken, in element lengths
 /// from the centre towards the leading edge; see [`rigid_slip`].
 const SPIN_SLIP_OFFSET: f64 = 1.0 / 6.0;
@@ -90,10 +117,16 @@ pub struct ExactSolution {
     pub adhesion_area: f64,
     /// Area of the slip elements \[m²\].
     pub slip_area: f64,
-    /// Gauss–Seidel sweeps used.
-    pub sweeps: usize,
-    /// Whether the iteration met its tolerance (largest traction change in a sweep ≤ 1e-6 × the
-    /// largest traction) within the sweep limit. Every case in the tests converges; the forces
+    /// The friction coefficient μ of the solve: the Coulomb bound of element I is
+    /// μ × `pressure[I]`.
+    pub friction_coefficient: f64,
+    /// Newton steps used (Gauss–Seidel sweeps for [`ExactTheory::solve_by_gauss_seidel`]).
+    pub iterations: usize,
+    /// Operator products (FFT convolutions) used, over all Newton steps.
+    pub operator_products: usize,
+    /// Whether the iteration met its tolerance (a Newton step that changed no element's state
+    /// and no traction by more than 1e-9 × the largest traction) within the limits
+    /// [`MAX_ITERATIONS`] and [`MAX_PRODUCTS`]. Every case in the tests converges; the forces
     /// are the last iterate otherwise.
     pub converged: bool,
 }
@@ -104,6 +137,67 @@ impl ExactSolution {
         let x = (i as f64 + 0.5 - 0.5 * self.grid.longitudinal as f64) * self.element_length;
         let y = (j as f64 + 0.5 - 0.5 * self.grid.lateral as f64) * self.element_width;
         (x, y)
+    }
+
+    /// This solution's tractions as the start of the next solve ([`ExactTheory::solve_from`]).
+    pub fn warm_start(&self) -> WarmStart {
+        let relative = |traction: &[f64]| -> Vec<f64> {
+            traction
+                .iter()
+                .zip(&self.pressure)
+                .map(|(&p, &pressure)| {
+                    let bound = self.friction_coefficient * pressure;
+                    if bound > 0.0 && (p / bound).is_finite() {
+                        p / bound
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        };
+        WarmStart {
+            grid: Some(self.grid),
+            relative_longitudinal: relative(&self.traction_longitudinal),
+            relative_lateral: relative(&self.traction_lateral),
+        }
+    }
+}
+
+/// A previous solution's tangential tractions relative to their Coulomb bound μ p_n, per
+/// element of its grid: the start of the next solve ([`ExactTheory::solve_from`]).
+///
+/// The grid spans 2.2 a × 2.2 b whatever the ellipse, so an element keeps its relative position
+/// when the semi-axes change, and a traction relative to its bound keeps adhesion inside the
+/// bound and slip on it when the load, μ or the ellipse change: the start is the previous
+/// solution scaled to the new μp₀ and ellipse. On another grid size each element takes the
+/// value of the stored element that contains its centre. `WarmStart::default()` starts from
+/// zero traction.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct WarmStart {
+    grid: Option<GridSize>,
+    relative_longitudinal: Vec<f64>,
+    relative_lateral: Vec<f64>,
+}
+
+impl WarmStart {
+    /// The start on `grid` in the solver's units (μp₀), or `None` for an empty start.
+    fn tractions(&self, grid: &ContactGrid) -> Option<[Vec<f64>; 2]> {
+        let stored = self.grid?;
+        // Element k of n covers [k/n, (k+1)/n) of the axis; the stored element holding the
+        // centre (k + ½)/n.
+        let source = |k: usize, n: usize, m: usize| ((2 * k + 1) * m / (2 * n)).min(m - 1);
+        let mut tractions = [vec![0.0; grid.pressure.len()], vec![0.0; grid.pressure.len()]];
+        for j in 0..grid.elements_y {
+            let stored_j = source(j, grid.elements_y, stored.lateral);
+            for i in 0..grid.elements_x {
+                let element = i + j * grid.elements_x;
+                let stored_element = source(i, grid.elements_x, stored.longitudinal) + stored_j * stored.longitudinal;
+                let bound = grid.pressure[element];
+                tractions[0][element] = bound * self.relative_longitudinal[stored_element];
+                tractions[1][element] = bound * self.relative_lateral[stored_element];
+            }
+        }
+        Some(tractions)
     }
 }
 
@@ -131,6 +225,65 @@ impl ExactTheory {
     /// Lift-off (Q ≤ 0) gives no contact (every element exterior); μ = 0 gives zero traction
     /// with every contact element slipping.
     pub fn solve(&self, input: &ContactInput) -> Result<ExactSolution, InvalidInput> {
+        self.solve_from(input, None)
+    }
+
+    /// [`Self::solve`] starting from a previous solution's tractions (`start`, see
+    /// [`WarmStart`]). Per step of a co-simulation:
+    /// `let solution = model.solve_from(&input, Some(&start))?; start = solution.warm_start();`.
+    ///
+    /// Without a start (`None` or an empty one), grids of at least [`NESTED_START_MINIMUM`]
+    /// elements along both axes start from the solution on the grid of half as many elements
+    /// (nested iteration, recursively): it puts the division into adhesion and slip close to the
+    /// final one, which the Newton solver otherwise finds one element layer per step.
+    pub fn solve_from(&self, input: &ContactInput, start: Option<&WarmStart>) -> Result<ExactSolution, InvalidInput> {
+        let GridSize { longitudinal, lateral } = self.grid;
+        let coarse_start;
+        let start = match start {
+            Some(start) if start.grid.is_some() => Some(start),
+            _ if longitudinal.min(lateral) >= NESTED_START_MINIMUM => {
+                input.validate()?;
+                coarse_start =
+                    ExactTheory::new(longitudinal.div_ceil(2), lateral.div_ceil(2)).solve(input)?.warm_start();
+                Some(&coarse_start)
+            }
+            _ => None,
+        };
+        self.solve_with(input, |grid, table, rigid_slip| {
+            let field = start.and_then(|start| start.tractions(grid));
+            let field = field.as_ref().map(|[x, y]| [x.as_slice(), y.as_slice()]);
+            let mut convolution = SlipConvolution::new(table);
+            tangential::solve(grid, table, &mut convolution, rigid_slip, field)
+        })
+    }
+
+    /// The forces of many cases, solved in parallel on rayon's thread pool (each case on one
+    /// thread, as [`CreepForceModel::creep_forces`]); results in the order of `inputs`. For
+    /// report and table generation; a single case is never split across threads.
+    pub fn creep_forces_many(&self, inputs: &[ContactInput]) -> Vec<Result<CreepForces, InvalidInput>> {
+        inputs.par_iter().map(|input| self.creep_forces(input)).collect()
+    }
+
+    /// The reference solution by CONTACT's non-linear Gauss–Seidel method (SteadyGS) on the
+    /// same discretisation, swept until no traction changes by more than `relative_tolerance`
+    /// × the largest traction (at most 20 000 sweeps). O(N²) per sweep: the test oracle of
+    /// [`Self::solve`], not meant for production use.
+    pub fn solve_by_gauss_seidel(
+        &self,
+        input: &ContactInput,
+        relative_tolerance: f64,
+    ) -> Result<ExactSolution, InvalidInput> {
+        self.solve_with(input, |grid, table, [slip_x, slip_y]| {
+            gauss_seidel::solve(grid, table, slip_x, slip_y, relative_tolerance)
+        })
+    }
+
+    /// The problem set-up and the resultants around a tangential solver.
+    fn solve_with(
+        &self,
+        input: &ContactInput,
+        tangential: impl FnOnce(&ContactGrid, &InfluenceTable, [&[f64]; 2]) -> TangentialSolution,
+    ) -> Result<ExactSolution, InvalidInput> {
         input.validate()?;
         self.validate()?;
         let a = input.semi_axis_a;
@@ -150,7 +303,9 @@ impl ExactTheory {
             element_state: vec![ElementState::Exterior; count],
             adhesion_area: 0.0,
             slip_area: 0.0,
-            sweeps: 0,
+            friction_coefficient: input.friction_coefficient,
+            iterations: 0,
+            operator_products: 0,
             converged: true,
         };
         if input.normal_force <= 0.0 {
@@ -175,7 +330,7 @@ impl ExactTheory {
         let creepage_scale = traction_scale / input.shear_modulus;
         let (rigid_slip_x, rigid_slip_y) = rigid_slip(input, &grid, creepage_scale);
         let table = InfluenceTable::new(grid.elements_x, grid.elements_y, grid.length, grid.width, input.poisson_ratio);
-        let tangential = tangential::solve(&grid, &table, &rigid_slip_x, &rigid_slip_y);
+        let tangential = tangential(&grid, &table, [&rigid_slip_x, &rigid_slip_y]);
 
         // Resultants in units of μQ (Σ bound·δA = (2π/3) b/a, see `grid.rs`) and μQa.
         let (mut force_x, mut force_y, mut moment) = (0.0, 0.0, 0.0);
@@ -212,7 +367,8 @@ impl ExactTheory {
         for (traction, normalised) in solution.traction_lateral.iter_mut().zip(&tangential.traction_y) {
             *traction = traction_scale * normalised;
         }
-        solution.sweeps = tangential.sweeps;
+        solution.iterations = tangential.iterations;
+        solution.operator_products = tangential.products;
         solution.converged = tangential.converged;
         Ok(solution)
     }

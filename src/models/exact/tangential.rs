@@ -1,336 +1,577 @@
-//! The tangential problem of steady rolling with Coulomb friction, solved by the non-linear
-//! block Gauss–Seidel method for steady rolling of Vollebregt's CONTACT ("SteadyGS":
-//! Vollebregt 2014, "Numerical modeling of measured railway creep versus creep-force curves
-//! with CONTACT", §2; Kalker 1990 §5.3). Written from the description, not from the source.
+//! The tangential problem of steady rolling with Coulomb friction, solved by an active-set
+//! Newton method whose linear steps are solved by GMRES with FFT products: O(N log N) per
+//! iteration for N elements.
 //!
 //! Units: lengths in a, tractions in μp₀ (so the Coulomb bound of an element is its normalised
 //! pressure g = p_n/p₀), slip in the creepage scale μp₀/G.
 //!
-//! Discretisation (Kalker 1990 §2.2; CONTACT's steady rolling): material flows through the
-//! contact from the leading edge (+x) towards −x, one element δx per time step, so the slip of
-//! element I is the rigid slip plus the change of the displacement difference since the
-//! particle left element I + x̂ (a backward difference against the flow):
+//! Discretisation (Kalker 1990 §2.2; CONTACT's steady rolling), the same as the Gauss–Seidel
+//! reference (`gauss_seidel.rs`): material flows from the leading edge (+x) towards −x, one
+//! element δx per time step, and the slip of element I is
 //!
 //! ```text
-//! s_I = w_I + (u_I − u_{I+x̂})/δx = w_I + Σ_J (A_IJ/δx) Δp_J,    Δp_J = p_J − p_{J+x̂},
+//! s_I = w_I + Σ_J (A_IJ/δx) Δp_J,    Δp_J = p_J − p_{J+x̂}   (p = 0 outside the contact),
 //! ```
 //!
-//! with A Love's influence matrix (`influence.rs`) and p = 0 outside the contact, so Δp is
-//! non-zero on the contact and on the element just behind each row's trailing edge. Written in
-//! the traction *steps* Δp the operator is the symmetric positive definite A/δx; in the
-//! tractions p themselves it would be A·D with the difference operator D, which is far from
-//! diagonally dominant (a Gauss–Seidel sweep on p diverges on fine grids).
+//! evaluated for all elements at once as an FFT convolution (`convolution.rs`). Coulomb's law:
+//! |p_I| ≤ g_I; s_I = 0 where |p_I| < g_I (adhesion); s_I = −|s_I| p_I/g_I (slip).
 //!
-//! Coulomb's law, per element: |p| ≤ g; s = 0 where |p| < g (adhesion); s = −|s| p/g (slip).
+//! Method (the classical active-set treatment of Kalker's KOMBI and CONTACT's outer loops,
+//! with a Newton step for the slip directions): for the current division into adhesion and
+//! slip, the unknowns are both traction components of an adhesion element and the direction
+//! θ of the traction g (cos θ, sin θ) of a slip element; the equations are s = 0 in adhesion
+//! and n·s = 0 in slip (n ⊥ p: slip parallel to the traction). Linearised, the slip equation
+//! gains the term |s| δθ from the turning of n (∂n/∂θ = −t, −t·s = |s|), which makes it
+//! better conditioned the faster the element slips. Each linear step is solved by restarted,
+//! right-preconditioned GMRES (Saad & Schultz 1986; Saad 1993 for the flexible variant that
+//! keeps the preconditioned vectors). After each step, adhesion elements pushed over their
+//! bound are projected onto it and start slipping, and slip elements whose slip has turned
+//! along their traction (s·p > 0) return to adhesion.
 //!
-//! One Gauss–Seidel step changes the traction of element I by δ while keeping the traction
-//! steps Δp of the adhesion elements downstream (their tractions shift with it, as in the
-//! adhered state the step is what the slip equation fixes) and the tractions of the first slip
-//! or exterior element downstream, J. In Δp that is +δ at I and −δ at J, which changes s_I by
-//! C δ with C = [A(0) − A(I − J)]/δx, diagonal and positive. The element's two equations are
-//! then solved exactly for δ (`local_traction`). Adhesion elements downstream that the shift
-//! pushes over their bound are clipped to it. Rows are swept from the trailing to the leading
-//! edge. For a fixed adhesion area this is Gauss–Seidel on a symmetric positive definite system
-//! in the directions e_I − e_J, which converges.
+//! Preconditioner: the steady-rolling operator is the product of the symmetric positive
+//! definite influence operator A/δx and the difference Δ along the rolling direction, a
+//! transport operator whose symbol (∼ i k_x/|k|) puts eigenvalues along the imaginary axis,
+//! where Krylov methods stall. Its approximate inverse is the FFT-circulant inverse of A/δx
+//! (`SlipConvolution::apply_inverse`) followed by the exact inverse of the difference: a
+//! change of an element's traction carried downstream through the adhesion elements of its
+//! row up to the first slip element, as in the Gauss–Seidel step of the reference solver.
+//! Slip elements blend the two: slow slip (turning coefficient c ≪ self influence k) turns
+//! like an adhesion element constrained to the normal direction (carried and circulant part),
+//! fast slip is dominated by its own turning term (local inverse), weights k : c. The slip
+//! rows are scaled by 1/(k + c), so every residual is in units of traction and fast slip at
+//! extreme creepage does not dominate GMRES's norm. Measured products on 80 × 80 (CONTACT's
+//! spin case): 511 with the local inverse alone, 165 blended.
 //!
-//! Cost: each step evaluates s_I afresh by direct summation over all traction steps, O(N) for
-//! N contact elements, so O(N²) per sweep. FFT convolution does not fit Gauss–Seidel: each step
-//! needs the newest field at one element, which an FFT cannot give cheaper than this O(N)
-//! sum. The sum runs over contiguous row segments of a precomputed table and vectorises.
-//! Adhesion steps are under-relaxed (`ADHESION_RELAXATION`), which saves up to half the sweeps.
-//! Tried without gain: starting from the solution on the half grid (the sweeps after the first
-//! few are spent on slowly decaying smooth error, which a better start does not remove).
+//! Start: a warm start, or the solution on the half grid (`ExactTheory::solve_from`): the
+//! Newton solver moves the boundary between adhesion and slip by about one element layer per
+//! step, so a start with the right division saves most steps (spin case on 80 × 80: 21 → 8).
+//!
+//! Bounded cost: at most [`MAX_ITERATIONS`] Newton steps and [`MAX_PRODUCTS`] operator products
+//! per solve; a solve that hits either limit returns its last iterate with `converged = false`.
 
+use super::convolution::SlipConvolution;
+use super::element::local_traction;
 use super::grid::ContactGrid;
 use super::influence::InfluenceTable;
+use super::ElementState;
 
-/// Sweeps stop when no traction changed by more than this fraction of the largest traction.
-const RELATIVE_TOLERANCE: f64 = 1e-6;
-/// Safety limit on the number of sweeps; far beyond what any tested case needs (see the tests).
-const MAX_SWEEPS: usize = 1000;
-/// Relaxation factor of the adhesion steps. The plain step overshoots (each step also shifts
-/// the element's adhesion row downstream, and the neighbours' corrections add up);
-/// under-relaxation damps that. Measured sweeps to the
-/// tolerance on 44 × 44 / 80 × 80 with 1 (plain Gauss–Seidel) → 0.6: pure ξ in partial slip
-/// 53 → 36 / 78 → 43, full adhesion 61 → 33 / 89 → 48, η with spin 67 → 60 / 104 → 100;
-/// factors above 1 (over-relaxation) raise the count, 0.5 is no better than 0.6. The fixed
-/// point, and so the solution, is the same.
-const ADHESION_RELAXATION: f64 = 0.6;
-/// Newton iterations on the slip multiplier λ; convergence is monotone and takes a handful.
-const MAX_NEWTON_STEPS: usize = 60;
-
-/// Whether an element carries traction, and if so whether it adheres or slips.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ElementState {
-    /// Outside the contact ellipse: no pressure, no traction.
-    Exterior,
-    /// Inside the contact, |p| < μ p_n and zero slip.
-    Adhesion,
-    /// Inside the contact, |p| = μ p_n, traction opposing the slip.
-    Slip,
-}
+/// Target accuracy of the tractions, relative to the largest. The iteration stops after an
+/// accurately solved Newton step (to [`SETTLED_TOLERANCE`]) that changed no element's state and
+/// no traction by more than [`RELATIVE_TOLERANCE`] / [`SETTLED_TOLERANCE`] × the largest
+/// traction, if the slip then releases no element: the error left after such a step is about
+/// the step times the linear tolerance.
+pub(crate) const RELATIVE_TOLERANCE: f64 = 1e-9;
+/// Most Newton steps per solve (the tested cases take 4–15, the extremes of the tests up to 35).
+pub const MAX_ITERATIONS: usize = 200;
+/// Most operator products (FFT convolutions) per solve, summed over all linear steps.
+pub const MAX_PRODUCTS: usize = 4000;
+/// Slip elements whose slip direction is further than arccos(0.9) ≈ 26° from opposite to their
+/// traction are re-solved locally before a Newton step (see `Newton::release`). Needed at
+/// extreme creepage, where a loosely solved first step leaves slip directions far off; at the
+/// solution every slip element has the cosine 1 exactly.
+const RESOLVE_ALIGNMENT: f64 = 0.9;
+/// GMRES restart length: Krylov vectors kept (twice: plain and preconditioned).
+const RESTART: usize = 30;
+/// Relative residual to which a linear step is solved while the division into adhesion and
+/// slip still changes, and once it has settled. Measured products to convergence on 40 × 40
+/// with the first preconditioner (adhesion, ξ partial slip, CONTACT's spin case, a/b = 10):
+/// 47, 117, 323, 150 with (0.1, 1e-4); (0.3, 1e-4): 57, 106, 348, 164; (0.1, 1e-6): 62, 154,
+/// 430, 200; a fixed 1e-3: 53, 205, 563, 277.
+const UNSETTLED_TOLERANCE: f64 = 0.1;
+const SETTLED_TOLERANCE: f64 = 1e-4;
 
 /// Tractions (units μp₀) and element states, row-major (index i + j·nx).
 pub(crate) struct TangentialSolution {
     pub traction_x: Vec<f64>,
     pub traction_y: Vec<f64>,
     pub state: Vec<ElementState>,
-    pub sweeps: usize,
+    pub iterations: usize,
+    pub products: usize,
     pub converged: bool,
 }
 
-/// Solves the steady-rolling problem on `grid` for the rigid slip `rigid_slip_x/y` (units of
-/// the creepage scale, one value per element, row-major).
+/// Solves the steady-rolling problem on `grid` for the rigid slip `rigid_slip` (units of the
+/// creepage scale, one value per element, row-major), starting from `start` (tractions in
+/// units of μp₀ on the same grid; clipped to the bound) or from zero.
 pub(crate) fn solve(
     grid: &ContactGrid,
     table: &InfluenceTable,
-    rigid_slip_x: &[f64],
-    rigid_slip_y: &[f64],
+    convolution: &mut SlipConvolution,
+    rigid_slip: [&[f64]; 2],
+    start: Option<[&[f64]; 2]>,
 ) -> TangentialSolution {
-    let count = grid.elements_x * grid.elements_y;
-    let steps = (grid.elements_x + 1) * grid.elements_y;
-    let mut solver = Solver {
-        grid,
-        table,
-        rigid_slip_x,
-        rigid_slip_y,
-        traction_x: vec![0.0; count],
-        traction_y: vec![0.0; count],
-        step_x: vec![0.0; steps],
-        step_y: vec![0.0; steps],
-        state: grid
-            .pressure
-            .iter()
-            .map(|&p| if p > 0.0 { ElementState::Adhesion } else { ElementState::Exterior })
-            .collect(),
-    };
-    let mut sweeps = 0;
-    let mut converged = false;
-    while sweeps < MAX_SWEEPS && !converged {
-        sweeps += 1;
-        let previous_x = solver.traction_x.clone();
-        let previous_y = solver.traction_y.clone();
-        for (j, row) in grid.rows_in_contact.iter().enumerate() {
-            let Some((first, last)) = *row else { continue };
-            // Trailing to leading edge: the other orders (tried: reversed, alternating) fail to
-            // converge in partial slip.
-            for i in first..=last {
-                solver.relax(i, j, first);
-            }
-        }
-        let mut largest_change: f64 = 0.0;
-        let mut largest_traction: f64 = 0.0;
-        for element in 0..count {
-            let (p_x, p_y) = (solver.traction_x[element], solver.traction_y[element]);
-            largest_change = largest_change.max((p_x - previous_x[element]).hypot(p_y - previous_y[element]));
-            largest_traction = largest_traction.max(p_x.hypot(p_y));
-        }
-        converged = largest_change <= RELATIVE_TOLERANCE * largest_traction;
-    }
+    let mut solver = Newton::new(grid, table, convolution, rigid_slip, start);
+    let converged = solver.run();
     TangentialSolution {
-        traction_x: solver.traction_x,
-        traction_y: solver.traction_y,
-        state: solver.state,
-        sweeps,
+        traction_x: solver.traction[0].clone(),
+        traction_y: solver.traction[1].clone(),
+        state: solver.state.clone(),
+        iterations: solver.iterations,
+        products: solver.products,
         converged,
     }
 }
 
-struct Solver<'a> {
+/// Vectors of the linear steps: x components in the first half, y components in the second.
+type Field = Vec<f64>;
+
+struct Newton<'a> {
     grid: &'a ContactGrid,
-    table: &'a InfluenceTable,
-    rigid_slip_x: &'a [f64],
-    rigid_slip_y: &'a [f64],
-    /// Tractions p per element, index i + j·nx.
-    traction_x: Vec<f64>,
-    traction_y: Vec<f64>,
-    /// Traction steps Δp = p_I − p_{I+x̂}, index (i + 1) + j·(nx + 1): column 0 is the element
-    /// i = −1, behind a row that reaches the edge of the grid.
-    step_x: Vec<f64>,
-    step_y: Vec<f64>,
+    convolution: &'a mut SlipConvolution,
+    rigid_slip: [&'a [f64]; 2],
+    count: usize,
+    traction: [Vec<f64>; 2],
     state: Vec<ElementState>,
+    slip: [Vec<f64>; 2],
+    /// Per slip element: the unit traction direction t and the slip speed over the bound,
+    /// |s|/g (the coefficient of the turning term).
+    direction: Vec<(f64, f64)>,
+    turning: Vec<f64>,
+    /// Self-influence of a unit traction step: with the turning term, the diagonal of a slip
+    /// element's equation, which the preconditioner inverts locally.
+    self_influence: f64,
+    /// Slip response of an element to its own traction alone (diagonal, x and y).
+    own_response: (f64, f64),
+    steps: [Vec<f64>; 2],
+    product: [Vec<f64>; 2],
+    unscaled: [Vec<f64>; 2],
+    krylov_basis: Vec<Field>,
+    krylov_preconditioned: Vec<Field>,
+    iterations: usize,
+    products: usize,
 }
 
-impl Solver<'_> {
-    /// One Gauss–Seidel step at element (i, j) of a row whose trailing contact element is `first`.
-    fn relax(&mut self, i: usize, j: usize, first: usize) {
-        let nx = self.grid.elements_x;
-        let element = i + j * nx;
-        // The first slip or exterior element downstream absorbs the change of Δp.
-        let absorber = (first..i).rev().find(|&k| self.state[k + j * nx] == ElementState::Slip);
-        let distance = i as isize - absorber.map_or(first as isize - 1, |k| k as isize);
-        let response = self.table.step_response(distance);
-        let (s_x, s_y) = self.slip(i, j);
-        let residual = (s_x - response.0 * self.traction_x[element], s_y - response.1 * self.traction_y[element]);
-        let bound = self.grid.pressure[element];
-        let (mut traction, slips) = local_traction(residual, response, bound);
-        if !slips {
-            // Under-relaxed adhesion step, clipped to the bound (see `ADHESION_RELAXATION`).
-            let old = (self.traction_x[element], self.traction_y[element]);
-            traction = (
-                old.0 + ADHESION_RELAXATION * (traction.0 - old.0),
-                old.1 + ADHESION_RELAXATION * (traction.1 - old.1),
-            );
-            let magnitude = traction.0.hypot(traction.1);
-            if magnitude > bound {
-                traction = (traction.0 * bound / magnitude, traction.1 * bound / magnitude);
-            }
-        }
-        self.traction_x[element] = traction.0;
-        self.traction_y[element] = traction.1;
-        self.state[element] = if slips { ElementState::Slip } else { ElementState::Adhesion };
-        self.restore_steps(i, j, first);
-    }
-
-    /// Slip s_I = w_I + Σ_J (A_IJ/δx) Δp_J by direct summation over the non-zero steps.
-    fn slip(&self, i: usize, j: usize) -> (f64, f64) {
-        let nx = self.grid.elements_x;
-        let element = i + j * nx;
-        let (mut s_x, mut s_y) = (self.rigid_slip_x[element], self.rigid_slip_y[element]);
-        for (row_j, row) in self.grid.rows_in_contact.iter().enumerate() {
-            let Some((first, last)) = *row else { continue };
-            // Sources i' = first − 1 … last; step column i' + 1.
-            let len = last - first + 2;
-            let k = self.table.index(first as isize - 1 - i as isize, row_j as isize - j as isize);
-            let s = first + row_j * (nx + 1);
-            let (row_x, row_y) = row_slip(
-                [&self.table.xx[k..k + len], &self.table.xy[k..k + len], &self.table.yy[k..k + len]],
-                [&self.step_x[s..s + len], &self.step_y[s..s + len]],
-            );
-            s_x += row_x;
-            s_y += row_y;
-        }
-        (s_x, s_y)
-    }
-
-    /// Re-establishes Δp along row j from element `i` down to the trailing edge: adhesion
-    /// elements keep their step (their traction follows the one upstream, clipped to the
-    /// bound), slip elements keep their traction.
-    fn restore_steps(&mut self, i: usize, j: usize, first: usize) {
-        let nx = self.grid.elements_x;
-        let upstream = |solver: &Self, k: usize| {
-            if k + 1 < nx {
-                (solver.traction_x[k + 1 + j * nx], solver.traction_y[k + 1 + j * nx])
-            } else {
-                (0.0, 0.0)
-            }
+impl<'a> Newton<'a> {
+    fn new(
+        grid: &'a ContactGrid,
+        table: &InfluenceTable,
+        convolution: &'a mut SlipConvolution,
+        rigid_slip: [&'a [f64]; 2],
+        start: Option<[&[f64]; 2]>,
+    ) -> Self {
+        let count = grid.elements_x * grid.elements_y;
+        let steps = (grid.elements_x + 1) * grid.elements_y;
+        let centre = table.index(0, 0);
+        let mut solver = Self {
+            grid,
+            convolution,
+            rigid_slip,
+            count,
+            traction: [vec![0.0; count], vec![0.0; count]],
+            state: vec![ElementState::Exterior; count],
+            slip: [vec![0.0; count], vec![0.0; count]],
+            direction: vec![(0.0, 0.0); count],
+            turning: vec![0.0; count],
+            self_influence: 0.5 * (table.xx[centre] + table.yy[centre]),
+            own_response: table.step_response(1),
+            steps: [vec![0.0; steps], vec![0.0; steps]],
+            product: [vec![0.0; count], vec![0.0; count]],
+            unscaled: [vec![0.0; count], vec![0.0; count]],
+            krylov_basis: Vec::new(),
+            krylov_preconditioned: Vec::new(),
+            iterations: 0,
+            products: 0,
         };
-        for k in (first..=i).rev() {
-            let element = k + j * nx;
-            let step = k + 1 + j * (nx + 1);
-            let (up_x, up_y) = upstream(self, k);
-            if k < i && self.state[element] == ElementState::Adhesion {
-                let (mut p_x, mut p_y) = (up_x + self.step_x[step], up_y + self.step_y[step]);
-                let (magnitude, bound) = (p_x.hypot(p_y), self.grid.pressure[element]);
-                if magnitude > bound {
-                    p_x *= bound / magnitude;
-                    p_y *= bound / magnitude;
-                }
-                self.traction_x[element] = p_x;
-                self.traction_y[element] = p_y;
+        for element in 0..count {
+            let bound = grid.pressure[element];
+            if bound <= 0.0 {
+                continue;
             }
-            self.step_x[step] = self.traction_x[element] - up_x;
-            self.step_y[step] = self.traction_y[element] - up_y;
+            solver.state[element] = ElementState::Adhesion;
+            if let Some([start_x, start_y]) = start {
+                let (p_x, p_y) = (start_x[element], start_y[element]);
+                let magnitude = p_x.hypot(p_y);
+                if magnitude.is_finite() {
+                    solver.traction[0][element] = p_x;
+                    solver.traction[1][element] = p_y;
+                    // A start on the bound, up to the rounding of its units, slips.
+                    if magnitude >= bound * (1.0 - 1e-9) {
+                        solver.project_onto_bound(element);
+                    }
+                }
+            }
         }
-        // The element behind the trailing edge carries no traction: its step is −p_first.
-        let trailing = first + j * (nx + 1);
-        self.step_x[trailing] = -self.traction_x[first + j * nx];
-        self.step_y[trailing] = -self.traction_y[first + j * nx];
+        solver
+    }
+
+    /// Puts element `element`'s traction on its bound (same direction) and marks it slipping.
+    fn project_onto_bound(&mut self, element: usize) {
+        let (p_x, p_y) = (self.traction[0][element], self.traction[1][element]);
+        let scale = self.grid.pressure[element] / p_x.hypot(p_y);
+        self.traction[0][element] = p_x * scale;
+        self.traction[1][element] = p_y * scale;
+        self.state[element] = ElementState::Slip;
+    }
+
+    /// Newton iteration; returns whether it converged.
+    fn run(&mut self) -> bool {
+        let mut converging = false;
+        let mut settled = false;
+        let mut right_side = vec![0.0; 2 * self.count];
+        loop {
+            self.evaluate_slip();
+            let released = self.release();
+            if released {
+                self.evaluate_slip();
+            }
+            self.linearise();
+            if converging && !released {
+                return true;
+            }
+            if self.iterations == MAX_ITERATIONS || self.products >= MAX_PRODUCTS {
+                return false;
+            }
+            self.iterations += 1;
+            self.right_side(&mut right_side);
+            // Solving accurately pays only once the division into adhesion and slip has settled.
+            let accurate = settled && !released;
+            let tolerance = if accurate { SETTLED_TOLERANCE } else { UNSETTLED_TOLERANCE };
+            let update = self.gmres(&right_side, tolerance);
+            let (relative_step, changed) = self.update(&update);
+            settled = !changed;
+            converging = accurate && !changed && relative_step <= RELATIVE_TOLERANCE / SETTLED_TOLERANCE;
+        }
+    }
+
+    /// slip ← w + (A/δx) Δp for the current tractions.
+    fn evaluate_slip(&mut self) {
+        let [traction_x, traction_y] = &self.traction;
+        let (nx, ny) = (self.grid.elements_x, self.grid.elements_y);
+        let [steps_x, steps_y] = &mut self.steps;
+        steps_of([traction_x, traction_y], [steps_x, steps_y], nx, ny);
+        let [slip_x, slip_y] = &mut self.slip;
+        self.convolution.apply([&self.steps[0], &self.steps[1]], [slip_x, slip_y]);
+        self.products += 1;
+        for component in 0..2 {
+            for (slip, rigid) in self.slip[component].iter_mut().zip(self.rigid_slip[component]) {
+                *slip += rigid;
+            }
+        }
+    }
+
+    /// Slip elements whose slip is not nearly opposite to their traction (cosine of the angle
+    /// between −s and p below [`RESOLVE_ALIGNMENT`], s·p > 0 included) are solved locally again,
+    /// as a Gauss–Seidel step would (`local_traction`, with the response of the element's own
+    /// traction): they return to adhesion, or slip in a new direction. The Newton step's
+    /// linearisation in the slip direction holds for small turns only. Returns whether any
+    /// element was solved again.
+    fn release(&mut self) -> bool {
+        let mut released = false;
+        for element in 0..self.count {
+            if self.state[element] != ElementState::Slip {
+                continue;
+            }
+            let (p_x, p_y) = (self.traction[0][element], self.traction[1][element]);
+            let (s_x, s_y) = (self.slip[0][element], self.slip[1][element]);
+            if s_x * p_x + s_y * p_y <= -RESOLVE_ALIGNMENT * s_x.hypot(s_y) * p_x.hypot(p_y) {
+                continue;
+            }
+            let (b_x, b_y) = self.own_response;
+            let residual = (s_x - b_x * p_x, s_y - b_y * p_y);
+            let (traction, slips) = local_traction(residual, self.own_response, self.grid.pressure[element]);
+            self.traction[0][element] = traction.0;
+            self.traction[1][element] = traction.1;
+            if !slips {
+                self.state[element] = ElementState::Adhesion;
+            }
+            released = true;
+        }
+        released
+    }
+
+    /// The slip elements' directions t = p/g and turning coefficients |s|/g.
+    fn linearise(&mut self) {
+        for element in 0..self.count {
+            if self.state[element] != ElementState::Slip {
+                continue;
+            }
+            let bound = self.grid.pressure[element];
+            let t = (self.traction[0][element] / bound, self.traction[1][element] / bound);
+            let along = self.slip[0][element] * t.0 + self.slip[1][element] * t.1;
+            self.direction[element] = t;
+            self.turning[element] = (-along).max(0.0) / bound;
+        }
+    }
+
+    /// The slip equations' row scale 1/(k + c): their residual in units of traction, as the
+    /// adhesion equations' residual is in units of slip; balances the rows of fast slip
+    /// (c → ∞ at extreme creepage) against the others in GMRES's residual norm.
+    fn row_scale(&self, element: usize) -> f64 {
+        1.0 / (self.self_influence + self.turning[element])
+    }
+
+    /// The Newton step's right side: −s in adhesion, −n(n·s)/(k + c) in slip, 0 outside.
+    fn right_side(&self, out: &mut [f64]) {
+        let n = self.count;
+        for element in 0..n {
+            let (s_x, s_y) = (self.slip[0][element], self.slip[1][element]);
+            let (r_x, r_y) = match self.state[element] {
+                ElementState::Exterior => (0.0, 0.0),
+                ElementState::Adhesion => (-s_x, -s_y),
+                ElementState::Slip => {
+                    let (t_x, t_y) = self.direction[element];
+                    let normal = (-t_y * s_x + t_x * s_y) * self.row_scale(element);
+                    (t_y * normal, -t_x * normal)
+                }
+            };
+            out[element] = r_x;
+            out[n + element] = r_y;
+        }
+    }
+
+    /// The linearised operator: for adhesion elements the slip change, for slip elements the
+    /// normal component of the slip change plus the turning term (normal direction) and the
+    /// tangential component of the input (an identity that fixes the unused unknown).
+    fn apply_operator(&mut self, input: &[f64], out: &mut [f64]) {
+        let n = self.count;
+        let (nx, ny) = (self.grid.elements_x, self.grid.elements_y);
+        let (input_x, input_y) = input.split_at(n);
+        // The admissible change: slip elements only turn.
+        for element in 0..n {
+            let (v_x, v_y) = (input_x[element], input_y[element]);
+            let (d_x, d_y) = match self.state[element] {
+                ElementState::Exterior => (0.0, 0.0),
+                ElementState::Adhesion => (v_x, v_y),
+                ElementState::Slip => {
+                    let (t_x, t_y) = self.direction[element];
+                    let normal = -t_y * v_x + t_x * v_y;
+                    (-t_y * normal, t_x * normal)
+                }
+            };
+            self.product[0][element] = d_x;
+            self.product[1][element] = d_y;
+        }
+        let [change_x, change_y] = &self.product;
+        let [steps_x, steps_y] = &mut self.steps;
+        steps_of([change_x, change_y], [steps_x, steps_y], nx, ny);
+        let (out_x, out_y) = out.split_at_mut(n);
+        self.convolution.apply([&self.steps[0], &self.steps[1]], [out_x, out_y]);
+        self.products += 1;
+        for element in 0..n {
+            match self.state[element] {
+                ElementState::Exterior => {
+                    out_x[element] = 0.0;
+                    out_y[element] = 0.0;
+                }
+                ElementState::Adhesion => {}
+                ElementState::Slip => {
+                    let (t_x, t_y) = self.direction[element];
+                    let (v_x, v_y) = (input_x[element], input_y[element]);
+                    let normal = (-t_y * out_x[element]
+                        + t_x * out_y[element]
+                        + self.turning[element] * (-t_y * v_x + t_x * v_y))
+                        * self.row_scale(element);
+                    let tangential = t_x * v_x + t_y * v_y;
+                    out_x[element] = -t_y * normal + t_x * tangential;
+                    out_y[element] = t_x * normal + t_y * tangential;
+                }
+            }
+        }
+    }
+
+    /// The preconditioner (see the module documentation): circulant inverse, then the row
+    /// scan from the leading edge that carries each change downstream through adhesion; slip
+    /// elements by their own coefficient.
+    fn precondition(&mut self, input: &[f64], out: &mut [f64]) {
+        let n = self.count;
+        let nx = self.grid.elements_x;
+        let (input_x, input_y) = input.split_at(n);
+        // The circulant inverse acts on slip: slip rows back in slip units, normal part only.
+        for element in 0..n {
+            let (r_x, r_y) = (input_x[element], input_y[element]);
+            let (u_x, u_y) = match self.state[element] {
+                ElementState::Slip => {
+                    let (t_x, t_y) = self.direction[element];
+                    let normal = (-t_y * r_x + t_x * r_y) / self.row_scale(element);
+                    (-t_y * normal, t_x * normal)
+                }
+                _ => (r_x, r_y),
+            };
+            self.unscaled[0][element] = u_x;
+            self.unscaled[1][element] = u_y;
+        }
+        {
+            let [steps_x, steps_y] = &mut self.product;
+            let [unscaled_x, unscaled_y] = &self.unscaled;
+            self.convolution.apply_inverse([unscaled_x, unscaled_y], [steps_x, steps_y]);
+        }
+        let (out_x, out_y) = out.split_at_mut(n);
+        out_x.iter_mut().for_each(|v| *v = 0.0);
+        out_y.iter_mut().for_each(|v| *v = 0.0);
+        for (j, row) in self.grid.rows_in_contact.iter().enumerate() {
+            let Some((first, last)) = *row else { continue };
+            let mut carry = (0.0, 0.0);
+            for i in (first..=last).rev() {
+                let element = i + j * nx;
+                let (z_x, z_y) = (self.product[0][element], self.product[1][element]);
+                match self.state[element] {
+                    ElementState::Exterior => carry = (0.0, 0.0),
+                    ElementState::Adhesion => {
+                        carry = (carry.0 + z_x, carry.1 + z_y);
+                        out_x[element] = carry.0;
+                        out_y[element] = carry.1;
+                    }
+                    ElementState::Slip => {
+                        let (t_x, t_y) = self.direction[element];
+                        // Slow slip (c ≪ k) behaves like adhesion across the direction of
+                        // the traction, fast slip is dominated by its own turning term.
+                        let (k, c) = (self.self_influence, self.turning[element]);
+                        let carried = -t_y * (z_x + carry.0) + t_x * (z_y + carry.1);
+                        let own = -t_y * input_x[element] + t_x * input_y[element];
+                        let normal = (k * carried + c * own) / (k + c);
+                        let tangential = t_x * input_x[element] + t_y * input_y[element];
+                        carry = (-t_y * normal, t_x * normal);
+                        out_x[element] = carry.0 + t_x * tangential;
+                        out_y[element] = carry.1 + t_y * tangential;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Flexible restarted GMRES with right preconditioning for the Newton step, from zero.
+    fn gmres(&mut self, right_side: &[f64], tolerance: f64) -> Field {
+        let size = right_side.len();
+        let mut solution = vec![0.0; size];
+        let mut residual = right_side.to_vec();
+        let target = tolerance * norm(right_side);
+        // Krylov vectors are kept between solves (allocating them anew each iteration costs
+        // page faults on large grids).
+        let mut basis = std::mem::take(&mut self.krylov_basis);
+        let mut preconditioned = std::mem::take(&mut self.krylov_preconditioned);
+        basis.resize_with(RESTART + 1, || vec![0.0; size]);
+        preconditioned.resize_with(RESTART, || vec![0.0; size]);
+        let mut work = vec![0.0; size];
+        loop {
+            let beta = norm(&residual);
+            if beta <= target || !beta.is_finite() || self.products >= MAX_PRODUCTS {
+                break;
+            }
+            basis[0].iter_mut().zip(&residual).for_each(|(v, r)| *v = r / beta);
+            // Hessenberg columns, Givens rotations (c, s), and the rotated right side.
+            let mut hessenberg: Vec<Vec<f64>> = Vec::with_capacity(RESTART);
+            let mut rotations: Vec<(f64, f64)> = Vec::with_capacity(RESTART);
+            let mut rotated = vec![beta];
+            for k in 0..RESTART {
+                self.precondition(&basis[k], &mut preconditioned[k]);
+                self.apply_operator(&preconditioned[k], &mut work);
+                // Modified Gram–Schmidt.
+                let mut column = Vec::with_capacity(k + 2);
+                for vector in &basis[..=k] {
+                    let h = dot(&work, vector);
+                    work.iter_mut().zip(vector).for_each(|(w, v)| *w -= h * v);
+                    column.push(h);
+                }
+                let next_norm = norm(&work);
+                column.push(next_norm);
+                for (i, &(c, s)) in rotations.iter().enumerate() {
+                    let (a, b) = (column[i], column[i + 1]);
+                    column[i] = c * a + s * b;
+                    column[i + 1] = -s * a + c * b;
+                }
+                let (a, b) = (column[k], column[k + 1]);
+                let radius = a.hypot(b);
+                let (c, s) = if radius == 0.0 { (1.0, 0.0) } else { (a / radius, b / radius) };
+                column[k] = radius;
+                column[k + 1] = 0.0;
+                rotations.push((c, s));
+                rotated.push(-s * rotated[k]);
+                rotated[k] *= c;
+                hessenberg.push(column);
+                let estimate = rotated[k + 1].abs();
+                if estimate <= target || next_norm == 0.0 || self.products >= MAX_PRODUCTS {
+                    break;
+                }
+                basis[k + 1].iter_mut().zip(&work).for_each(|(v, w)| *v = w / next_norm);
+            }
+            // Back substitution for the coefficients, then the update from the preconditioned
+            // vectors.
+            let used = hessenberg.len();
+            let mut coefficients = vec![0.0; used];
+            for i in (0..used).rev() {
+                let mut sum = rotated[i];
+                for (m, coefficient) in coefficients.iter().enumerate().skip(i + 1) {
+                    sum -= hessenberg[m][i] * coefficient;
+                }
+                coefficients[i] = if hessenberg[i][i] == 0.0 { 0.0 } else { sum / hessenberg[i][i] };
+            }
+            for (coefficient, vector) in coefficients.iter().zip(&preconditioned) {
+                solution.iter_mut().zip(vector).for_each(|(x, z)| *x += coefficient * z);
+            }
+            if rotated[used].abs() <= target || self.products >= MAX_PRODUCTS {
+                break;
+            }
+            // Restart from the true residual.
+            self.apply_operator(&solution, &mut work);
+            residual.iter_mut().zip(right_side.iter().zip(&work)).for_each(|(r, (b, w))| *r = b - w);
+        }
+        self.krylov_basis = basis;
+        self.krylov_preconditioned = preconditioned;
+        solution
+    }
+
+    /// Applies the Newton step; adhesion elements pushed over their bound start slipping.
+    /// Returns the largest traction change relative to the largest traction, and whether any
+    /// element started slipping.
+    fn update(&mut self, step: &[f64]) -> (f64, bool) {
+        let n = self.count;
+        let (step_x, step_y) = step.split_at(n);
+        let (mut largest_step, mut largest_traction): (f64, f64) = (0.0, 0.0);
+        let mut changed = false;
+        for element in 0..n {
+            let (mut d_x, mut d_y) = (step_x[element], step_y[element]);
+            match self.state[element] {
+                ElementState::Exterior => continue,
+                ElementState::Adhesion => {}
+                ElementState::Slip => {
+                    let (t_x, t_y) = self.direction[element];
+                    let normal = -t_y * d_x + t_x * d_y;
+                    (d_x, d_y) = (-t_y * normal, t_x * normal);
+                }
+            }
+            let (old_x, old_y) = (self.traction[0][element], self.traction[1][element]);
+            self.traction[0][element] = old_x + d_x;
+            self.traction[1][element] = old_y + d_y;
+            let magnitude = self.traction[0][element].hypot(self.traction[1][element]);
+            let bound = self.grid.pressure[element];
+            if self.state[element] == ElementState::Slip || magnitude > bound {
+                changed |= self.state[element] == ElementState::Adhesion;
+                if magnitude > 0.0 {
+                    self.project_onto_bound(element);
+                } else {
+                    self.traction[0][element] = old_x;
+                    self.traction[1][element] = old_y;
+                }
+            }
+            let (new_x, new_y) = (self.traction[0][element], self.traction[1][element]);
+            largest_step = largest_step.max((new_x - old_x).hypot(new_y - old_y));
+            largest_traction = largest_traction.max(new_x.hypot(new_y));
+        }
+        let relative_step = if largest_traction > 0.0 { largest_step / largest_traction } else { 0.0 };
+        (relative_step, changed)
     }
 }
 
-/// Independent partial sums in [`row_slip`]: a single chain of dependent additions would make
-/// the sum latency-bound; four lanes let the compiler vectorise it.
-const LANES: usize = 4;
-
-/// One row segment's share of the slip: Σ_k (xx_k Δp_x,k + xy_k Δp_y,k, xy_k Δp_x,k + yy_k Δp_y,k)
-/// for `influence` = [xx, xy, yy] and `steps` = [Δp_x, Δp_y], all of one length.
-fn row_slip([xx, xy, yy]: [&[f64]; 3], [dp_x, dp_y]: [&[f64]; 2]) -> (f64, f64) {
-    let (mut lanes_x, mut lanes_y) = ([0.0; LANES], [0.0; LANES]);
-    let chunks = <[f64]>::chunks_exact;
-    let influence = chunks(xx, LANES).zip(chunks(xy, LANES)).zip(chunks(yy, LANES));
-    for (((xx, xy), yy), (dx, dy)) in influence.zip(chunks(dp_x, LANES).zip(chunks(dp_y, LANES))) {
-        for lane in 0..LANES {
-            lanes_x[lane] += xx[lane] * dx[lane] + xy[lane] * dy[lane];
-            lanes_y[lane] += xy[lane] * dx[lane] + yy[lane] * dy[lane];
+/// Traction steps Δp_i = p_i − p_{i+1} along every row, for i = −1 … nx − 1 (step column
+/// i + 1), with p = 0 outside the grid.
+fn steps_of(field: [&[f64]; 2], steps: [&mut [f64]; 2], nx: usize, ny: usize) {
+    for (values, out) in field.into_iter().zip(steps) {
+        for j in 0..ny {
+            let row = &values[j * nx..(j + 1) * nx];
+            let out_row = &mut out[j * (nx + 1)..(j + 1) * (nx + 1)];
+            out_row[0] = -row[0];
+            for i in 0..nx {
+                let upstream = if i + 1 < nx { row[i + 1] } else { 0.0 };
+                out_row[i + 1] = row[i] - upstream;
+            }
         }
     }
-    let (mut s_x, mut s_y) = (lanes_x.iter().sum::<f64>(), lanes_y.iter().sum::<f64>());
-    for k in xx.len() - xx.len() % LANES..xx.len() {
-        s_x += xx[k] * dp_x[k] + xy[k] * dp_y[k];
-        s_y += xy[k] * dp_x[k] + yy[k] * dp_y[k];
-    }
-    (s_x, s_y)
 }
 
-/// Exact solution of one element's equations: traction p with |p| ≤ `bound` for the slip
-/// s = r + diag(b) p, returning (p, slips).
-///
-/// Adhesion (s = 0) if p = −r/b fits the bound. Otherwise s = −λ p with λ > 0 gives
-/// p = −r/(b + λ), and λ solves |p(λ)| = g. Writing r = ρ e (|e| = 1), the function
-/// φ(λ) = (Σ e_k²/(b_k + λ)²)^(−1/2) − ρ/g is increasing and concave (a power mean of
-/// b_k + λ with exponent −2), so Newton's method from a start with φ ≤ 0 climbs monotonically
-/// to the root. λ₀ = max(0, ρ/g − max b) has φ(λ₀) ≤ 0.
-fn local_traction(residual: (f64, f64), own: (f64, f64), bound: f64) -> ((f64, f64), bool) {
-    let (b_x, b_y) = own;
-    let adhesion = (-residual.0 / b_x, -residual.1 / b_y);
-    if adhesion.0.hypot(adhesion.1) <= bound {
-        return (adhesion, false);
-    }
-    let rho = residual.0.hypot(residual.1);
-    let (e_x, e_y) = (residual.0 / rho, residual.1 / rho);
-    let target = rho / bound;
-    let mut lambda = (target - b_x.max(b_y)).max(0.0);
-    for _ in 0..MAX_NEWTON_STEPS {
-        let (q_x, q_y) = (e_x / (b_x + lambda), e_y / (b_y + lambda));
-        let sum_sq = q_x * q_x + q_y * q_y;
-        let phi = 1.0 / sum_sq.sqrt() - target;
-        // φ' = (Σ e_k²/(b_k+λ)³) / (Σ e_k²/(b_k+λ)²)^(3/2)
-        let slope = (q_x * q_x / (b_x + lambda) + q_y * q_y / (b_y + lambda)) / (sum_sq * sum_sq.sqrt());
-        let step = -phi / slope;
-        // Stops at convergence, and on a NaN step (cannot occur for finite r ≠ 0, g > 0).
-        if step.is_nan() || step <= 1e-15 * (lambda + b_x.min(b_y)) {
-            break;
-        }
-        lambda += step;
-    }
-    let traction = (-rho * e_x / (b_x + lambda), -rho * e_y / (b_y + lambda));
-    // Rounding can leave |p| a hair off g; put it exactly on the bound, direction unchanged.
-    let scale = bound / traction.0.hypot(traction.1);
-    ((traction.0 * scale, traction.1 * scale), true)
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// In slip the traction sits on the bound and the resulting slip opposes it.
-    #[test]
-    fn local_slip_opposes_traction() {
-        let own = (2.0, 3.0);
-        let residual = (5.0, -4.0);
-        let bound = 0.7;
-        let ((p_x, p_y), slips) = local_traction(residual, own, bound);
-        assert!(slips);
-        assert!((p_x.hypot(p_y) - bound).abs() < 1e-14);
-        let (s_x, s_y) = (residual.0 + own.0 * p_x, residual.1 + own.1 * p_y);
-        // s = −λ p with λ > 0: parallel and opposite.
-        assert!((s_x * p_y - s_y * p_x).abs() < 1e-12, "not parallel");
-        assert!(s_x * p_x + s_y * p_y < 0.0, "not opposite");
-    }
-
-    #[test]
-    fn local_adhesion_cancels_slip() {
-        let ((p_x, p_y), slips) = local_traction((0.2, -0.3), (2.0, 3.0), 1.0);
-        assert!(!slips);
-        assert!((0.2 + 2.0 * p_x).abs() < 1e-15 && (-0.3 + 3.0 * p_y).abs() < 1e-15);
-    }
-
-    /// Huge residuals (full slip at enormous creepage) still give a finite traction on the bound.
-    #[test]
-    fn local_solution_survives_extreme_residuals() {
-        let ((p_x, p_y), slips) = local_traction((1e300, -1e300), (1.0, 2.0), 1e-3);
-        assert!(slips && p_x.is_finite() && p_y.is_finite());
-        assert!((p_x + 1e-3 / 2f64.sqrt()).abs() < 1e-12);
-    }
+fn norm(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
 }
