@@ -77,5 +77,32 @@ fn options(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, options);
+/// The exact theory on 40 × 40 in a co-simulation with slowly varying creepage (issue 10's
+/// target: ≤ 5 ms per step): each step moves ξ by 1e-6 and φ by 1e-4 /m, so the warm start from
+/// the previous step's tractions is close; spin keeps adhesion and slip both present.
+fn exact_co_simulation(c: &mut Criterion) {
+    let grid = [(vr::EXACT_ELEMENTS_LONGITUDINAL, 40), (vr::EXACT_ELEMENTS_LATERAL, 40)];
+    let mut instance = instance(&[(vr::CREEP_FORCE_MODEL, Model::Exact as i32), grid[0], grid[1]]);
+    let inputs = [vr::CREEPAGE_LONGITUDINAL, vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE];
+    let outputs = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::SPIN_MOMENT];
+    let (mut time, step, mut k) = (0.0, 1e-3, 0_u64);
+    let mut group = c.benchmark_group("fmu_exact");
+    group.sample_size(20);
+    group.bench_function("exact_40x40_slowly_varying_step", |b| {
+        b.iter(|| {
+            k += 1;
+            let drift = (k % 1000) as f64;
+            let values = [1.0e-3 + 1e-6 * drift, -0.4e-3, 0.4 + 1e-4 * drift, 80e3];
+            instance.set_real(&inputs, black_box(&values));
+            let status = instance.do_step(time, step);
+            time += step;
+            let mut forces = [0.0; 3];
+            instance.get_real(&outputs, &mut forces);
+            black_box((status, forces))
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, options, exact_co_simulation);
 criterion_main!(benches);
