@@ -1,12 +1,14 @@
 //! The default scene through the packaged FMU: a creepage sweep, as a master would run it,
-//! with the project's own minimal master ([`crate::master`]; no Python and no libclang needed).
+//! with the project's C-ABI master (`fmu_master`, libloading; no Python and no libclang needed).
 
 use std::fmt::Write as _;
+use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
-use crate::master::LoadedFmu;
-use wheel_rail_contact_fmu::model_description::value_reference as vr;
+use fmu_master::binary::{Functions, Instance, Status};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID, MODEL_IDENTIFIER};
 
+use crate::fmu::Platform;
 use crate::plot::{line_plot, Series};
 
 /// One communication point of the sweep.
@@ -26,18 +28,62 @@ pub fn default_creepages() -> Vec<f64> {
 /// Loads the FMU, initialises it at its start values, and for each creepage sets it, does one
 /// step of 1 ms and reads the outputs.
 pub fn sweep(fmu_path: &Path, creepages: &[f64]) -> Result<Vec<Row>, String> {
-    let fmu = LoadedFmu::open(fmu_path)?;
-    let instance = fmu.instantiate("default_scene")?;
+    let folder = tempfile_folder()?;
+    let binary = extract_binary(fmu_path, &folder.0)?;
+    let functions = Functions::load(&binary)?;
+    let instance = Instance::new(&functions, "default_scene", GUID)?;
+    let check = |call: &str, status: Status| match status {
+        Status::Ok => Ok(()),
+        status => Err(format!("{call}: {status:?} {:?}", instance.take_messages())),
+    };
+    check("fmi2EnterInitializationMode", instance.enter_initialization(0.0))?;
+    check("fmi2ExitInitializationMode", instance.exit_initialization())?;
     let step = 1e-3;
     let mut rows = Vec::with_capacity(creepages.len());
     for (index, &creepage) in creepages.iter().enumerate() {
-        instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[creepage])?;
-        instance.do_step(index as f64 * step, step)?;
-        let outputs = instance.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION])?;
+        check("fmi2SetReal", instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[creepage]))?;
+        check("fmi2DoStep", instance.do_step(index as f64 * step, step))?;
+        let (status, outputs) =
+            instance.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION]);
+        check("fmi2GetReal", status)?;
         let [force_longitudinal, force_lateral, adhesion_utilisation] = outputs[..] else { unreachable!() };
         rows.push(Row { creepage_longitudinal: creepage, force_longitudinal, force_lateral, adhesion_utilisation });
     }
     Ok(rows)
+}
+
+/// A folder of this process's own, removed on drop.
+struct TempFolder(PathBuf);
+
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn tempfile_folder() -> Result<TempFolder, String> {
+    let folder = std::env::temp_dir().join(format!("wheel_rail_contact_scene_{}", std::process::id()));
+    std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    Ok(TempFolder(folder))
+}
+
+/// Extracts this machine's binary (`binaries/<platform>/<modelIdentifier>.<ext>`) of the FMU into
+/// `folder` and returns its path.
+fn extract_binary(fmu_path: &Path, folder: &Path) -> Result<PathBuf, String> {
+    let platform = Platform::this_machine()
+        .ok_or_else(|| format!("no FMI 2.0 platform for {}/{}", std::env::consts::OS, std::env::consts::ARCH))?;
+    let entry = format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform.folder(), platform.extension());
+    let file = std::fs::File::open(fmu_path).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
+    let mut archive = zip::ZipArchive::new(file).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
+    let mut bytes = Vec::new();
+    archive
+        .by_name(&entry)
+        .map_err(|e| format!("{}: {entry}: {e}", fmu_path.display()))?
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("{entry}: {e}"))?;
+    let path = folder.join(format!("{MODEL_IDENTIFIER}.{}", platform.extension()));
+    std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(path)
 }
 
 /// The table printed by `cargo fmu`.

@@ -319,6 +319,18 @@ s_max).</p>
 
 {options}
 
+<h2>Platforms</h2>
+<ul>
+<li><b>linux64</b> (x86-64): built against glibc 2.28 (cargo-zigbuild), so it loads on glibc ≥ 2.28 (Debian 10
+and later, Ubuntu 20.04 and later, RHEL/Rocky 8 and later); it needs only libc, libm, libpthread and libdl. A
+build without zig says so and needs the building machine's glibc.</li>
+<li><b>win64</b> (x86-64, Windows 10 or later): built with mingw-w64, the C runtime and libgcc linked statically,
+so it needs only DLLs that Windows ships. Tested under wine: the same results as linux64 bit for bit, but for
+Kalker's exact theory, within 1e-15 of the force (the C math libraries round ln and hypot differently in the last
+bit). An FMU state serialized on one platform restores on the other.</li>
+<li>No darwin64 binary yet.</li>
+</ul>
+
 <h2>Behaviour</h2>
 <ul>
 <li>Invalid values (NaN, ±Inf, a or b ≤ 0, μ &lt; 0, G ≤ 0, ν outside [0, 0.5], an impossible measured curve, an

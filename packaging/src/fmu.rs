@@ -365,10 +365,7 @@ pub fn check_library(platform: Platform, linkage: &Linkage, library: &[u8]) -> R
     if !missing.is_empty() {
         return Err(format!("does not export {}", missing.join(", ")));
     }
-    let extra: Vec<&String> = exports
-        .iter()
-        .filter(|name| !FMI2_FUNCTIONS.contains(&name.as_str()))
-        .collect();
+    let extra: Vec<&String> = exports.iter().filter(|name| !FMI2_FUNCTIONS.contains(&name.as_str())).collect();
     if !extra.is_empty() {
         return Err(format!("exports more than the FMI functions: {extra:?}"));
     }

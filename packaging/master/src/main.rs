@@ -14,16 +14,13 @@
 //! lift-off, and an FMU-state serialize/deserialize round trip. It exits non-zero if the binary
 //! breaks one of these rules; `compare` exits non-zero if two runs differ beyond the tolerance.
 
-mod binary;
-mod compare;
-mod description;
-
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use binary::{Functions, Instance, Status};
-use description::Description;
+use fmu_master::binary::{Functions, Instance, Status};
+use fmu_master::compare;
+use fmu_master::description::Description;
 
 /// The model-choice parameter (an enumeration) whose every item `run` exercises.
 const MODEL_PARAMETER: &str = "creep_force_model";
