@@ -1,15 +1,15 @@
 //! Kalker's exact theory (FFT Newton–GMRES solver), one thread: CONTACT's published spin case
 //! (η with spin, partial slip, F_y ≈ −0.61 μN) and a pure-ξ partial-slip case (ξ = 1e-3 on
 //! CONTACT's ellipse, F_x ≈ −0.47 μN) at 40 × 40, 80 × 80 and 160 × 160 elements over the
-//! potential contact area; and a warm-started co-simulation on 40 × 40, each step starting from
-//! the previous one's tractions while the creepages and the ellipse vary slowly.
+//! potential contact area; and a warm-started co-simulation on 40 × 40 and 200 × 50, each step
+//! starting from the previous one's tractions while the creepages and the ellipse vary slowly.
 //!
 //! Run: `cargo bench --bench exact`. The solver's iterations and operator products per case are
 //! printed before the timings.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use wheel_rail_contact::{ContactInput, ExactTheory, WarmStart};
+use wheel_rail_contact::{ContactInput, ExactTheory};
 
 #[allow(dead_code)] // the bench uses one of the published cases
 #[path = "../tests/data/contact_published_cases.rs"]
@@ -62,33 +62,37 @@ fn scene_step(k: usize) -> ContactInput {
     }
 }
 
+/// Warm-started steps on 40 × 40 (the target grid of the issue) and on 200 × 50 (the proposed
+/// default of `model = exact`: 200 elements along the rolling direction, where the grid error
+/// comes from).
 fn exact_theory_warm_steps(c: &mut Criterion) {
-    let model = ExactTheory::new(40, 40);
-    let mut start = model.solve(&scene_step(0)).unwrap().warm_start();
-    let (mut products, mut iterations) = (0, 0);
-    for k in 1..=100 {
-        let solution = model.solve_from(&scene_step(k), Some(&start)).unwrap();
-        products += solution.operator_products;
-        iterations += solution.iterations;
-        start = solution.warm_start();
-    }
-    println!(
-        "warm steps 40x40: {:.1} Newton steps, {:.1} operator products per step",
-        iterations as f64 / 100.0,
-        products as f64 / 100.0
-    );
     let mut group = c.benchmark_group("exact_theory_warm_step");
     group.sample_size(20);
-    group.bench_function("40", |bencher| {
-        let mut k = 0;
-        let mut start = WarmStart::default();
-        bencher.iter(|| {
-            k += 1;
-            let solution = model.solve_from(black_box(&scene_step(k)), Some(&start)).unwrap();
+    for (longitudinal, lateral) in [(40, 40), (200, 50)] {
+        let model = ExactTheory::new(longitudinal, lateral);
+        let mut start = model.solve(&scene_step(0)).unwrap().warm_start();
+        let (mut products, mut iterations) = (0, 0);
+        for k in 1..=100 {
+            let solution = model.solve_from(&scene_step(k), Some(&start)).unwrap();
+            products += solution.operator_products;
+            iterations += solution.iterations;
             start = solution.warm_start();
-            solution.forces
-        })
-    });
+        }
+        println!(
+            "warm steps {longitudinal}x{lateral}: {:.1} Newton steps, {:.1} operator products per step",
+            iterations as f64 / 100.0,
+            products as f64 / 100.0
+        );
+        group.bench_function(format!("{longitudinal}x{lateral}"), |bencher| {
+            let mut k = 0;
+            bencher.iter(|| {
+                k += 1;
+                let solution = model.solve_from(black_box(&scene_step(k)), Some(&start)).unwrap();
+                start = solution.warm_start();
+                solution.forces
+            })
+        });
+    }
     group.finish();
 }
 
