@@ -12,8 +12,8 @@ use wheel_rail_contact_fmu::model_description::{
 fn initialise(fmu: &Fmu) {
     // SAFETY: `fmu.c` is live.
     unsafe {
-        use wheel_rail_contact_fmu::fmi2::*;
         use wheel_rail_contact_fmu::ffi::*;
+        use wheel_rail_contact_fmu::fmi2::*;
         assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), fmi2Status_fmi2OK);
         assert_eq!(fmi2EnterInitializationMode(fmu.c), fmi2Status_fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(fmu.c), fmi2Status_fmi2OK);

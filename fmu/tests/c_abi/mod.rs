@@ -117,7 +117,8 @@ impl Fmu {
 
     /// An instance whose messages are recorded in `log` (which must outlive it).
     pub fn instantiate_logged(name: &str, log: &MessageLog) -> Fmu {
-        type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+        type Named =
+            extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
         type Variadic =
             unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
         Self::with_callbacks(
