@@ -32,6 +32,7 @@ A study file (see examples/studies/ and README.md, "Parameter studies"):
 Every key is checked up front; a mistake raises StudyError naming the key (e.g. `grid.mu`).
 """
 
+import dataclasses
 import difflib
 import hashlib
 import itertools
@@ -41,6 +42,7 @@ import pathlib
 import tomllib
 
 import numpy as np
+from fmpy import read_model_description
 
 TOP_LEVEL = {"name", "description", "models", "outputs", "chunk_size", "steps", "step_size", "reference_model",
              "fixed", "grid", "random", "cases", "plot"}
@@ -423,3 +425,27 @@ def study_key(study, fmu_bytes):
     digest = hashlib.sha256(json.dumps({k: study[k] for k in KEYED}, sort_keys=True).encode())
     digest.update(hashlib.sha256(fmu_bytes).digest())
     return digest.hexdigest()[:16]
+
+
+@dataclasses.dataclass
+class Study:
+    path: pathlib.Path
+    fmu_bytes: bytes
+    interface: dict
+    study: dict
+    scenes: list
+    key: str
+
+    @property
+    def chunks(self):
+        size = self.study["chunk_size"]
+        return [self.scenes[i:i + size] for i in range(0, len(self.scenes), size)]
+
+
+def prepare(study_path, fmu_path):
+    """Reads the FMU and the study file and validates the study against the FMU's variables."""
+    fmu_bytes = pathlib.Path(fmu_path).read_bytes()
+    interface = fmu_interface(read_model_description(str(fmu_path)))
+    study = load(study_path, interface)
+    return Study(pathlib.Path(study_path), fmu_bytes, interface, study, scenes(study, interface),
+                 study_key(study, fmu_bytes))

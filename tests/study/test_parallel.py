@@ -55,7 +55,7 @@ def serial(fmu_path, tmp_path_factory):
 
 def test_two_worker_local_cluster_equals_the_serial_run(serial, fmu_path, tmp_path):
     path, reference = serial
-    outcome = execute.run(execute.prepare(path, fmu_path), tmp_path / "out", workers=2, progress=False)
+    outcome = execute.run(spec.prepare(path, fmu_path), tmp_path / "out", workers=2, progress=False)
     assert outcome.computed == outcome.chunks == math.ceil(108 / 7)
     assert len(outcome.frame) == 108 and (outcome.frame["status"] == "ok").all()
     pd.testing.assert_frame_equal(outcome.frame, reference.frame, check_exact=True)
