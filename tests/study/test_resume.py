@@ -33,9 +33,13 @@ def parts(out):
 def test_a_killed_run_resumes_without_recomputing_finished_chunks(study_file, fmu_path, tmp_path):
     path = study_file(STUDY)
     out = tmp_path / "out"
+    # The killed workers cannot remove the FMU they unpacked: keep it in the test's directory.
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
     process = subprocess.Popen([str(ROOT / "scripts" / "study"), "run", str(path), "--workers", "1", "--out",
                                 str(out), "--no-progress"], cwd=ROOT, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL, start_new_session=True)
+                               stderr=subprocess.DEVNULL, start_new_session=True,
+                               env={**os.environ, "TMPDIR": str(temporary)})
     try:
         deadline = time.monotonic() + 90
         while len(parts(out)) < 3:
