@@ -5,7 +5,7 @@ import math
 
 import pandas as pd
 
-from conftest import execute, run_in_process, spec
+from .conftest import execute, run_in_process, spec
 
 STUDY = """
 name = "bad"

@@ -13,7 +13,7 @@ import time
 import pandas as pd
 import pytest
 
-from conftest import ROOT, clean_environment, command, run_in_process
+from .conftest import ROOT, clean_environment, command, run_in_process
 
 DASK = ROOT / ".venv" / "bin" / "dask"
 STUDY = """

@@ -11,7 +11,7 @@ import pytest
 from fmpy import extract
 from fmpy.fmi2 import FMU2Slave
 
-from conftest import execute, run_in_process, spec
+from .conftest import execute, run_in_process, spec
 
 # Three models, two cases of which one switches an option on (a reset that failed to restore the
 # start values would carry hertz_contact = on into the next scenes), seeded random friction, and a

@@ -4,7 +4,7 @@ the plots are written beside the results."""
 import numpy as np
 import pandas as pd
 
-from conftest import report, run_in_process, spec
+from .conftest import report, run_in_process, spec
 
 STUDY = """
 name = "report"

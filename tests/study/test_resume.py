@@ -9,7 +9,7 @@ import time
 
 import pandas as pd
 
-from conftest import ROOT, command, run_in_process
+from .conftest import ROOT, command, run_in_process
 
 # 24 chunks of 4 exact-theory scenes (20 x 20 elements, a few ms each): long enough to kill the
 # run after some chunks and before the last.
