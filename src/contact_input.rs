@@ -67,6 +67,11 @@ impl<T: Scalar> ContactInput<T> {
         value(self.normal_force) <= 0.0 || value(self.friction_coefficient) == 0.0
     }
 
+    /// Hertz's maximum pressure p₀ = 3Q/(2πab) of this ellipse \[Pa\], 0 after lift-off.
+    pub fn max_pressure(&self) -> T {
+        hertz_max_pressure(self.normal_force, self.semi_axis_a, self.semi_axis_b)
+    }
+
     /// The Coulomb limit μQ \[N\] (0 after lift-off).
     pub fn friction_limit(&self) -> T {
         if self.transmits_no_force() {
@@ -74,6 +79,17 @@ impl<T: Scalar> ContactInput<T> {
         } else {
             self.friction_coefficient * self.normal_force
         }
+    }
+}
+
+/// Hertz's maximum pressure p₀ = 3Q/(2πab) \[Pa\] of an elliptic contact under normal force Q
+/// (Johnson 1985, eq. 3.65: Q is the integral of the semi-ellipsoidal pressure), 0 after
+/// lift-off (Q ≤ 0).
+pub fn hertz_max_pressure<T: Scalar>(normal_force: T, semi_axis_a: T, semi_axis_b: T) -> T {
+    if value(normal_force) > 0.0 {
+        normal_force * 3.0 / (semi_axis_a * (2.0 * std::f64::consts::PI)) / semi_axis_b
+    } else {
+        T::from(0.0)
     }
 }
 

@@ -16,6 +16,10 @@ pub trait CreepForceModel {
     /// FMI's directional derivative asks for): `direction` holds one rate per input; the result
     /// holds d(F_x), d(F_y), d(M_z), d(|F|/μQ). The Poisson ratio's rate must be 0.
     ///
+    /// At μ = 0 and at Q = 0 (no force) the derivative is the one-sided one from inside the
+    /// contact (μ, Q → 0⁺) for every friction-limited model, e.g. dF_x/dμ = −Q·ξ/s_C in full
+    /// slip; Kalker's linear theory, whose force jumps there, gives that of its zero force.
+    ///
     /// The default is a central finite difference (see [`central_difference`]) for models
     /// whose forces are not smooth in their inputs (FASTSIM's grid); smooth models override it
     /// with exact forward-mode derivatives.
@@ -92,23 +96,42 @@ fn from_fields(f: [f64; 9]) -> ContactInput {
 /// At zero creepage the forces are homogeneous of degree one in the creepages (the linear
 /// range), so their derivative along the direction is the same anywhere on the ray: it is taken
 /// a vanishing step (1e-100 of the direction) away from the kink of √(ξ² + η²) at the origin.
+///
+/// At the no-force boundary (μ = 0, or Q = 0; see [`NoForceBoundary`]) a model whose forces
+/// vanish continuously there is differentiated just inside the contact, at μ or Q of
+/// [`inside_no_force_boundary`]: the one-sided derivative from μ, Q → 0⁺ (the only side inside
+/// the domain for μ, the contact closing for Q), e.g. dF/dμ = −Q·ξ/s_C for Polach (full slip).
+/// Its Jacobian is applied to the whole direction, so a negative rate of μ or Q gives the
+/// negative of the positive one's.
 pub(crate) fn dual_derivative(
     input: &ContactInput,
     direction: &ContactInput,
+    boundary: NoForceBoundary,
     forces: impl Fn(&ContactInput<Dual64>) -> CreepForces<Dual64>,
 ) -> Result<CreepForces, InvalidInput> {
     validate_direction(input, direction)?;
     let at_rest = input.creepage_longitudinal == 0.0 && input.creepage_lateral == 0.0 && input.spin_creepage == 0.0;
     let step = if at_rest { RAY_STEP } else { 0.0 };
-    let dual = |x: f64, rate: f64| Dual64::new(x + step * rate, rate);
+    let creepage = |x: f64, rate: f64| x + step * rate;
+    let creepages = [
+        creepage(input.creepage_longitudinal, direction.creepage_longitudinal),
+        creepage(input.creepage_lateral, direction.creepage_lateral),
+        creepage(input.spin_creepage, direction.spin_creepage),
+    ];
+    let (friction_coefficient, normal_force) = match boundary {
+        NoForceBoundary::Continuous => {
+            inside_no_force_boundary(input, creepages).unwrap_or((input.friction_coefficient, input.normal_force))
+        }
+        NoForceBoundary::Jump => (input.friction_coefficient, input.normal_force),
+    };
     let seeded = ContactInput {
-        creepage_longitudinal: dual(input.creepage_longitudinal, direction.creepage_longitudinal),
-        creepage_lateral: dual(input.creepage_lateral, direction.creepage_lateral),
-        spin_creepage: dual(input.spin_creepage, direction.spin_creepage),
-        normal_force: Dual64::new(input.normal_force, direction.normal_force),
+        creepage_longitudinal: Dual64::new(creepages[0], direction.creepage_longitudinal),
+        creepage_lateral: Dual64::new(creepages[1], direction.creepage_lateral),
+        spin_creepage: Dual64::new(creepages[2], direction.spin_creepage),
+        normal_force: Dual64::new(normal_force, direction.normal_force),
         semi_axis_a: Dual64::new(input.semi_axis_a, direction.semi_axis_a),
         semi_axis_b: Dual64::new(input.semi_axis_b, direction.semi_axis_b),
-        friction_coefficient: Dual64::new(input.friction_coefficient, direction.friction_coefficient),
+        friction_coefficient: Dual64::new(friction_coefficient, direction.friction_coefficient),
         shear_modulus: Dual64::new(input.shear_modulus, direction.shear_modulus),
         poisson_ratio: Dual64::from(input.poisson_ratio),
     };
@@ -124,6 +147,46 @@ pub(crate) fn dual_derivative(
 /// How far along the direction the at-rest derivative is taken (see [`dual_derivative`]).
 const RAY_STEP: f64 = 1e-100;
 
+/// How a model's forces behave where the contact transmits no force (μ = 0 or Q ≤ 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum NoForceBoundary {
+    /// They vanish continuously as μQ → 0⁺ (every friction-limited model): the derivative at
+    /// μ = 0 or Q = 0 is the one-sided one from inside the contact.
+    Continuous,
+    /// They jump (Kalker's linear theory ignores friction): no one-sided derivative in μ or Q
+    /// exists; the derivative is that of the zero force the value takes, 0 in every input.
+    Jump,
+}
+
+/// How deep inside the contact a one-sided derivative at the no-force boundary is taken: at a
+/// Coulomb limit μQ of 1e-6 of G·ab·3·s, the limit at which the largest creepage s would just
+/// saturate a linear contact of creep coefficient 3 (the smallest of Kalker's table is 2.5), so
+/// the contact is in full slip to within ~1e-18 there, as it is in the limit μQ → 0⁺.
+const NO_FORCE_DEPTH: f64 = 1e-6;
+
+/// (μ, Q) just inside the contact for an input on the no-force boundary (μ = 0 or Q = 0, with
+/// Q ≥ 0: lift-off, Q < 0, is inside the zero-force region, not on its edge) with creepages
+/// `creepages` (ξ, η, φ); `None` off the boundary, or without creepage (no force on either side).
+/// The zero one of μ and Q is raised (both, to the same value, when both are zero) so that μQ
+/// is [`NO_FORCE_DEPTH`] of the saturating limit.
+pub(crate) fn inside_no_force_boundary(input: &ContactInput, creepages: [f64; 3]) -> Option<(f64, f64)> {
+    let (friction, load) = (input.friction_coefficient, input.normal_force);
+    if !(load >= 0.0 && (friction == 0.0 || load == 0.0)) {
+        return None;
+    }
+    let [xi, eta, spin] = creepages;
+    let largest = xi.abs().max(eta.abs()).max((spin * input.semi_axis_a).abs());
+    let friction_limit = NO_FORCE_DEPTH * input.shear_modulus * input.semi_axis_a * input.semi_axis_b * 3.0 * largest;
+    if !(friction_limit > 0.0 && friction_limit.is_finite()) {
+        return None;
+    }
+    Some(match (friction > 0.0, load > 0.0) {
+        (false, true) => (friction_limit / load, load),
+        (true, false) => (friction, friction_limit / friction),
+        _ => (friction_limit.sqrt(), friction_limit.sqrt()),
+    })
+}
+
 /// Relative step of [`central_difference`].
 const DIFFERENCE_STEP: f64 = 1e-6;
 
@@ -131,12 +194,19 @@ const DIFFERENCE_STEP: f64 = 1e-6;
 /// input by at most 1e-6 of its own size; creepages at or near zero are moved by at most 1e-6 of
 /// the creepage at which the force reaches μQ in Kalker's linear theory, μQ/(G·ab·C), taken
 /// with C = 3 (the smallest coefficient of Kalker's table is 2.5).
+///
+/// On the no-force boundary (μ = 0 with a rate of μ, or Q = 0 with a rate of Q) the forces have
+/// no central difference (μ < 0 is not an input; lift-off has no force): the one-sided
+/// difference into the contact is taken instead, as the exact (dual-number) derivatives do.
 pub fn central_difference<M: CreepForceModel + ?Sized>(
     model: &M,
     input: &ContactInput,
     direction: &ContactInput,
 ) -> Result<CreepForces, InvalidInput> {
     validate_direction(input, direction)?;
+    if let Some(derivative) = one_sided_difference(model, input, direction)? {
+        return Ok(derivative);
+    }
     let x = fields(input);
     let d = fields(direction);
     let area = input.semi_axis_a * input.semi_axis_b;
@@ -163,4 +233,45 @@ pub fn central_difference<M: CreepForceModel + ?Sized>(
         spin_moment: plus.spin_moment.zip(minus.spin_moment).map(|(p, m)| rate(p, m)),
         adhesion_utilisation: rate(plus.adhesion_utilisation, minus.adhesion_utilisation),
     })
+}
+
+/// The one-sided difference of [`central_difference`] on the no-force boundary: `None` off it.
+/// The step moves into the contact (the sign of the rate of μ, or else of Q, that is on the
+/// boundary) until μQ reaches the depth of [`inside_no_force_boundary`]; the forces being
+/// zero on the boundary, (F(x ± t·d) − F(x))/(±t) loses no digits to cancellation.
+fn one_sided_difference<M: CreepForceModel + ?Sized>(
+    model: &M,
+    input: &ContactInput,
+    direction: &ContactInput,
+) -> Result<Option<CreepForces>, InvalidInput> {
+    let creepages = [input.creepage_longitudinal, input.creepage_lateral, input.spin_creepage];
+    let on_friction = input.friction_coefficient == 0.0 && direction.friction_coefficient != 0.0;
+    let on_load = input.normal_force == 0.0 && direction.normal_force != 0.0;
+    if !(on_friction || on_load) {
+        return Ok(None);
+    }
+    // Without creepage the forces are homogeneous of degree one along the direction (the
+    // creepages then come from it), so any depth does: that of a unit creepage.
+    let reference = if creepages.iter().any(|c| *c != 0.0) { creepages } else { [1.0, 0.0, 0.0] };
+    let Some((friction, load)) = inside_no_force_boundary(input, reference) else {
+        // Lifted off (Q < 0): zero force on both sides of μ = 0.
+        let zero =
+            CreepForces { spin_moment: model.creep_forces(input)?.spin_moment.map(|_| 0.0), ..Default::default() };
+        return Ok(Some(zero));
+    };
+    let (rate, target) =
+        if on_friction { (direction.friction_coefficient, friction) } else { (direction.normal_force, load) };
+    let step = (target / rate).abs();
+    let sign = rate.signum();
+    let x = fields(input);
+    let d = fields(direction);
+    let moved = from_fields(std::array::from_fn(|i| x[i] + sign * step * d[i]));
+    let (inside, on) = (model.creep_forces(&moved)?, model.creep_forces(input)?);
+    let rate = |p: f64, o: f64| sign * (p - o) / step;
+    Ok(Some(CreepForces {
+        force_longitudinal: rate(inside.force_longitudinal, on.force_longitudinal),
+        force_lateral: rate(inside.force_lateral, on.force_lateral),
+        spin_moment: inside.spin_moment.zip(on.spin_moment).map(|(p, o)| rate(p, o)),
+        adhesion_utilisation: rate(inside.adhesion_utilisation, on.adhesion_utilisation),
+    }))
 }

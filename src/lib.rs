@@ -8,9 +8,11 @@
 //! trades speed for accuracy — [`KalkerLinear`], [`ShenHedrickElkins`], [`Polach`], [`Fastsim`]
 //! at any grid, [`ExactTheory`] — each in its own file under [`models`], all implementing
 //! [`CreepForceModel`] (forces and exact or finite-difference directional derivatives);
-//! [`ModelChoice`] selects one at run time. [`scene`] holds what a scene may add: Hertz contact,
-//! creepages from kinematics through standstill, creep relaxation. [`fmi`] is the FMI 2.0
-//! adapter; it alone holds `unsafe` code (in `fmi::ffi`, enforced by `deny(unsafe_code)`).
+//! [`ModelChoice`] selects one at run time. [`scene`] holds what a scene may add — Hertz contact,
+//! creepages from kinematics through standstill, creep relaxation — and [`scene::Scene`], the
+//! whole pipeline with one evaluation, which the FMU (the `wheel-rail-contact-fmu` crate, the FMI
+//! 2.0 adapter that holds all `unsafe` code) calls too. This crate forbids `unsafe` code and has
+//! no FFI.
 //!
 //! **Sign convention** (Kalker, CONTACT): forces act on the wheel and oppose the creepages; in
 //! the linear range F_x = −G·ab·C11·ξ and F_y = −G·ab·C22·η − G·(ab)^{3/2}·C23·φ.
@@ -26,12 +28,11 @@
 //! assert!(forces.force_longitudinal < 0.0 && forces.adhesion_utilisation < 1.0);
 //! ```
 
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 mod contact_input;
 mod creep_force_model;
 mod creep_forces;
-pub mod fmi;
 mod invalid_input;
 mod kalker_coefficients;
 pub mod models;

@@ -70,15 +70,37 @@ fn positive(log10_min: f64, log10_max: f64) -> impl Strategy<Value = f64> {
     (log10_min..log10_max).prop_map(|e| 10f64.powf(e))
 }
 
+/// Either sign of a magnitude spread log-uniformly over 10^log10_min … 10^log10_max.
+fn signed_magnitude(log10_min: f64, log10_max: f64) -> impl Strategy<Value = f64> {
+    (positive(log10_min, log10_max), any::<bool>()).prop_map(|(m, negative)| if negative { -m } else { m })
+}
+
+/// Realistic values (weight 6 of 10: wheel–rail creepages 1e-5 … 1e-1, spin 1e-3 … 1e2 /m),
+/// exactly 0 (1 of 10) or any magnitude (3 of 10). So ξ, η and Φ are all realistic together
+/// in ~22 % of the cases (and the contact's other inputs in 60 % each), not in < 1 %.
+fn creepage(log10_min: f64, log10_max: f64) -> impl Strategy<Value = f64> {
+    prop_oneof![6 => signed_magnitude(log10_min, log10_max), 1 => Just(0.0), 3 => any_magnitude()]
+}
+
+/// A realistic range (weight 6 of 10) or the extreme one.
+fn realistic_or(
+    realistic: impl Strategy<Value = f64>,
+    extreme: impl Strategy<Value = f64>,
+) -> impl Strategy<Value = f64> {
+    prop_oneof![6 => realistic, 4 => extreme]
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(20_000))]
 
     #[test]
     fn any_finite_valid_input_gives_finite_bounded_forces(
-        xi in any_magnitude(), eta in any_magnitude(), phi in any_magnitude(),
-        normal_force in any_magnitude(), friction_coefficient in positive(-300.0, 1.0),
-        semi_axis_a in positive(-150.0, 150.0), semi_axis_b in positive(-150.0, 150.0),
-        shear_modulus in positive(-100.0, 100.0), poisson_ratio in 0.0..=0.5_f64,
+        xi in creepage(-5.0, -1.0), eta in creepage(-5.0, -1.0), phi in creepage(-3.0, 2.0),
+        normal_force in realistic_or(1e3..2e5_f64, any_magnitude()),
+        friction_coefficient in realistic_or(0.05..0.6_f64, positive(-300.0, 1.0)),
+        semi_axis_a in realistic_or(positive(-3.0, -1.7), positive(-150.0, 150.0)),
+        semi_axis_b in realistic_or(positive(-3.0, -1.7), positive(-150.0, 150.0)),
+        shear_modulus in realistic_or(7e10..9e10_f64, positive(-100.0, 100.0)), poisson_ratio in 0.0..=0.5_f64,
     ) {
         assert_finite_and_bounded(&ContactInput {
             creepage_longitudinal: xi, creepage_lateral: eta, spin_creepage: phi, normal_force,

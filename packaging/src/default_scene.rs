@@ -1,13 +1,11 @@
 //! The default scene through the packaged FMU: a creepage sweep, as a master would run it,
-//! with rust-fmi's importer (no Python needed).
+//! with the project's own minimal master ([`crate::master`]; no Python and no libclang needed).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use fmi::fmi2::import::Fmi2Import;
-use fmi::fmi2::instance::{CoSimulation, Common};
-use fmi::traits::FmiInstance;
-use wheel_rail_contact::fmi::model_description::value_reference as vr;
+use crate::master::LoadedFmu;
+use wheel_rail_contact_fmu::model_description::value_reference as vr;
 
 use crate::plot::{line_plot, Series};
 
@@ -28,25 +26,17 @@ pub fn default_creepages() -> Vec<f64> {
 /// Loads the FMU, initialises it at its start values, and for each creepage sets it, does one
 /// step of 1 ms and reads the outputs.
 pub fn sweep(fmu_path: &Path, creepages: &[f64]) -> Result<Vec<Row>, String> {
-    let import: Fmi2Import = fmi::import::from_path(fmu_path).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
-    let mut instance = import.instantiate_cs("default_scene", false, true).map_err(|e| format!("instantiate: {e}"))?;
-    fn fail(call: &'static str) -> impl Fn(fmi::fmi2::Fmi2Error) -> String {
-        move |e| format!("{call}: {e:?}")
-    }
-    FmiInstance::enter_initialization_mode(&mut instance, None, 0.0, None).map_err(fail("enter initialization"))?;
-    FmiInstance::exit_initialization_mode(&mut instance).map_err(fail("exit initialization"))?;
+    let fmu = LoadedFmu::open(fmu_path)?;
+    let instance = fmu.instantiate("default_scene")?;
     let step = 1e-3;
     let mut rows = Vec::with_capacity(creepages.len());
     for (index, &creepage) in creepages.iter().enumerate() {
-        Common::set_real(&mut instance, &[vr::CREEPAGE_LONGITUDINAL], &[creepage]).map_err(fail("set_real"))?;
-        instance.do_step(index as f64 * step, step, true).map_err(fail("do_step"))?;
-        let mut outputs = [0.0; 3];
-        let references = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION];
-        Common::get_real(&mut instance, &references, &mut outputs).map_err(fail("get_real"))?;
-        let [force_longitudinal, force_lateral, adhesion_utilisation] = outputs;
+        instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[creepage])?;
+        instance.do_step(index as f64 * step, step)?;
+        let outputs = instance.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION])?;
+        let [force_longitudinal, force_lateral, adhesion_utilisation] = outputs[..] else { unreachable!() };
         rows.push(Row { creepage_longitudinal: creepage, force_longitudinal, force_lateral, adhesion_utilisation });
     }
-    FmiInstance::terminate(&mut instance).map_err(fail("terminate"))?;
     Ok(rows)
 }
 

@@ -4,9 +4,10 @@
 
 use std::fmt::Write as _;
 
-use wheel_rail_contact::fmi::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
-use wheel_rail_contact::fmi::scene::contact_input;
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
+use wheel_rail_contact_fmu::options::OPTION_USES;
+use wheel_rail_contact_fmu::scene::contact_input;
 
 use crate::plot::{escape, line_plot, Series};
 
@@ -107,11 +108,40 @@ fn dependencies_text() -> String {
     html
 }
 
+/// The table of [`OPTION_USES`] (declared once, in the adapter) as HTML.
+fn option_table_html() -> String {
+    let list = |names: &[&str]| {
+        if names.is_empty() {
+            "—".to_owned()
+        } else {
+            names.iter().map(|n| format!("<code>{n}</code>")).collect::<Vec<_>>().join(", ")
+        }
+    };
+    let mut html = String::from(
+        "<table>\n<tr><th>choice or option</th><th>inputs used</th><th>inputs it replaces</th>\
+         <th>parameters used</th><th>outputs it sets</th></tr>\n",
+    );
+    for row in OPTION_USES {
+        writeln!(
+            html,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            row.option,
+            list(row.inputs),
+            list(row.replaces),
+            list(row.parameters),
+            list(row.outputs)
+        )
+        .unwrap();
+    }
+    html.push_str("</table>");
+    html
+}
+
 /// The model choice and the scene options: what each does, its variables, equations and sources.
-const OPTIONS_HTML: &str = r#"<h2>Models (parameter <code>model</code>)</h2>
+const OPTIONS_HTML: &str = r#"<h2>Models (parameter <code>creep_force_model</code>)</h2>
 <p>All models take the same inputs and give the same outputs; the one chosen is built once when the
 parameters are fixed (fmi2ExitInitializationMode) and again only if a parameter changes, so the models not
-chosen cost nothing per step. <code>model</code> and every option switch are <i>fixed</i> parameters: set them
+chosen cost nothing per step. <code>creep_force_model</code> and every option switch are <i>fixed</i> parameters: set them
 before fmi2ExitInitializationMode. Their validity is checked there (fmi2Error naming the variable and value);
 parameters of an option that is off, and of models not chosen, are not used and not checked.</p>
 <ul>
@@ -155,7 +185,7 @@ k_A = 0.3, k_S = 0.1, A = 0.4, B = 0.2 s/m; <code>polach2005_user</code> takes
 μ0 = 0.55 with the dry set and μ0 = 0.30 with the wet set (the FMU does not override the input). V<sub>s</sub> is
 |<code>rolling_speed</code>|, or D = √(V² + v_c²) when <code>creepages_from_kinematics</code> = on (then s_C·D is the
 slip velocity exactly, down to standstill). Outputs: <code>current_friction_coefficient</code> = μ(w),
-<code>slip_velocity</code> = w. Polach 2005 extends Polach's method only: with another <code>model</code> a
+<code>slip_velocity</code> = w. Polach 2005 extends Polach's method only: with another <code>creep_force_model</code> a
 Polach 2005 <code>traction_law</code> is rejected with fmi2Error (rather than silently ignored); so is
 <code>stiffness_source</code> = measured_curve.</p>
 
@@ -198,12 +228,16 @@ stiff damper; for low-speed transients switch on the relaxation. Outputs: <code>
 (first-order relaxation-length model; Pacejka, <i>Tire and Vehicle Dynamics</i>; Knothe &amp; Gross-Thebing,
 VSD 15, 1986):</p>
 <pre>
-dF/dt = (|V| / L) (F_ss − F),     F(t + h) = F_ss + (F(t) − F_ss) e^(−|V| h / L)
+dF/dt = (V_r / L) (F_ss − F),     F(t + h) = F_ss + (F(t) − F_ss) e^(−V_r h / L)
 </pre>
-<p>F<sub>ss</sub> is the chosen model's steady-state force for the inputs set before the step and V the input
-<code>rolling_speed</code>, both held over the step (the co-simulation's zero-order hold), so the exact exponential
-update is used: stable for any step size, never overshooting, the same after one step of h as after n steps of
-h/n, frozen at V = 0. The relaxed forces are the FMU's state: set to the steady state at
+<p>F<sub>ss</sub> is the chosen model's steady-state force for the inputs set before the step and V<sub>r</sub>
+the speed at which the contact's material is renewed: |V| (<code>rolling_speed</code>) with the creepages as
+inputs, and (|V| + |ωr|)/2 with <code>creepages_from_kinematics</code> — each body carries its half of the
+elastic displacement out of the contact at its own surface speed (Kalker's rolling speed in magnitude) — so a
+wheel spinning or braking at standstill builds up its force over a few relaxation lengths of its own rolling,
+while a contact at rest (V = ω = 0) holds its force like a spring. Both are held over the step (the
+co-simulation's zero-order hold), so the exact exponential update is used: stable for any step size, never
+overshooting, the same after one step of h as after n steps of h/n. The relaxed forces are the FMU's state: set to the steady state at
 fmi2ExitInitializationMode, advanced by every fmi2DoStep, cleared by fmi2Reset, and set to zero at lift-off or
 μ = 0 (no contact, no elastic deformation). <code>relaxation_length</code> L = 0 (default) derives it from the
 contact: L<sub>x</sub> = √(ab) C11 (2 − ν)/4, L<sub>y</sub> = √(ab) C22 (2 − ν)/4 (Kalker's creep stiffness over
@@ -213,19 +247,7 @@ state's. After a sudden drop of μQ the relaxed force may exceed the new limit f
 as in any first-order relaxation model.</p>
 
 <h2>Which variables each option uses</h2>
-<table>
-<tr><th>option</th><th>inputs used</th><th>parameters used</th><th>outputs it sets</th></tr>
-<tr><td>every scene</td><td>normal_force, friction_coefficient, rolling_speed (checked finite; for slip_velocity)</td><td>shear_modulus, poisson_ratio, model</td><td>forces, utilisation, spin_moment</td></tr>
-<tr><td>creepages as inputs (default)</td><td>creepage_longitudinal, creepage_lateral, spin_creepage</td><td>—</td><td>effective_* echo them</td></tr>
-<tr><td>ellipse as input (default)</td><td>semi_axis_a, semi_axis_b</td><td>—</td><td>contact_semi_axis_a/b echo them, max_pressure</td></tr>
-<tr><td>creep_force_model = polach</td><td>—</td><td>stiffness_source, measured_*</td><td>—</td></tr>
-<tr><td>creep_force_model = fastsim</td><td>—</td><td>fastsim_strips, fastsim_elements, fastsim_traction_bound, fastsim_flexibility</td><td>spin_moment</td></tr>
-<tr><td>creep_force_model = exact</td><td>—</td><td>exact_elements_longitudinal, exact_elements_lateral</td><td>spin_moment</td></tr>
-<tr><td>traction_law = polach2005_*</td><td>rolling_speed</td><td>traction_law (user: the four factors)</td><td>current_friction_coefficient, slip_velocity</td></tr>
-<tr><td>hertz_contact = on</td><td>wheel_rolling_radius (not semi_axis_a/b)</td><td>wheel_profile_curvature, rail_profile_curvature</td><td>contact_semi_axis_a/b, max_pressure, approach</td></tr>
-<tr><td>creepages_from_kinematics = on</td><td>rolling_speed, wheel_angular_speed, wheel_rolling_radius, lateral_slip_velocity, spin_angular_velocity (not the creepages)</td><td>regularisation_speed</td><td>effective_*, slip_velocity</td></tr>
-<tr><td>creep_relaxation = on</td><td>rolling_speed</td><td>relaxation_length</td><td>force_longitudinal, force_lateral (relaxed)</td></tr>
-</table>
+{option_table}
 <p>&lt;ModelStructure&gt; lists, for each output, every input it depends on under some choice of model and options
 (FMI 2.0 asks for every dependency that can exist); a unit test perturbs each input under a set of scenes covering
 every option and model and checks the lists are exactly those. InitialUnknowns list the same inputs and every
@@ -251,12 +273,12 @@ pub fn index_html() -> String {
 <h1>wheel_rail_contact: wheel–rail creep forces (FMI 2.0 Co-Simulation)</h1>
 
 <h2>What it computes</h2>
-<p>By default (every option off, <code>model</code> = polach), the tangential forces of one wheel–rail contact patch — the longitudinal creep force F<sub>x</sub>, the lateral
+<p>By default (every option off, <code>creep_force_model</code> = polach), the tangential forces of one wheel–rail contact patch — the longitudinal creep force F<sub>x</sub>, the lateral
 creep force F<sub>y</sub> and the adhesion utilisation |F|/(μQ) — from the creepages ξ, η, the spin creepage φ,
 the normal force Q, the contact-ellipse semi-axes a (rolling direction) and b (lateral), the friction coefficient
 μ, and the material constants G and ν. The method is Polách's fast analytical solution (O. Polách, “Solution of
 wheel-rail contact forces suitable for calculation of rail vehicle dynamics”), with the contact stiffness either
-from Kalker's linear theory or fitted to a measured creep curve. The parameter <code>model</code> selects another
+from Kalker's linear theory or fitted to a measured creep curve. The parameter <code>creep_force_model</code> selects another
 rung of the speed–accuracy ladder (Kalker's linear theory, Shen–Hedrick–Elkins, FASTSIM, Kalker's exact theory), and
 four options, each off by default, supply what a scene lacks: Polach's 2005 traction law, Hertz's contact ellipse,
 creepages from kinematics, creep relaxation (sections below). Without relaxation the outputs are algebraic in the
@@ -343,7 +365,7 @@ be freed. Instances are independent; there is no global state.</li>
 </body></html>
 "#,
         table = variables_table(),
-        options = OPTIONS_HTML,
+        options = OPTIONS_HTML.replace("{option_table}", &option_table_html()),
         dependencies = dependencies_text(),
         q = scene.normal_force / 1e3,
         a = scene.semi_axis_a * 1e3,

@@ -4,8 +4,13 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use wheel_rail_contact::fmi::model_description::{MODEL_DESCRIPTION_XML, MODEL_IDENTIFIER};
+use wheel_rail_contact_fmu::model_description::{MODEL_DESCRIPTION_XML, MODEL_IDENTIFIER};
 use zip::write::SimpleFileOptions;
+
+/// The workspace package that builds the FMU's shared library (the FMI adapter's cdylib) …
+pub const ADAPTER_PACKAGE: &str = "wheel-rail-contact-fmu";
+/// … and its library target, whose file the FMU carries renamed to the model identifier.
+pub const ADAPTER_LIBRARY: &str = "wheel_rail_contact_fmu";
 
 /// The cargo profile the shared library is built with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,11 +26,11 @@ pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("packaging/ lives in the workspace").to_path_buf()
 }
 
-/// Builds the core's cdylib with `cargo build` and returns the path of the `.so`.
+/// Builds the adapter's cdylib with `cargo build` and returns the path of the `.so`.
 pub fn build_shared_library(profile: Profile) -> Result<PathBuf, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let mut command = Command::new(cargo);
-    command.args(["build", "--lib", "-p", "wheel-rail-contact", "--message-format=json-render-diagnostics"]);
+    command.args(["build", "--lib", "-p", ADAPTER_PACKAGE, "--message-format=json-render-diagnostics"]);
     if profile == Profile::Release {
         command.arg("--release");
     }
@@ -41,15 +46,15 @@ pub fn build_shared_library(profile: Profile) -> Result<PathBuf, String> {
     let shared_library = stdout
         .lines()
         .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
-        .filter(|message| message["reason"] == "compiler-artifact" && message["target"]["name"] == "wheel_rail_contact")
+        .filter(|message| message["reason"] == "compiler-artifact" && message["target"]["name"] == ADAPTER_LIBRARY)
         .flat_map(|message| message["filenames"].as_array().cloned().unwrap_or_default())
         .filter_map(|file| file.as_str().map(PathBuf::from))
         .find(|file| file.extension().is_some_and(|e| e == std::env::consts::DLL_EXTENSION));
-    shared_library.ok_or_else(|| "cargo reported no shared library for wheel_rail_contact".to_owned())
+    shared_library.ok_or_else(|| format!("cargo reported no shared library for {ADAPTER_LIBRARY}"))
 }
 
 /// The FMI platform folder of this machine (the FMU is built for the machine it is built on).
-fn platform_folder() -> Result<&'static str, String> {
+pub fn platform_folder() -> Result<&'static str, String> {
     match (std::env::consts::OS, std::env::consts::ARCH) {
         ("linux", "x86_64" | "aarch64") => Ok("linux64"),
         (os, arch) => Err(format!("no FMI 2.0 platform folder for {os}/{arch}")),

@@ -1,16 +1,19 @@
 //! Builds the `wheel_rail_contact` FMU and drives it.
 //!
-//! - [`fmu`]: builds the cdylib with cargo and zips `target/fmu/wheel_rail_contact.fmu`
+//! - [`fmu`]: builds the FMI adapter's cdylib (`fmu/`) with cargo and zips `target/fmu/wheel_rail_contact.fmu`
 //!   (`build.rs` cannot zip the library its own crate is still compiling);
 //! - [`documentation`]: `documentation/index.html`, generated from the same variable table the
 //!   adapter uses, with a plot of the default creep-force curve computed by the core;
 //! - [`default_scene`]: the creepage sweep of the README's first command, through the packaged
-//!   `.fmu` loaded with rust-fmi;
+//!   `.fmu` loaded by [`master`], a minimal FMI 2.0 master (libloading);
 //! - [`reference`](mod@reference): the core's forces for rows of inputs (CSV), the reference of the fmpy tests;
 //! - [`plot`]: the small SVG line plot both of the above draw.
+
+#![deny(unsafe_code)]
 
 pub mod default_scene;
 pub mod documentation;
 pub mod fmu;
+pub mod master;
 pub mod plot;
 pub mod reference;

@@ -19,7 +19,7 @@ fn out_dir() -> PathBuf {
 }
 
 fn fmu_path() -> PathBuf {
-    out_dir().join(format!("{}.fmu", wheel_rail_contact::fmi::model_description::MODEL_IDENTIFIER))
+    out_dir().join(format!("{}.fmu", wheel_rail_contact_fmu::model_description::MODEL_IDENTIFIER))
 }
 
 fn run_package() -> Result<(), String> {

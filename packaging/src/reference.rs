@@ -1,244 +1,83 @@
 //! The core library's outputs for rows of inputs and parameters: the reference the fmpy tests
-//! compare the FMU with. The column-to-field mapping and the composition of the options (Hertz,
-//! kinematics, Polach 2005, relaxation) are written here on purpose, independently of the
-//! adapter's (`src/fmi/scene.rs`), from the core's public API, so that a mistake in the adapter
-//! cannot hide in its own reference.
+//! compare the FMU with. Each row is decoded into the core's typed scene by the adapter's decoder
+//! ([`wheel_rail_contact_fmu::scene::scene_of`], the enumerations' numbers generated from
+//! `modelDescription.xml`) and evaluated by the core's [`Scene::evaluate`] — the one pipeline the
+//! FMU runs too — without the C ABI, the instance's state machine or its value storage, which
+//! the fmpy tests thereby check. (The pipeline's composition itself is checked against the core's
+//! parts one by one in the adapter's `scene` tests.)
 
-use std::collections::HashMap;
-use std::f64::consts::PI;
 use std::io::{BufRead, Write};
 
-use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
-use wheel_rail_contact::scene::kinematics::WheelKinematics;
-use wheel_rail_contact::scene::relaxation::RelaxationLengths;
-use wheel_rail_contact::{
-    ContactInput, CreepForceModel, CreepForces, ExactTheory, Fastsim, Flexibility, KalkerLinear, LargeCreepage,
-    MeasuredCurve, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
-};
+use wheel_rail_contact::scene::{Evaluation, Scene, SceneState};
+use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, VARIABLES};
+use wheel_rail_contact_fmu::scene::{outputs, scene_input, scene_of};
 
 /// The columns written, in this order (the FMU's output names).
-pub const OUTPUT_COLUMNS: [&str; 13] = [
-    "force_longitudinal",
-    "force_lateral",
-    "adhesion_utilisation",
-    "spin_moment",
-    "current_friction_coefficient",
-    "slip_velocity",
-    "effective_creepage_longitudinal",
-    "effective_creepage_lateral",
-    "effective_spin_creepage",
-    "contact_semi_axis_a",
-    "contact_semi_axis_b",
-    "max_pressure",
-    "approach",
-];
-
-/// The integer-valued columns that may be left out, with the value they then take: the plain
-/// scene (Polach with Kalker's stiffness, every option off).
-const INTEGER_DEFAULTS: [(&str, f64); 6] = [
-    ("creep_force_model", 1.0),
-    ("stiffness_source", 1.0),
-    ("traction_law", 1.0),
-    ("hertz_contact", 0.0),
-    ("creepages_from_kinematics", 0.0),
-    ("creep_relaxation", 0.0),
-];
-
-/// One row: column name → value. A missing real column reads as NaN (an error where it is used).
-struct Row(HashMap<String, f64>);
-
-impl Row {
-    fn get(&self, column: &str) -> f64 {
-        let default = INTEGER_DEFAULTS.iter().find(|(name, _)| *name == column).map_or(f64::NAN, |(_, v)| *v);
-        self.0.get(column).copied().unwrap_or(default)
-    }
-
-    fn on(&self, column: &str) -> bool {
-        self.get(column) == 1.0
-    }
-
-    fn count(&self, column: &str) -> usize {
-        self.get(column) as usize
-    }
+pub fn output_columns() -> Vec<&'static str> {
+    VARIABLES.iter().filter(|v| v.causality == Causality::Output).map(|v| v.name).collect()
 }
 
-fn model(row: &Row, speed: f64) -> Result<Box<dyn CreepForceModel>, String> {
-    let law = match row.get("traction_law") as i32 {
-        1 => None,
-        2 => Some(Polach2005::DRY),
-        3 => Some(Polach2005::WET),
-        4 => Some(
-            Polach2005::new(
-                row.get("adhesion_reduction_factor"),
-                row.get("slip_reduction_factor"),
-                row.get("friction_limit_ratio"),
-                row.get("friction_decay_rate"),
-            )
-            .map_err(|e| e.to_string())?,
-        ),
-        other => return Err(format!("traction_law = {other}")),
-    };
-    let polach = || -> Result<Polach, String> {
-        let stiffness = if row.get("stiffness_source") == 2.0 {
-            let curve = MeasuredCurve::from_peak(
-                row.get("measured_peak_adhesion"),
-                row.get("measured_creepage_at_peak"),
-                row.get("measured_kinetic_friction"),
-            );
-            StiffnessSource::MeasuredCurve(curve.map_err(|e| e.to_string())?)
-        } else {
-            StiffnessSource::Kalker
-        };
-        let large_creepage = law.map(|law| LargeCreepage::new(law, speed)).transpose().map_err(|e| e.to_string())?;
-        Ok(Polach { stiffness, large_creepage })
-    };
-    Ok(match row.get("creep_force_model") as i32 {
-        1 => Box::new(polach()?),
-        2 => Box::new(KalkerLinear),
-        3 => Box::new(ShenHedrickElkins),
-        4 => {
-            let item = |column: &str, count: usize| row.count(column).wrapping_sub(1).min(count);
-            let bounds = [TractionBound::Parabolic, TractionBound::Elliptic];
-            let bound = *bounds.get(item("fastsim_traction_bound", 2)).ok_or("fastsim_traction_bound")?;
-            let flexibilities = [Flexibility::ThreeBlended, Flexibility::Three, Flexibility::SingleWeighted];
-            let flexibility = *flexibilities.get(item("fastsim_flexibility", 3)).ok_or("fastsim_flexibility")?;
-            let fastsim = Fastsim::new(row.count("fastsim_strips"), row.count("fastsim_elements"), bound, flexibility);
-            Box::new(fastsim.map_err(|e| e.to_string())?)
+/// The values of one row: a variable not given keeps its start value, as in an FMU instance
+/// whose master does not set it (so the plain scene: Polach with Kalker's stiffness, every
+/// option off).
+fn values_of(columns: &[String], row: &[f64]) -> Result<Values, String> {
+    let mut values = Values::default();
+    for (column, &value) in columns.iter().zip(row) {
+        if column == "step_size" {
+            continue;
         }
-        5 => Box::new(ExactTheory::new(row.count("exact_elements_longitudinal"), row.count("exact_elements_lateral"))),
-        other => return Err(format!("creep_force_model = {other}")),
-    })
+        let variable = VARIABLES
+            .iter()
+            .find(|v| v.name == column && v.causality != Causality::Output)
+            .ok_or_else(|| format!("`{column}` is not an input or parameter of the FMU"))?;
+        match variable.kind {
+            Kind::Real { .. } => *values.real_mut(variable.value_reference).expect("a Real variable") = value,
+            Kind::Integer { .. } | Kind::Enumeration { .. } => {
+                *values.integer_mut(variable.value_reference).expect("an Integer variable") = value as i32
+            }
+        }
+    }
+    Ok(values)
 }
 
-/// One row's outputs; `relaxed` is the relaxed force carried from row to row, advanced over the
-/// row's `step_size` (0 or absent: set to the steady state, as at initialisation).
-fn outputs(row: &Row, relaxed: &mut [f64; 2]) -> Result<[f64; 13], String> {
-    let speed_input = row.get("rolling_speed");
-    let (xi, eta, phi, speed) = if row.on("creepages_from_kinematics") {
-        let kinematics = WheelKinematics {
-            rolling_speed: speed_input,
-            wheel_angular_speed: row.get("wheel_angular_speed"),
-            wheel_rolling_radius: row.get("wheel_rolling_radius"),
-            lateral_slip_velocity: row.get("lateral_slip_velocity"),
-            spin_angular_velocity: row.get("spin_angular_velocity"),
-        };
-        let c = kinematics.creepages(row.get("regularisation_speed")).map_err(|e| e.to_string())?;
-        (c.longitudinal, c.lateral, c.spin, c.reference_speed)
-    } else {
-        (row.get("creepage_longitudinal"), row.get("creepage_lateral"), row.get("spin_creepage"), speed_input.abs())
-    };
-    let q = row.get("normal_force");
-    let (g, nu) = (row.get("shear_modulus"), row.get("poisson_ratio"));
-    let (a, b, p0, approach) = if !row.on("hertz_contact") {
-        let (a, b) = (row.get("semi_axis_a"), row.get("semi_axis_b"));
-        (a, b, if q > 0.0 { 3.0 * q / (2.0 * PI * a * b) } else { 0.0 }, 0.0)
-    } else if q <= 0.0 {
-        (0.0, 0.0, 0.0, 0.0)
-    } else {
-        let radius = |curvature: f64| if curvature == 0.0 { f64::INFINITY } else { 1.0 / curvature };
-        let curvature = RelativeCurvature::from_radii(
-            row.get("wheel_rolling_radius"),
-            radius(row.get("wheel_profile_curvature")),
-            radius(row.get("rail_profile_curvature")),
-        )
-        .map_err(|e| e.to_string())?;
-        let modulus = contact_modulus(g, nu).map_err(|e| e.to_string())?;
-        let hertz = HertzContact::solve(q, &curvature, modulus).map_err(|e| e.to_string())?;
-        (hertz.semi_axis_a, hertz.semi_axis_b, hertz.max_pressure, hertz.approach)
-    };
-    let contact = ContactInput {
-        creepage_longitudinal: xi,
-        creepage_lateral: eta,
-        spin_creepage: phi,
-        normal_force: q,
-        // Lift-off under Hertz: no ellipse, and every model gives zero force for Q ≤ 0.
-        semi_axis_a: if a > 0.0 { a } else { 1.0 },
-        semi_axis_b: if b > 0.0 { b } else { 1.0 },
-        friction_coefficient: row.get("friction_coefficient"),
-        shear_modulus: g,
-        poisson_ratio: nu,
-    };
-    let steady = model(row, speed)?.creep_forces(&contact).map_err(|e| e.to_string())?;
-    // Polach's eqs. (21), (22): s_yC = η + aφ where that enlarges |η|; w = s_C times the speed.
-    let s_yc = if (eta + a * phi).abs() > eta.abs() { eta + a * phi } else { eta };
-    let slip_velocity = (xi * xi + s_yc * s_yc).sqrt() * speed;
-    let mu0 = contact.friction_coefficient;
-    let friction = match row.get("traction_law") as i32 {
-        1 => mu0,
-        2 => Polach2005::DRY.friction(mu0, slip_velocity),
-        3 => Polach2005::WET.friction(mu0, slip_velocity),
-        _ => Polach2005::new(
-            row.get("adhesion_reduction_factor"),
-            row.get("slip_reduction_factor"),
-            row.get("friction_limit_ratio"),
-            row.get("friction_decay_rate"),
-        )
-        .map_err(|e| e.to_string())?
-        .friction(mu0, slip_velocity),
-    };
-    let forces = if row.on("creep_relaxation") {
-        let steady_forces = [steady.force_longitudinal, steady.force_lateral];
-        let step = row.0.get("step_size").copied().unwrap_or(0.0);
-        *relaxed = if q <= 0.0 || mu0 == 0.0 {
-            [0.0; 2]
-        } else if step == 0.0 {
-            steady_forces
-        } else {
-            let length = row.get("relaxation_length");
-            let lengths = if length == 0.0 {
-                RelaxationLengths::from_contact(a, b, nu)
-            } else {
-                RelaxationLengths::uniform(length)
-            };
-            let lengths = lengths.map_err(|e| e.to_string())?;
-            lengths.advance(*relaxed, steady_forces, speed_input, step).map_err(|e| e.to_string())?
-        };
-        let limit = if q <= 0.0 || mu0 == 0.0 { 0.0 } else { q * friction };
-        CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, limit)
-    } else {
-        steady
-    };
-    Ok([
-        forces.force_longitudinal,
-        forces.force_lateral,
-        forces.adhesion_utilisation,
-        forces.spin_moment.unwrap_or(0.0),
-        friction,
-        slip_velocity,
-        xi,
-        eta,
-        phi,
-        a,
-        b,
-        p0,
-        approach,
-    ])
+/// One row's outputs; `state` carries the relaxed force from row to row, advanced over the row's
+/// `step_size` (0 or absent: set to the steady state, as at initialisation).
+fn outputs_of(values: &Values, step_size: f64, state: &mut SceneState) -> Result<Vec<f64>, String> {
+    let scene: Scene = scene_of(&values.parameters)?;
+    let evaluation = if step_size > 0.0 { Evaluation::Step(step_size) } else { Evaluation::Initialise };
+    let output = scene.evaluate(&scene_input(&values.inputs), state, evaluation).map_err(|e| e.to_string())?;
+    let outputs = outputs(&output);
+    Ok(VARIABLES
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+        .map(|v| Values { outputs, ..Values::default() }.real(v.value_reference).expect("a Real output"))
+        .collect())
 }
 
 /// Reads CSV whose header names FMU inputs and parameters (Enumerations as their integer
-/// values; `creep_force_model`, `stiffness_source`, `traction_law` and the three option switches may be
-/// left out: plain Polach, options off) plus an optional `step_size` \[s\] for creep relaxation,
-/// and writes [`OUTPUT_COLUMNS`] per row with every digit. Rows are a sequence: the relaxed
-/// force carries from one row to the next.
+/// values) plus an optional `step_size` \[s\] for creep relaxation, and writes the outputs
+/// ([`output_columns`]) per row with every digit. Rows are a sequence: the relaxed force carries
+/// from one row to the next.
 pub fn outputs_csv(input: impl BufRead, mut output: impl Write) -> Result<(), String> {
     let mut lines = input.lines();
     let header = lines.next().ok_or("empty input")?.map_err(|e| e.to_string())?;
     let columns: Vec<String> = header.split(',').map(|c| c.trim().to_owned()).collect();
-    writeln!(output, "{}", OUTPUT_COLUMNS.join(",")).map_err(|e| e.to_string())?;
-    let mut relaxed = [0.0; 2];
+    writeln!(output, "{}", output_columns().join(",")).map_err(|e| e.to_string())?;
+    let mut state = SceneState::default();
     for line in lines {
         let line = line.map_err(|e| e.to_string())?;
-        let values: Vec<&str> = line.split(',').collect();
-        if values.len() != columns.len() {
-            return Err(format!("`{line}` has {} fields, the header {}", values.len(), columns.len()));
+        let texts: Vec<&str> = line.split(',').collect();
+        if texts.len() != columns.len() {
+            return Err(format!("`{line}` has {} fields, the header {}", texts.len(), columns.len()));
         }
-        let mut row = HashMap::new();
-        for (column, value) in columns.iter().zip(values) {
-            let value: f64 = value.trim().parse().map_err(|e| format!("{column} = `{value}`: {e}"))?;
-            row.insert(column.clone(), value);
-        }
-        let row = outputs(&Row(row), &mut relaxed)?;
-        let texts: Vec<String> = row.iter().map(|v| format!("{v:?}")).collect();
+        let row = columns
+            .iter()
+            .zip(texts)
+            .map(|(column, text)| text.trim().parse().map_err(|e| format!("{column} = `{text}`: {e}")))
+            .collect::<Result<Vec<f64>, String>>()?;
+        let step_size = columns.iter().position(|c| c == "step_size").map_or(0.0, |i| row[i]);
+        let values = outputs_of(&values_of(&columns, &row)?, step_size, &mut state)?;
+        let texts: Vec<String> = values.iter().map(|v| format!("{v:?}")).collect();
         writeln!(output, "{}", texts.join(",")).map_err(|e| e.to_string())?;
     }
     Ok(())
@@ -246,7 +85,10 @@ pub fn outputs_csv(input: impl BufRead, mut output: impl Write) -> Result<(), St
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::PI;
+
     use super::*;
+    use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 
     fn rows(text: &str) -> Vec<Vec<f64>> {
         let mut output = Vec::new();
@@ -267,7 +109,7 @@ mod tests {
         assert!((row[0] / linear - 1.0).abs() < 1e-6, "{row:?} vs {linear}");
         assert_eq!((row[1], row[3], row[4]), (0.0, 0.0, 0.3));
         assert_eq!(row[5], 1e-8, "w = ξ|V|");
-        assert_eq!(&row[9..], &[6e-3, 6e-3, 3.0 * 1e5 / (2.0 * PI * 36e-6), 0.0]);
+        assert_eq!(&row[9..], &[6e-3, 6e-3, 3.0 * 1e5 / (2.0 * PI * 6e-3) / 6e-3, 0.0]);
     }
 
     #[test]
@@ -300,8 +142,22 @@ mod tests {
     }
 
     #[test]
-    fn a_missing_column_is_an_error() {
-        let error = outputs_csv("creepage_longitudinal\n0.001\n".as_bytes(), Vec::new()).unwrap_err();
-        assert_eq!(error, "creepage_lateral = NaN is invalid: must be finite");
+    fn a_missing_column_keeps_its_start_value_and_an_unknown_one_is_an_error() {
+        // The default scene at ξ = 0.2 %: the core's Polach with the FMU's start values.
+        let row = &rows("creepage_longitudinal\n0.002\n")[0];
+        let input = ContactInput {
+            creepage_longitudinal: 2e-3,
+            creepage_lateral: 0.0,
+            spin_creepage: 0.0,
+            normal_force: 100e3,
+            semi_axis_a: 7.2e-3,
+            semi_axis_b: 5.4e-3,
+            friction_coefficient: 0.3,
+            shear_modulus: 82e9,
+            poisson_ratio: 0.28,
+        };
+        assert_eq!(row[0], Polach::default().creep_forces(&input).unwrap().force_longitudinal);
+        let error = outputs_csv("creepage\n0.001\n".as_bytes(), Vec::new()).unwrap_err();
+        assert_eq!(error, "`creepage` is not an input or parameter of the FMU");
     }
 }

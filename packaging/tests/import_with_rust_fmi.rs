@@ -9,8 +9,8 @@ use fmi::traits::{FmiImport, FmiInstance};
 use packaging::default_scene::{default_creepages, sweep};
 use packaging::documentation::default_contact_input;
 use packaging::fmu::{package, Profile};
-use wheel_rail_contact::fmi::model_description::{value_reference as vr, GUID, VARIABLES};
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID, VARIABLES};
 
 fn packaged_fmu() -> (tempfile::TempDir, std::path::PathBuf) {
     let directory = tempfile::tempdir().unwrap();

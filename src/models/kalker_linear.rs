@@ -12,10 +12,12 @@
 //! ```
 //!
 //! The forces are not limited by friction: this is the theory's definition, and the reason the
-//! saturating models exist. They are finite for every valid input (products beyond `f64::MAX`
+//! saturating models exist. At μ = 0 and Q ≤ 0 the force is zero (no contact to transmit it),
+//! so it jumps at μ = 0⁺ and Q = 0⁺: there the derivative is that of the zero force, with no
+//! one-sided derivative in μ or Q. They are finite for every valid input (products beyond `f64::MAX`
 //! are held at ±`f64::MAX`).
 
-use crate::creep_force_model::dual_derivative;
+use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::kalker_coefficients::spin_moment_c33_at;
 use crate::numerics::{value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients};
@@ -45,7 +47,7 @@ impl CreepForceModel for KalkerLinear {
         input: &ContactInput,
         direction: &ContactInput,
     ) -> Result<CreepForces, InvalidInput> {
-        dual_derivative(input, direction, linear_forces)
+        dual_derivative(input, direction, NoForceBoundary::Jump, linear_forces)
     }
 }
 

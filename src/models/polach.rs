@@ -10,7 +10,7 @@
 
 use std::f64::consts::PI;
 
-use crate::creep_force_model::dual_derivative;
+use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::models::polach2005::LargeCreepage;
 use crate::numerics::{magnitude, value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, MeasuredCurve};
@@ -53,7 +53,7 @@ impl CreepForceModel for Polach {
         input: &ContactInput,
         direction: &ContactInput,
     ) -> Result<CreepForces, InvalidInput> {
-        dual_derivative(input, direction, |dual| self.forces(dual, None))
+        dual_derivative(input, direction, NoForceBoundary::Continuous, |dual| self.forces(dual, None))
     }
 }
 

@@ -18,7 +18,7 @@
 //! linear M_z' scaled by ε is not bounded (for a/b → 0, C33 grows like 1/g while F' stays small).
 //! The curve is continuous with a continuous slope at β = 3.
 
-use crate::creep_force_model::dual_derivative;
+use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::models::kalker_linear::LinearTheory;
 use crate::numerics::{magnitude, value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
@@ -41,7 +41,7 @@ impl CreepForceModel for ShenHedrickElkins {
         input: &ContactInput,
         direction: &ContactInput,
     ) -> Result<CreepForces, InvalidInput> {
-        dual_derivative(input, direction, saturated_forces)
+        dual_derivative(input, direction, NoForceBoundary::Continuous, saturated_forces)
     }
 }
 

@@ -25,3 +25,26 @@ def run(slave, vr, first, count):
         slave.doStep(k * STEP, STEP)
         rows.append([x.hex() for x in slave.getReal([vr[n] for n in OUTPUTS])])
     return rows
+
+
+def relaxing_mid_transient(slave, vr):
+    """Creep relaxation on (L = 0.02 m, V = 5 m/s: tau = 4 ms), initialised at the steady state
+    of xi = 1e-3, then a creepage step to xi = 4e-3 and one step of 1 ms: the relaxed force, the
+    FMU's only internal state, is mid-transient. Returns the time reached."""
+    slave.setInteger([vr["creep_relaxation"]], [1])
+    slave.setReal([vr["relaxation_length"], vr["rolling_speed"]], [0.02, 5.0])
+    slave.setupExperiment(startTime=0.0)
+    slave.enterInitializationMode()
+    slave.exitInitializationMode()
+    slave.setReal([vr["creepage_longitudinal"]], [4e-3])
+    slave.doStep(0.0, STEP)
+    return STEP
+
+
+def hold(slave, vr, time, count):
+    """count steps of STEP from time with the inputs left as they are; the outputs as hex."""
+    rows = []
+    for k in range(count):
+        slave.doStep(time + k * STEP, STEP)
+        rows.append([x.hex() for x in slave.getReal([vr[n] for n in OUTPUTS])])
+    return rows

@@ -9,8 +9,8 @@ mod c_abi;
 
 use c_abi::{run_scene, Fmu, LogCounter, ERROR, INPUTS, OK, OUTPUTS};
 use std::ffi::CString;
-use wheel_rail_contact::fmi::ffi::*;
-use wheel_rail_contact::fmi::model_description::value_reference as vr;
+use wheel_rail_contact_fmu::ffi::*;
+use wheel_rail_contact_fmu::model_description::value_reference as vr;
 
 fn cycle(k: usize, counter: &LogCounter) {
     let fmu = Fmu::instantiate(&format!("leak check {k}"), Some(counter));

@@ -1,5 +1,5 @@
 //! A small master over the FMU's C exports (the `extern "C"` functions of
-//! `wheel_rail_contact::fmi::ffi`, called in-process exactly as a master calls the shared
+//! `wheel_rail_contact_fmu::ffi`, called in-process exactly as a master calls the shared
 //! library), shared by the C-ABI integration tests and the leak-check example.
 #![allow(dead_code)] // each test binary uses part of it
 
@@ -7,9 +7,9 @@ use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use fmi_sys::fmi2::*;
-use wheel_rail_contact::fmi::ffi::*;
-use wheel_rail_contact::fmi::model_description::{value_reference as vr, GUID};
+use wheel_rail_contact_fmu::ffi::*;
+use wheel_rail_contact_fmu::fmi2::*;
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID};
 
 pub const OK: fmi2Status = fmi2Status_fmi2OK;
 pub const ERROR: fmi2Status = fmi2Status_fmi2Error;
@@ -69,6 +69,39 @@ pub fn callbacks(counter: Option<&LogCounter>) -> fmi2CallbackFunctions {
     }
 }
 
+/// Every message the FMU logged, as (status, category, text).
+#[derive(Default)]
+pub struct MessageLog(pub std::sync::Mutex<Vec<(fmi2Status, String, String)>>);
+
+impl MessageLog {
+    pub fn texts(&self) -> Vec<String> {
+        self.0.lock().unwrap().iter().map(|(_, _, text)| text.clone()).collect()
+    }
+
+    /// The last message's status and text.
+    pub fn last(&self) -> Option<(fmi2Status, String)> {
+        self.0.lock().unwrap().last().map(|(status, _, text)| (*status, text.clone()))
+    }
+}
+
+/// The logger of [`MessageLog`] (named parameter: see `count_message`).
+extern "C" fn record_message(
+    environment: fmi2ComponentEnvironment,
+    _instance_name: fmi2String,
+    status: fmi2Status,
+    category: fmi2String,
+    format: fmi2String,
+    text: fmi2String,
+) {
+    // SAFETY: the environment is the `MessageLog` given at instantiation; the FMU passes
+    // NUL-terminated strings.
+    unsafe {
+        assert_eq!(CStr::from_ptr(format), c"%s");
+        let [category, text] = [category, text].map(|s| CStr::from_ptr(s).to_str().unwrap().to_owned());
+        (*environment.cast::<MessageLog>()).0.lock().unwrap().push((status, category, text));
+    }
+}
+
 /// One instance, freed on drop.
 pub struct Fmu {
     pub c: fmi2Component,
@@ -79,7 +112,29 @@ pub struct Fmu {
 
 impl Fmu {
     pub fn instantiate(name: &str, counter: Option<&LogCounter>) -> Fmu {
-        let callbacks = Box::new(callbacks(counter));
+        Self::with_callbacks(name, callbacks(counter))
+    }
+
+    /// An instance whose messages are recorded in `log` (which must outlive it).
+    pub fn instantiate_logged(name: &str, log: &MessageLog) -> Fmu {
+        type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+        type Variadic =
+            unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+        Self::with_callbacks(
+            name,
+            fmi2CallbackFunctions {
+                // SAFETY: see `count_message`.
+                logger: Some(unsafe { std::mem::transmute::<Named, Variadic>(record_message) }),
+                allocateMemory: None,
+                freeMemory: None,
+                stepFinished: None,
+                componentEnvironment: (log as *const MessageLog).cast_mut().cast(),
+            },
+        )
+    }
+
+    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions) -> Fmu {
+        let callbacks = Box::new(callbacks);
         let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
         // SAFETY: valid strings and callbacks.
         let c = unsafe {
@@ -87,6 +142,48 @@ impl Fmu {
         };
         assert!(!c.is_null());
         Fmu { c, _callbacks: callbacks }
+    }
+
+    /// Setup from `start_time`, initialisation entered and left.
+    pub fn initialise(&self, start_time: f64) {
+        // SAFETY: `self.c` is live.
+        unsafe {
+            assert_eq!(fmi2SetupExperiment(self.c, 0, 0.0, start_time, 0, 0.0), OK);
+            assert_eq!(fmi2EnterInitializationMode(self.c), OK);
+            assert_eq!(fmi2ExitInitializationMode(self.c), OK);
+        }
+    }
+
+    pub fn set_debug_logging(&self, on: bool, categories: &[&str]) -> fmi2Status {
+        let owned: Vec<CString> = categories.iter().map(|c| CString::new(*c).unwrap()).collect();
+        let pointers: Vec<fmi2String> = owned.iter().map(|c| c.as_ptr()).collect();
+        // SAFETY: live instance; `pointers` valid for its length, strings NUL-terminated.
+        unsafe { fmi2SetDebugLogging(self.c, on as fmi2Boolean, pointers.len(), pointers.as_ptr()) }
+    }
+
+    pub fn set_integer(&self, references: &[u32], values: &[i32]) -> fmi2Status {
+        assert_eq!(references.len(), values.len());
+        // SAFETY: live instance, matching lengths.
+        unsafe { fmi2SetInteger(self.c, references.as_ptr(), references.len(), values.as_ptr()) }
+    }
+
+    /// J·seed for `unknowns` with respect to `knowns`, with the call's status.
+    pub fn directional_derivative(&self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (fmi2Status, Vec<f64>) {
+        assert_eq!(knowns.len(), seed.len());
+        let mut rates = vec![f64::NAN; unknowns.len()];
+        // SAFETY: live instance; every array valid for its length.
+        let status = unsafe {
+            fmi2GetDirectionalDerivative(
+                self.c,
+                unknowns.as_ptr(),
+                unknowns.len(),
+                knowns.as_ptr(),
+                knowns.len(),
+                seed.as_ptr(),
+                rates.as_mut_ptr(),
+            )
+        };
+        (status, rates)
     }
 
     /// Instantiated, initialised from `start_time` on, in step mode.

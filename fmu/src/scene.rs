@@ -1,91 +1,63 @@
-//! One scene: the instance's values → the options a scene switches on → the core's model → the
-//! outputs.
-//!
-//! Per evaluation, in order (each option only when its parameter is `on`; an option that is off
-//! costs a branch and nothing else, and its inputs and parameters are not checked):
-//! 1. creepages: the inputs, or from the kinematics ([`crate::scene::kinematics`]);
-//! 2. contact ellipse: the inputs, or Hertz's ([`crate::scene::hertz`]; Q ≤ 0 is lift-off and
-//!    gives zero forces before any Hertz computation);
-//! 3. forces: the model the parameters select ([`ModelChoice`]), built once by [`ModelCache`]
-//!    when the parameters change, with Polach's 2005 traction law applied at this step's speed;
-//! 4. relaxation ([`crate::scene::relaxation`]): the relaxed forces, the instance's only state,
-//!    advanced exactly over the step from the steady-state forces of step 3.
+//! The FMU's values ↔ the core's [`Scene`]: decodes the parameters into a typed scene (model
+//! choice and options, validated once when a parameter changes, errors naming the FMU's
+//! variables and values), the inputs into a [`SceneInput`], and the core's [`SceneOutput`] into
+//! the outputs. The evaluation itself is the core's ([`Scene::evaluate`]).
 //!
 //! Inputs and parameters are destructured without `..` (unused fields bound to `_` explicitly)
 //! and the outputs are built with a struct literal, so a variable added to or removed from
 //! `modelDescription.xml` stops the build here until it is mapped.
 
-use std::f64::consts::PI;
-
 use super::model_description::{
     Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters, StiffnessSource as StiffnessChoice, Switch,
-    TractionBound as TractionBoundChoice, TractionLaw, Values,
+    TractionBound as TractionBoundChoice, TractionLaw as TractionLawChoice, Values,
 };
-use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
-use crate::scene::kinematics::WheelKinematics;
-use crate::scene::relaxation::RelaxationLengths;
-use crate::{
-    ContactInput, CreepForceModel, CreepForces, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear,
-    LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShapeCache, ShenHedrickElkins, StiffnessSource,
-    TractionBound,
+use wheel_rail_contact::scene::{
+    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneInput, SceneOutput, SceneState,
+    TractionLaw,
+};
+use wheel_rail_contact::{
+    ContactInput, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve, ModelChoice, Polach,
+    Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
-/// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`), in the layout of
-/// [`RelaxationLengths::advance`].
+/// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`): the scene's state
+/// ([`SceneState::relaxed_forces`]), saved with the FMU state.
 pub type RelaxedForces = [f64; 2];
 
-/// State the model carries from one step to the next, held by the instance and saved and
-/// restored whole with the FMU state (`fmi::fmu_state::RunState`); `Default` (unrelaxed) after
-/// instantiation and fmi2Reset. Plain values only. Changing its layout needs a new
-/// `FORMAT_VERSION` in `fmu_state.rs`.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
-pub struct ModelState {
-    /// The creep-relaxation state.
-    pub relaxed_forces: RelaxedForces,
-}
-
-/// What an evaluation is for.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Evaluation {
-    /// Initialization mode (ExitInitializationMode, GetReal of an output): the relaxed forces
-    /// start at the steady state.
-    Initialise,
-    /// fmi2DoStep of this size \[s\] (> 0): the relaxed forces advance over it.
-    Step(f64),
-}
-
-/// What the parameters select, validated: the model and the options that are on.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Plan {
-    model: ModelChoice,
-    /// Polach 2005 (only with model = polach); the rolling speed is applied per evaluation.
-    traction: Option<Polach2005>,
-    hertz_contact: bool,
-    creepages_from_kinematics: bool,
-    creep_relaxation: bool,
-}
-
-/// The plan for the last parameter values it was asked for: built (the measured-curve fit, FASTSIM's
-/// load normalisation, every check of the parameters) once when the parameters are first needed
-/// and again only when one changes, not at every step; and Polach's shape factors (Kalker's
-/// coefficients, K_S) for the last ellipse shape, recomputed only when a/b or ν change. Derived
-/// data, so not part of the FMU's state.
+/// The scene the parameters select, built (the measured-curve fit, FASTSIM's load
+/// normalisation, every check of the parameters) when first needed and again only after
+/// [`ModelCache::parameters_changed`] — the instance calls it whenever a parameter is written or
+/// an FMU state is set — so a step pays no comparison of the parameters; and Polach's shape
+/// factors (Kalker's coefficients, K_S) for the last ellipse shape, recomputed only when a/b or ν
+/// change. Derived data, so not part of the FMU's state.
 #[derive(Debug, Clone, Default)]
 pub struct ModelCache {
-    built: Option<(Parameters, Result<Plan, String>)>,
-    shape: ShapeCache,
+    /// The parameters it was built for (checked against the current ones in debug builds: a
+    /// missed `parameters_changed` fails every test) and the scene or why there is none.
+    built: Option<(Parameters, Result<Scene, String>)>,
+    /// The scene's derived data (Polach's shape factors); its relaxed forces are the instance's.
+    state: SceneState,
 }
 
 impl ModelCache {
-    fn plan(&mut self, parameters: &Parameters) -> Result<Plan, String> {
-        // A NaN parameter never equals itself, so it is rebuilt and reported every time.
-        match &self.built {
-            Some((built_for, plan)) if built_for == parameters => plan.clone(),
-            _ => {
-                let plan = build_plan(parameters);
-                self.built = Some((*parameters, plan.clone()));
-                plan
-            }
+    /// Forgets the scene: the next evaluation builds it from the parameters it is given.
+    #[inline]
+    pub fn parameters_changed(&mut self) {
+        self.built = None;
+    }
+
+    /// The scene for `parameters` and the scene's derived state; the error names the parameter.
+    #[inline]
+    fn plan(&mut self, parameters: &Parameters) -> Result<(&Scene, &mut SceneState), String> {
+        let (built_for, scene) = self.built.get_or_insert_with(|| (*parameters, scene_of(parameters)));
+        // A NaN parameter never equals itself (`parameters != parameters`): such a scene is an
+        // error, reported alike whether cached or rebuilt.
+        #[allow(clippy::eq_op)]
+        let unchanged_or_nan = built_for == parameters || parameters != parameters;
+        debug_assert!(unchanged_or_nan, "a parameter changed without ModelCache::parameters_changed");
+        match scene {
+            Ok(scene) => Ok((scene, &mut self.state)),
+            Err(reason) => Err(reason.clone()),
         }
     }
 }
@@ -121,10 +93,12 @@ fn reported(error: InvalidInput, counts: &[(&'static str, &'static str, i32)]) -
     }
 }
 
-fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
+/// The core's scene the parameters select, validated; the error names the FMU variable and
+/// its value.
+pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
     let Parameters {
-        shear_modulus: _,
-        poisson_ratio: _,
+        shear_modulus,
+        poisson_ratio,
         stiffness_source,
         measured_peak_adhesion,
         measured_creepage_at_peak,
@@ -142,12 +116,12 @@ fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
         friction_limit_ratio,
         friction_decay_rate,
         hertz_contact,
-        wheel_profile_curvature: _,
-        rail_profile_curvature: _,
+        wheel_profile_curvature,
+        rail_profile_curvature,
         creepages_from_kinematics,
-        regularisation_speed: _,
+        regularisation_speed,
         creep_relaxation,
-        relaxation_length: _,
+        relaxation_length,
     } = *parameters;
     let selected = enumeration("creep_force_model", creep_force_model, Model::from_value, Model::ITEMS)?;
     let stiffness =
@@ -159,23 +133,25 @@ fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
                     .map_err(|e| e.to_string())?
             }
         };
-    let traction = match enumeration("traction_law", traction_law, TractionLaw::from_value, TractionLaw::ITEMS)? {
-        TractionLaw::Coulomb => None,
-        TractionLaw::Polach2005Dry => Some(Polach2005::DRY),
-        TractionLaw::Polach2005Wet => Some(Polach2005::WET),
-        TractionLaw::Polach2005User => Some(
-            Polach2005::new(
-                adhesion_reduction_factor,
-                slip_reduction_factor,
-                friction_limit_ratio,
-                friction_decay_rate,
-            )
-            .map_err(|e| e.to_string())?,
-        ),
-    };
+    let traction =
+        match enumeration("traction_law", traction_law, TractionLawChoice::from_value, TractionLawChoice::ITEMS)? {
+            TractionLawChoice::Coulomb => None,
+            TractionLawChoice::Polach2005Dry => Some(Polach2005::DRY),
+            TractionLawChoice::Polach2005Wet => Some(Polach2005::WET),
+            TractionLawChoice::Polach2005User => Some(
+                Polach2005::new(
+                    adhesion_reduction_factor,
+                    slip_reduction_factor,
+                    friction_limit_ratio,
+                    friction_decay_rate,
+                )
+                .map_err(|e| e.to_string())?,
+            ),
+        };
     // Both are Polach's: rejected rather than silently ignored with another model.
     if selected != Model::Polach {
-        let name = Model::ITEMS.iter().find(|(_, value, _)| *value == creep_force_model).map_or("?", |(name, _, _)| name);
+        let name =
+            Model::ITEMS.iter().find(|(_, value, _)| *value == creep_force_model).map_or("?", |(name, _, _)| name);
         let model_text = format!("creep_force_model = {creep_force_model} ({name})");
         if traction.is_some() {
             return Err(format!(
@@ -230,86 +206,27 @@ fn build_plan(parameters: &Parameters) -> Result<Plan, String> {
             ModelChoice::Exact(exact)
         }
     };
-    Ok(Plan {
+    Ok(Scene {
         model,
-        traction,
-        hertz_contact: switch("hertz_contact", hertz_contact)?,
-        creepages_from_kinematics: switch("creepages_from_kinematics", creepages_from_kinematics)?,
-        creep_relaxation: switch("creep_relaxation", creep_relaxation)?,
+        creepages: if switch("creepages_from_kinematics", creepages_from_kinematics)? {
+            CreepageSource::Kinematics { regularisation_speed }
+        } else {
+            CreepageSource::Inputs
+        },
+        ellipse: if switch("hertz_contact", hertz_contact)? {
+            EllipseSource::Hertz { wheel_profile_curvature, rail_profile_curvature }
+        } else {
+            EllipseSource::Inputs
+        },
+        traction_law: traction.map_or(TractionLaw::Coulomb, TractionLaw::Polach2005),
+        relaxation: if switch("creep_relaxation", creep_relaxation)? {
+            Relaxation::On { length: relaxation_length }
+        } else {
+            Relaxation::Off
+        },
+        shear_modulus,
+        poisson_ratio,
     })
-}
-
-/// The creepages the model uses and the speed that turns creepage into slip velocity.
-struct Creepages {
-    longitudinal: f64,
-    lateral: f64,
-    spin: f64,
-    /// |V|, or D = √(V² + v_c²) from the kinematics (ξ·D is then the slip velocity exactly).
-    speed: f64,
-}
-
-fn from_kinematics(kinematics: &WheelKinematics, regularisation_speed: f64) -> Result<Creepages, InvalidInput> {
-    let computed = kinematics.creepages(regularisation_speed)?;
-    Ok(Creepages {
-        longitudinal: computed.longitudinal,
-        lateral: computed.lateral,
-        spin: computed.spin,
-        speed: computed.reference_speed,
-    })
-}
-
-/// The relative curvatures from the FMU's signed profile curvatures (0 = straight), with errors
-/// named after the FMU's variables.
-fn relative_curvature(wheel_rolling_radius: f64, parameters: &Parameters) -> Result<RelativeCurvature, InvalidInput> {
-    let curvatures = [
-        ("wheel_profile_curvature", parameters.wheel_profile_curvature),
-        ("rail_profile_curvature", parameters.rail_profile_curvature),
-    ];
-    for (variable, value) in curvatures {
-        if !value.is_finite() {
-            return Err(InvalidInput::new(variable, value, "must be finite"));
-        }
-    }
-    // 1/0 = ∞: a straight profile, as `from_radii` takes it.
-    let [(_, wheel), (_, rail)] = curvatures;
-    RelativeCurvature::from_radii(wheel_rolling_radius, 1.0 / wheel, 1.0 / rail).map_err(|e| match e.variable {
-        "wheel_profile_radius" => InvalidInput { variable: "wheel_profile_curvature", value: wheel, ..e },
-        "rail_profile_radius" => InvalidInput { variable: "rail_profile_curvature", value: rail, ..e },
-        _ => e,
-    })
-}
-
-/// Hertz's ellipse for normal force Q > 0 (Johnson 1985, ch. 3 and §4.2; see
-/// [`crate::scene::hertz`]).
-fn hertz_ellipse(
-    normal_force: f64,
-    wheel_rolling_radius: f64,
-    parameters: &Parameters,
-) -> Result<HertzContact, InvalidInput> {
-    let curvature = relative_curvature(wheel_rolling_radius, parameters)?;
-    let modulus = contact_modulus(parameters.shear_modulus, parameters.poisson_ratio)?;
-    HertzContact::solve(normal_force, &curvature, modulus)
-}
-
-/// The given ellipse with Hertz's p0 = 3Q/(2πab) (0 for Q ≤ 0); no approach without curvatures.
-fn given_ellipse(normal_force: f64, semi_axis_a: f64, semi_axis_b: f64) -> HertzContact {
-    let max_pressure = if normal_force > 0.0 {
-        (3.0 * normal_force / (2.0 * PI * semi_axis_a) / semi_axis_b).min(f64::MAX)
-    } else {
-        0.0
-    };
-    HertzContact { semi_axis_a, semi_axis_b, max_pressure, approach: 0.0 }
-}
-
-/// The relaxation lengths: the parameter, or (0) the module's default from the contact.
-fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationLengths, InvalidInput> {
-    if length == 0.0 {
-        RelaxationLengths::from_contact(contact.semi_axis_a, contact.semi_axis_b, contact.poisson_ratio)
-    } else if length > 0.0 {
-        RelaxationLengths::uniform(length)
-    } else {
-        Err(InvalidInput::new("relaxation_length", length, "must be finite and >= 0 (0: derived from the contact)"))
-    }
 }
 
 /// The outputs for `values`, or the reason they cannot be computed (names the variable and
@@ -320,26 +237,31 @@ pub(crate) fn compute_outputs(
     relaxed_forces: &mut RelaxedForces,
     evaluation: Evaluation,
 ) -> Result<Outputs, String> {
-    let plan = cache.plan(&values.parameters)?;
-    let (outputs, relaxed) =
-        evaluate(values, &plan, &mut cache.shape, *relaxed_forces, evaluation).map_err(|e| e.to_string())?;
-    *relaxed_forces = relaxed;
-    Ok(outputs)
+    let (scene, state) = cache.plan(&values.parameters)?;
+    state.relaxed_forces = *relaxed_forces;
+    let output = scene.evaluate(&scene_input(&values.inputs), state, evaluation).map_err(|e| e.to_string())?;
+    *relaxed_forces = state.relaxed_forces;
+    Ok(outputs(&output))
 }
 
-/// The creep-force model the parameters select: what fmi2GetDirectionalDerivative
-/// differentiates when no option transforms its inputs (see `derivative.rs`).
-pub(crate) fn creep_force_model(parameters: &Parameters, cache: &mut ModelCache) -> Result<ModelChoice, String> {
-    Ok(cache.plan(parameters)?.model)
-}
-
-fn evaluate(
+/// d(outputs) along `direction` (one rate per continuous input) at the current `values` — of
+/// the outputs at these inputs, never of the last step's — or why not (an option without
+/// derivatives, an invalid value, naming the variable). The mathematics is the core's
+/// [`Scene::directional_derivative`].
+pub(crate) fn directional_derivative(
     values: &Values,
-    plan: &Plan,
-    shape: &mut ShapeCache,
-    relaxed_forces: RelaxedForces,
-    evaluation: Evaluation,
-) -> Result<(Outputs, RelaxedForces), InvalidInput> {
+    cache: &mut ModelCache,
+    direction: &Inputs,
+) -> Result<Outputs, String> {
+    let (scene, _) = cache.plan(&values.parameters)?;
+    let rates = scene
+        .directional_derivative(&scene_input(&values.inputs), &scene_input(direction))
+        .map_err(|e: SceneError| e.to_string())?;
+    Ok(outputs(&rates))
+}
+
+/// The FMU's inputs as the core's scene input.
+pub fn scene_input(inputs: &Inputs) -> SceneInput {
     let Inputs {
         creepage_longitudinal,
         creepage_lateral,
@@ -353,137 +275,93 @@ fn evaluate(
         wheel_rolling_radius,
         lateral_slip_velocity,
         spin_angular_velocity,
-    } = values.inputs;
-    let parameters = &values.parameters;
-    if !rolling_speed.is_finite() {
-        return Err(InvalidInput::new("rolling_speed", rolling_speed, "must be finite"));
-    }
-    let creepages = if plan.creepages_from_kinematics {
-        let kinematics = WheelKinematics {
-            rolling_speed,
-            wheel_angular_speed,
-            wheel_rolling_radius,
-            lateral_slip_velocity,
-            spin_angular_velocity,
-        };
-        from_kinematics(&kinematics, parameters.regularisation_speed)?
-    } else {
-        let speed = rolling_speed.abs();
-        Creepages { longitudinal: creepage_longitudinal, lateral: creepage_lateral, spin: spin_creepage, speed }
-    };
-    // Lift-off with Hertz on: no contact, zero forces, and nothing of Hertz's is computed.
-    let hertz_lift_off = plan.hertz_contact && normal_force <= 0.0;
-    let ellipse = if hertz_lift_off {
-        HertzContact { semi_axis_a: 0.0, semi_axis_b: 0.0, max_pressure: 0.0, approach: 0.0 }
-    } else if plan.hertz_contact {
-        hertz_ellipse(normal_force, wheel_rolling_radius, parameters)?
-    } else {
-        given_ellipse(normal_force, semi_axis_a, semi_axis_b)
-    };
-    let contact = ContactInput {
-        creepage_longitudinal: creepages.longitudinal,
-        creepage_lateral: creepages.lateral,
-        spin_creepage: creepages.spin,
+    } = *inputs;
+    SceneInput {
+        creepage_longitudinal,
+        creepage_lateral,
+        spin_creepage,
         normal_force,
-        // After a Hertzian lift-off any valid ellipse will do: every model checks the other
-        // values and returns zero force for Q ≤ 0 before using the ellipse.
-        semi_axis_a: if hertz_lift_off { 1.0 } else { ellipse.semi_axis_a },
-        semi_axis_b: if hertz_lift_off { 1.0 } else { ellipse.semi_axis_b },
+        semi_axis_a,
+        semi_axis_b,
         friction_coefficient,
-        shear_modulus: parameters.shear_modulus,
-        poisson_ratio: parameters.poisson_ratio,
-    };
-    // Polach 2005's slip velocity: the resulting creepage s_C times the speed.
-    let s_c =
-        Polach::resulting_creepage(creepages.longitudinal, creepages.lateral, creepages.spin, ellipse.semi_axis_a);
-    let slip_velocity = s_c * creepages.speed;
-    let (steady, friction) = match (plan.traction, plan.model) {
-        (Some(extension), ModelChoice::Polach(polach)) => {
-            let model = Polach { large_creepage: Some(LargeCreepage::new(extension, creepages.speed)?), ..polach };
-            (model.creep_forces_with_cache(&contact, shape)?, extension.friction(friction_coefficient, slip_velocity))
-        }
-        (None, ModelChoice::Polach(polach)) => (polach.creep_forces_with_cache(&contact, shape)?, friction_coefficient),
-        _ => (plan.model.creep_forces(&contact)?, friction_coefficient),
-    };
-    let (forces, relaxed) = if plan.creep_relaxation {
-        relax_forces(
-            &contact,
-            &steady,
-            friction,
-            relaxed_forces,
-            rolling_speed,
-            parameters.relaxation_length,
-            evaluation,
-        )?
-    } else {
-        (steady, relaxed_forces)
-    };
-    let outputs = Outputs {
-        force_longitudinal: forces.force_longitudinal,
-        force_lateral: forces.force_lateral,
-        adhesion_utilisation: forces.adhesion_utilisation,
-        spin_moment: forces.spin_moment.unwrap_or(0.0),
-        current_friction_coefficient: friction,
-        slip_velocity,
-        effective_creepage_longitudinal: creepages.longitudinal,
-        effective_creepage_lateral: creepages.lateral,
-        effective_spin_creepage: creepages.spin,
-        contact_semi_axis_a: ellipse.semi_axis_a,
-        contact_semi_axis_b: ellipse.semi_axis_b,
-        max_pressure: ellipse.max_pressure,
-        approach: ellipse.approach,
-    };
-    Ok((outputs, relaxed))
+        rolling_speed,
+        wheel_angular_speed,
+        wheel_rolling_radius,
+        lateral_slip_velocity,
+        spin_angular_velocity,
+    }
 }
 
-/// The relaxed forces at the end of this evaluation, and the output forces from them: F_x and
-/// F_y relaxed, M_z the steady state's, the utilisation against the friction `friction` applied.
-fn relax_forces(
-    contact: &ContactInput,
-    steady: &CreepForces,
-    friction: f64,
-    relaxed_forces: RelaxedForces,
-    rolling_speed: f64,
-    relaxation_length: f64,
-    evaluation: Evaluation,
-) -> Result<(CreepForces, RelaxedForces), InvalidInput> {
-    if contact.transmits_no_force() {
-        // Lift-off or no friction: the contact holds no elastic deformation to relax.
-        return Ok((CreepForces { spin_moment: steady.spin_moment, ..CreepForces::default() }, [0.0; 2]));
-    }
-    let steady_forces = [steady.force_longitudinal, steady.force_lateral];
-    // Checked at initialisation too, so that a bad length is reported at ExitInitializationMode.
-    let lengths = relaxation_lengths(contact, relaxation_length)?;
-    let relaxed = match evaluation {
-        // Initialised at the steady state: the outputs are the model's, exactly.
-        Evaluation::Initialise => return Ok((*steady, steady_forces)),
-        Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, rolling_speed, step)?,
+/// The core's scene output as the FMU's outputs, every zero written as +0 (`x + 0.0` turns −0
+/// into +0 and changes nothing else): masters print −0 as `-0` in their result files, which
+/// shows in every diff.
+pub fn outputs(output: &SceneOutput) -> Outputs {
+    let output = &SceneOutput {
+        force_longitudinal: output.force_longitudinal + 0.0,
+        force_lateral: output.force_lateral + 0.0,
+        adhesion_utilisation: output.adhesion_utilisation + 0.0,
+        spin_moment: output.spin_moment + 0.0,
+        current_friction_coefficient: output.current_friction_coefficient + 0.0,
+        slip_velocity: output.slip_velocity + 0.0,
+        effective_creepage_longitudinal: output.effective_creepage_longitudinal + 0.0,
+        effective_creepage_lateral: output.effective_creepage_lateral + 0.0,
+        effective_spin_creepage: output.effective_spin_creepage + 0.0,
+        contact_semi_axis_a: output.contact_semi_axis_a + 0.0,
+        contact_semi_axis_b: output.contact_semi_axis_b + 0.0,
+        max_pressure: output.max_pressure + 0.0,
+        approach: output.approach + 0.0,
     };
-    let friction_limit = contact.normal_force * friction;
-    Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
+    let SceneOutput {
+        force_longitudinal,
+        force_lateral,
+        adhesion_utilisation,
+        spin_moment,
+        current_friction_coefficient,
+        slip_velocity,
+        effective_creepage_longitudinal,
+        effective_creepage_lateral,
+        effective_spin_creepage,
+        contact_semi_axis_a,
+        contact_semi_axis_b,
+        max_pressure,
+        approach,
+    } = *output;
+    Outputs {
+        force_longitudinal,
+        force_lateral,
+        adhesion_utilisation,
+        spin_moment,
+        current_friction_coefficient,
+        slip_velocity,
+        effective_creepage_longitudinal,
+        effective_creepage_lateral,
+        effective_spin_creepage,
+        contact_semi_axis_a,
+        contact_semi_axis_b,
+        max_pressure,
+        approach,
+    }
 }
 
 /// The core's input for the instance's values with every option off (the creepage and ellipse
 /// inputs as given): the default scene of the documentation.
 pub fn contact_input(values: &Values) -> ContactInput {
-    ContactInput {
-        creepage_longitudinal: values.inputs.creepage_longitudinal,
-        creepage_lateral: values.inputs.creepage_lateral,
-        spin_creepage: values.inputs.spin_creepage,
-        normal_force: values.inputs.normal_force,
-        semi_axis_a: values.inputs.semi_axis_a,
-        semi_axis_b: values.inputs.semi_axis_b,
-        friction_coefficient: values.inputs.friction_coefficient,
-        shear_modulus: values.parameters.shear_modulus,
-        poisson_ratio: values.parameters.poisson_ratio,
-    }
+    let parameters = &values.parameters;
+    Scene::of_model(ModelChoice::Polach(Polach::default()), parameters.shear_modulus, parameters.poisson_ratio)
+        .contact_input(&scene_input(&values.inputs))
 }
 
 #[cfg(test)]
 mod tests {
+    use std::f64::consts::PI;
+
     use super::*;
-    use crate::fmi::model_description::{value_reference as vr, Causality, VARIABLES};
-    use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
+    use crate::model_description::{value_reference as vr, Causality, TractionLaw, VARIABLES};
+    use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+    use wheel_rail_contact::scene::kinematics::WheelKinematics;
+    use wheel_rail_contact::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
+    use wheel_rail_contact::scene::relaxation::RelaxationLengths;
+    use wheel_rail_contact::{CreepForceModel, LargeCreepage};
 
     fn outputs_of(values: &Values) -> Result<Outputs, String> {
         compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)
@@ -557,9 +435,14 @@ mod tests {
                         inputs.friction_coefficient = mu;
                         let expected = Polach::default().creep_forces(&contact_input(&values)).unwrap();
                         let outputs = outputs(&values);
-                        assert_eq!(outputs.force_longitudinal.to_bits(), expected.force_longitudinal.to_bits());
-                        assert_eq!(outputs.force_lateral.to_bits(), expected.force_lateral.to_bits());
-                        assert_eq!(outputs.adhesion_utilisation.to_bits(), expected.adhesion_utilisation.to_bits());
+                        // Bit for bit, but a zero is always +0 in the outputs.
+                        let bits = |x: f64| (x + 0.0).to_bits();
+                        assert_eq!(outputs.force_longitudinal.to_bits(), bits(expected.force_longitudinal));
+                        assert_eq!(outputs.force_lateral.to_bits(), bits(expected.force_lateral));
+                        assert_eq!(outputs.adhesion_utilisation.to_bits(), bits(expected.adhesion_utilisation));
+                        for output in [outputs.force_longitudinal, outputs.force_lateral, outputs.spin_moment] {
+                            assert!(output != 0.0 || output.is_sign_positive(), "−0 in {outputs:?}");
+                        }
                         cases += 1;
                     }
                 }
@@ -873,6 +756,7 @@ mod tests {
         assert!((after.adhesion_utilisation - magnitude / (0.3 * 100e3)).abs() < 1e-15);
         // A given length is used in both directions; lift-off clears the state.
         values.parameters.relaxation_length = 0.05;
+        cache.parameters_changed();
         let mut state = before;
         compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
         let uniform = RelaxationLengths::uniform(0.05).unwrap();
@@ -883,12 +767,15 @@ mod tests {
     }
 
     #[test]
-    fn the_plan_is_rebuilt_when_a_parameter_changes() {
+    fn the_scene_is_rebuilt_after_parameters_changed() {
         let mut values = Values::default();
         values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
         let mut cache = ModelCache::default();
         let mut state = RelaxedForces::default();
-        let mut evaluate = |values: &Values| compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3));
+        let mut evaluate = |values: &Values| {
+            cache.parameters_changed();
+            compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3))
+        };
         let before = evaluate(&values).unwrap();
         values.parameters.measured_peak_adhesion = 0.36;
         let after = evaluate(&values).unwrap();

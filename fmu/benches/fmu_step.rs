@@ -5,11 +5,12 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use fmi_sys::fmi2::{fmi2CallbackFunctions, fmi2Status_fmi2OK, fmi2Type_fmi2CoSimulation};
-use wheel_rail_contact::fmi::ffi::*;
-use wheel_rail_contact::fmi::model_description::{value_reference as vr, GUID};
 use wheel_rail_contact::{CreepForceModel, Polach};
+use wheel_rail_contact_fmu::ffi::*;
+use wheel_rail_contact_fmu::fmi2::{fmi2CallbackFunctions, fmi2Status_fmi2OK, fmi2Type_fmi2CoSimulation};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID};
 
+#[path = "../../benches/shared/mod.rs"]
 mod shared;
 use shared::WITH_SPIN as SCENE;
 

@@ -20,52 +20,14 @@ use std::ffi::{c_char, c_void, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::ptr::null_mut;
 
-use fmi_sys::fmi2::*;
+use crate::fmi2::*;
 
-use super::fmu_state::FmuState;
-use super::instance::{Instance, InstantiateArguments, LogSink, Status, StatusKind, Unsupported, ValueType};
+use crate::instance::{FmuState, Instance, InstantiateArguments, StatusKind, Unsupported, ValueType};
+use crate::logging::{LogSink, Status};
+use crate::mode::Call;
 
 #[cfg(not(panic = "unwind"))]
 compile_error!("the FMU must be built with panic = \"unwind\": every export turns a panic into fmi2Fatal");
-
-/// Every export's signature, checked against the FMI 2.0 headers' function types (bindgen's
-/// `fmi2*TYPE` from fmi-sys): a mismatch does not compile.
-const _: () = {
-    let _: fmi2GetTypesPlatformTYPE = Some(fmi2GetTypesPlatform);
-    let _: fmi2GetVersionTYPE = Some(fmi2GetVersion);
-    let _: fmi2SetDebugLoggingTYPE = Some(fmi2SetDebugLogging);
-    let _: fmi2InstantiateTYPE = Some(fmi2Instantiate);
-    let _: fmi2FreeInstanceTYPE = Some(fmi2FreeInstance);
-    let _: fmi2SetupExperimentTYPE = Some(fmi2SetupExperiment);
-    let _: fmi2EnterInitializationModeTYPE = Some(fmi2EnterInitializationMode);
-    let _: fmi2ExitInitializationModeTYPE = Some(fmi2ExitInitializationMode);
-    let _: fmi2TerminateTYPE = Some(fmi2Terminate);
-    let _: fmi2ResetTYPE = Some(fmi2Reset);
-    let _: fmi2GetRealTYPE = Some(fmi2GetReal);
-    let _: fmi2GetIntegerTYPE = Some(fmi2GetInteger);
-    let _: fmi2GetBooleanTYPE = Some(fmi2GetBoolean);
-    let _: fmi2GetStringTYPE = Some(fmi2GetString);
-    let _: fmi2SetRealTYPE = Some(fmi2SetReal);
-    let _: fmi2SetIntegerTYPE = Some(fmi2SetInteger);
-    let _: fmi2SetBooleanTYPE = Some(fmi2SetBoolean);
-    let _: fmi2SetStringTYPE = Some(fmi2SetString);
-    let _: fmi2GetFMUstateTYPE = Some(fmi2GetFMUstate);
-    let _: fmi2SetFMUstateTYPE = Some(fmi2SetFMUstate);
-    let _: fmi2FreeFMUstateTYPE = Some(fmi2FreeFMUstate);
-    let _: fmi2SerializedFMUstateSizeTYPE = Some(fmi2SerializedFMUstateSize);
-    let _: fmi2SerializeFMUstateTYPE = Some(fmi2SerializeFMUstate);
-    let _: fmi2DeSerializeFMUstateTYPE = Some(fmi2DeSerializeFMUstate);
-    let _: fmi2GetDirectionalDerivativeTYPE = Some(fmi2GetDirectionalDerivative);
-    let _: fmi2SetRealInputDerivativesTYPE = Some(fmi2SetRealInputDerivatives);
-    let _: fmi2GetRealOutputDerivativesTYPE = Some(fmi2GetRealOutputDerivatives);
-    let _: fmi2DoStepTYPE = Some(fmi2DoStep);
-    let _: fmi2CancelStepTYPE = Some(fmi2CancelStep);
-    let _: fmi2GetStatusTYPE = Some(fmi2GetStatus);
-    let _: fmi2GetRealStatusTYPE = Some(fmi2GetRealStatus);
-    let _: fmi2GetIntegerStatusTYPE = Some(fmi2GetIntegerStatus);
-    let _: fmi2GetBooleanStatusTYPE = Some(fmi2GetBooleanStatus);
-    let _: fmi2GetStringStatusTYPE = Some(fmi2GetStringStatus);
-};
 
 const NULL_ARRAY: &str = "NULL array pointer with n > 0";
 
@@ -140,7 +102,7 @@ unsafe fn slice_mut<'a, T>(pointer: *mut T, n: usize) -> Option<&'a mut [T]> {
 /// Runs `body` on the instance behind `c` (NULL: `fmi2Error`, nothing to log to).
 /// SAFETY: `c` is NULL or a live instance from [`fmi2Instantiate`].
 #[inline]
-unsafe fn with_instance(c: fmi2Component, call: &str, body: impl FnOnce(&mut Instance) -> Status) -> fmi2Status {
+unsafe fn with_instance(c: fmi2Component, call: Call, body: impl FnOnce(&mut Instance) -> Status) -> fmi2Status {
     // SAFETY: by the caller's contract; the master does not call into one instance concurrently.
     match unsafe { c.cast::<Instance>().as_mut() } {
         Some(instance) => to_c(instance.guarded(call, body)),
@@ -161,7 +123,7 @@ fn status_kind(kind: fmi2StatusKind) -> Option<StatusKind> {
 /// Common checks of the fmi2GetXXXStatus functions: a known kind and a value pointer.
 fn status_arguments<T>(
     instance: &mut Instance,
-    call: &str,
+    call: Call,
     kind: fmi2StatusKind,
     value: *mut T,
 ) -> Result<StatusKind, Status> {
@@ -237,7 +199,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     nCategories: usize,
     categories: *const fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetDebugLogging";
+    const CALL: Call = Call::SetDebugLogging;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| {
@@ -264,31 +226,31 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 ) -> fmi2Status {
     let stop_time = (stopTimeDefined != 0).then_some(stopTime);
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2SetupExperiment", |instance| instance.setup_experiment(startTime, stop_time)) }
+    unsafe { with_instance(c, Call::SetupExperiment, |instance| instance.setup_experiment(startTime, stop_time)) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2EnterInitializationMode", Instance::enter_initialization_mode) }
+    unsafe { with_instance(c, Call::EnterInitializationMode, Instance::enter_initialization_mode) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2ExitInitializationMode", Instance::exit_initialization_mode) }
+    unsafe { with_instance(c, Call::ExitInitializationMode, Instance::exit_initialization_mode) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2Terminate", Instance::terminate) }
+    unsafe { with_instance(c, Call::Terminate, Instance::terminate) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2Reset", Instance::reset) }
+    unsafe { with_instance(c, Call::Reset, Instance::reset) }
 }
 
 #[no_mangle]
@@ -298,7 +260,7 @@ pub unsafe extern "C" fn fmi2GetReal(
     nvr: usize,
     value: *mut fmi2Real,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetReal";
+    const CALL: Call = Call::GetReal;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -315,7 +277,7 @@ pub unsafe extern "C" fn fmi2GetInteger(
     nvr: usize,
     value: *mut fmi2Integer,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetInteger";
+    const CALL: Call = Call::GetInteger;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -332,7 +294,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
     nvr: usize,
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetBoolean";
+    const CALL: Call = Call::GetBoolean;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -349,7 +311,7 @@ pub unsafe extern "C" fn fmi2GetString(
     nvr: usize,
     value: *mut fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetString";
+    const CALL: Call = Call::GetString;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
@@ -366,7 +328,7 @@ pub unsafe extern "C" fn fmi2SetReal(
     nvr: usize,
     value: *const fmi2Real,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetReal";
+    const CALL: Call = Call::SetReal;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -383,7 +345,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
     nvr: usize,
     value: *const fmi2Integer,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetInteger";
+    const CALL: Call = Call::SetInteger;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -400,7 +362,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
     nvr: usize,
     value: *const fmi2Boolean,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetBoolean";
+    const CALL: Call = Call::SetBoolean;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -417,7 +379,7 @@ pub unsafe extern "C" fn fmi2SetString(
     nvr: usize,
     value: *const fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SetString";
+    const CALL: Call = Call::SetString;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
@@ -428,7 +390,7 @@ pub unsafe extern "C" fn fmi2SetString(
 }
 
 /// SAFETY: see the module's contract.
-unsafe fn unsupported(c: fmi2Component, capability: Unsupported, call: &str) -> fmi2Status {
+unsafe fn unsupported(c: fmi2Component, capability: Unsupported, call: Call) -> fmi2Status {
     // SAFETY: by the caller's contract.
     unsafe { with_instance(c, call, |instance| instance.unsupported(capability)) }
 }
@@ -453,7 +415,7 @@ unsafe fn store_fmu_state(slot: &mut fmi2FMUstate, state: FmuState) {
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2GetFMUstate";
+    const CALL: Call = Call::GetFMUstate;
     // SAFETY: see the module's contract; `FMUstate` is NULL or points to the master's slot.
     unsafe {
         with_instance(c, CALL, |instance| match FMUstate.as_mut() {
@@ -471,7 +433,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(c: fmi2Component, FMUstate: *mut fmi2FM
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2SetFMUstate";
+    const CALL: Call = Call::SetFMUstate;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match fmu_state(FMUstate) {
@@ -483,7 +445,7 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstat
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: fmi2Component, FMUstate: *mut fmi2FMUstate) -> fmi2Status {
-    const CALL: &str = "fmi2FreeFMUstate";
+    const CALL: Call = Call::FreeFMUstate;
     // SAFETY: see the module's contract; `*FMUstate` came from Box::into_raw in this file and is
     // released once: the slot is set to NULL.
     unsafe {
@@ -508,7 +470,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     FMUstate: fmi2FMUstate,
     size: *mut usize,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SerializedFMUstateSize";
+    const CALL: Call = Call::SerializedFMUstateSize;
     // SAFETY: see the module's contract; `size` is NULL or writable.
     unsafe {
         with_instance(c, CALL, |instance| match (fmu_state(FMUstate), size.as_mut()) {
@@ -531,7 +493,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     serializedState: *mut fmi2Byte,
     size: usize,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2SerializeFMUstate";
+    const CALL: Call = Call::SerializeFMUstate;
     // SAFETY: see the module's contract; `serializedState` is valid for `size` writes.
     unsafe {
         with_instance(c, CALL, |instance| match (fmu_state(FMUstate), slice_mut(serializedState.cast::<u8>(), size)) {
@@ -549,7 +511,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2DeSerializeFMUstate";
+    const CALL: Call = Call::DeSerializeFMUstate;
     // SAFETY: see the module's contract; `serializedState` is valid for `size` reads, `FMUstate`
     // is NULL or points to the master's slot (NULL or an FMU state of this FMU).
     unsafe {
@@ -577,7 +539,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     dvKnown: *const fmi2Real,
     dvUnknown: *mut fmi2Real,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetDirectionalDerivative";
+    const CALL: Call = Call::GetDirectionalDerivative;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| {
@@ -602,7 +564,7 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     _value: *const fmi2Real,
 ) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::RealInputDerivatives, "fmi2SetRealInputDerivatives") }
+    unsafe { unsupported(c, Unsupported::RealInputDerivatives, Call::SetRealInputDerivatives) }
 }
 
 #[no_mangle]
@@ -614,7 +576,7 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     _value: *mut fmi2Real,
 ) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { unsupported(c, Unsupported::RealOutputDerivatives, "fmi2GetRealOutputDerivatives") }
+    unsafe { unsupported(c, Unsupported::RealOutputDerivatives, Call::GetRealOutputDerivatives) }
 }
 
 #[no_mangle]
@@ -626,19 +588,19 @@ pub unsafe extern "C" fn fmi2DoStep(
 ) -> fmi2Status {
     // SAFETY: see the module's contract.
     unsafe {
-        with_instance(c, "fmi2DoStep", |instance| instance.do_step(currentCommunicationPoint, communicationStepSize))
+        with_instance(c, Call::DoStep, |instance| instance.do_step(currentCommunicationPoint, communicationStepSize))
     }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: fmi2Component) -> fmi2Status {
     // SAFETY: see the module's contract.
-    unsafe { with_instance(c, "fmi2CancelStep", Instance::cancel_step) }
+    unsafe { with_instance(c, Call::CancelStep, Instance::cancel_step) }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Status) -> fmi2Status {
-    const CALL: &str = "fmi2GetStatus";
+    const CALL: Call = Call::GetStatus;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -650,7 +612,7 @@ pub unsafe extern "C" fn fmi2GetStatus(c: fmi2Component, s: fmi2StatusKind, valu
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2Real) -> fmi2Status {
-    const CALL: &str = "fmi2GetRealStatus";
+    const CALL: Call = Call::GetRealStatus;
     // SAFETY: see the module's contract; `value` was checked for NULL.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -672,7 +634,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     s: fmi2StatusKind,
     value: *mut fmi2Integer,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetIntegerStatus";
+    const CALL: Call = Call::GetIntegerStatus;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -688,7 +650,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     s: fmi2StatusKind,
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetBooleanStatus";
+    const CALL: Call = Call::GetBooleanStatus;
     // SAFETY: see the module's contract; `value` was checked for NULL.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -710,7 +672,7 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     s: fmi2StatusKind,
     value: *mut fmi2String,
 ) -> fmi2Status {
-    const CALL: &str = "fmi2GetStringStatus";
+    const CALL: Call = Call::GetStringStatus;
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match status_arguments(instance, CALL, s, value) {
@@ -724,8 +686,8 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
 mod tests {
     //! The exports themselves, called in-process as a master would.
     use super::*;
-    use crate::fmi::instance::PANIC_CATEGORY_FOR_TESTS;
-    use crate::fmi::model_description::{value_reference as vr, GUID};
+    use crate::instance::PANIC_CATEGORY_FOR_TESTS;
+    use crate::model_description::{value_reference as vr, GUID};
     use std::cell::RefCell;
 
     /// (status, category, format, message) of every logger call.

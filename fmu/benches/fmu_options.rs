@@ -6,8 +6,9 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use wheel_rail_contact::fmi::instance::{Instance, InstantiateArguments, LogSink, Status};
-use wheel_rail_contact::fmi::model_description::{value_reference as vr, Model, Switch, TractionLaw, GUID};
+use wheel_rail_contact_fmu::instance::{Instance, InstantiateArguments};
+use wheel_rail_contact_fmu::logging::{LogSink, Status};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch, TractionLaw, GUID};
 
 struct NoLog;
 

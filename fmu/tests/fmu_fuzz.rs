@@ -18,11 +18,11 @@ use std::ffi::{c_char, CString};
 use std::ptr::{null, null_mut};
 
 use c_abi::{callbacks, LogCounter};
-use fmi_sys::fmi2::*;
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
-use wheel_rail_contact::fmi::ffi::*;
-use wheel_rail_contact::fmi::model_description::{Causality, GUID, VARIABLES};
+use wheel_rail_contact_fmu::ffi::*;
+use wheel_rail_contact_fmu::fmi2::*;
+use wheel_rail_contact_fmu::model_description::{Causality, GUID, VARIABLES};
 
 const DEFAULT_SEED: u64 = 0x5EED_2026_0006;
 const DEFAULT_CALLS: usize = 1_000_000;
@@ -74,7 +74,7 @@ impl Fuzzer {
             1 | 2 => {
                 let variable = &VARIABLES[self.rng.random_range(0..VARIABLES.len())];
                 let start = match variable.kind {
-                    wheel_rail_contact::fmi::model_description::Kind::Real { start: Some(s) } => s,
+                    wheel_rail_contact_fmu::model_description::Kind::Real { start: Some(s) } => s,
                     _ => 1e-3,
                 };
                 start * self.rng.random_range(-2.0..3.0)

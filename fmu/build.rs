@@ -1,0 +1,16 @@
+//! Build script: generates the adapter's interface from the FMU's single source of truth,
+//! `modelDescription.xml` at the workspace root: the value structs, value references, Get/Set
+//! mapping, variable table, GUID, `<ModelStructure>` indices and the FMU-state layout tag
+//! (`src/model_description.rs` includes the result).
+
+#[path = "build/model_description.rs"]
+mod model_description;
+
+fn main() {
+    let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    model_description::generate("../modelDescription.xml", &out_dir.join("model_description.rs"));
+    // The FMU exports the 34 fmi2* functions and nothing else (Rust's own symbols stay hidden).
+    if std::env::var("CARGO_CFG_TARGET_OS").as_deref() == Ok("linux") {
+        println!("cargo:rustc-cdylib-link-arg=-Wl,--exclude-libs,ALL");
+    }
+}

@@ -1,0 +1,380 @@
+//! One FMU instance: its lifecycle through the FMI 2.0 Co-Simulation state machine
+//! ([`crate::mode`]), logging, status inquiries; by concern in the sibling files: `values.rs`
+//! (Get/Set), `step.rs` (DoStep, the outputs), `fmu_state.rs` (FMU states), `derivative.rs`
+//! (directional derivatives). Unit tests sit beside each, in `*_tests.rs`.
+//!
+//! Safe code only: `ffi` turns C arguments into slices and strings and calls these methods, so
+//! unit tests drive every rule here without the C boundary.
+//!
+//! Rules (FMI 2.0.4, section 4.2.4, Co-Simulation state machine):
+//! - a call outside the states that allow it returns `Error` and logs
+//!   `fmi2XXX: illegal call in state YYY`; the state does not change;
+//! - an invalid value (NaN, a ≤ 0, …) is reported where outputs are computed
+//!   (ExitInitializationMode, DoStep, GetReal of an output in Mode::InitializationMode) as `Error`
+//!   naming the variable and value. The instance keeps its state, so the master can set a good
+//!   value and carry on (this FMU never enters the standard's `error` state);
+//! - a panic inside a call (a bug) is caught by [`Instance::guarded`]: `Fatal`, logged, and the
+//!   instance accepts nothing but fmi2FreeInstance afterwards.
+//!
+//! The hot path (fmi2SetReal/DoStep/GetReal) does no allocation, no string comparison and no
+//! search: one dense-table lookup per value reference, a bit test for the state, and a log
+//! filter decided once per fmi2SetDebugLogging.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+mod derivative;
+mod fmu_state;
+mod step;
+mod values;
+
+pub use fmu_state::FmuState;
+pub use values::ValueType;
+
+use crate::logging::{status_category, LogFilter, LogSink, Status};
+use crate::mode::{Call, Mode, Modes, LIVE};
+use crate::model_description::{self, Values, LOG_CATEGORIES};
+use crate::scene::ModelCache;
+use crate::snapshot::Snapshot;
+use wheel_rail_contact::scene::Evaluation;
+
+/// `fmi2StatusKind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StatusKind {
+    DoStepStatus,
+    PendingStatus,
+    LastSuccessfulTime,
+    Terminated,
+}
+
+/// Under `cfg(test)` only: a log category that makes fmi2SetDebugLogging panic, so that a test
+/// can drive a real panic through an export and see it become fmi2Fatal. Not in any FMU binary.
+#[cfg(test)]
+pub(crate) const PANIC_CATEGORY_FOR_TESTS: &str = "panicForTests";
+
+/// One instance of the FMU.
+pub struct Instance {
+    name: String,
+    resource_location: Option<String>,
+    /// Mode, time, values and model state: exactly what an FMU state saves and restores.
+    run: Snapshot,
+    /// A cache derived from the parameters (not state: it is refitted whenever they differ).
+    model: ModelCache,
+    log_filter: LogFilter,
+    sink: Box<dyn LogSink>,
+}
+
+/// What fmi2Instantiate received, decoded.
+pub struct InstantiateArguments<'a> {
+    pub instance_name: &'a str,
+    pub co_simulation: bool,
+    pub guid: &'a str,
+    pub resource_location: Option<&'a str>,
+    pub logging_on: bool,
+}
+
+impl Instance {
+    /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name or Model
+    /// Exchange.
+    pub fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Instance> {
+        let InstantiateArguments { instance_name, co_simulation, guid, resource_location, logging_on } = arguments;
+        let problem = if instance_name.trim().is_empty() {
+            Some("instanceName must not be empty".to_owned())
+        } else if !co_simulation {
+            Some(format!(
+                "this FMU supports Co-Simulation only (modelIdentifier {})",
+                model_description::MODEL_IDENTIFIER
+            ))
+        } else if guid != model_description::GUID {
+            Some(format!("fmuGUID {guid} does not match this FMU's GUID {}", model_description::GUID))
+        } else {
+            None
+        };
+        if let Some(problem) = problem {
+            sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
+            return None;
+        }
+        let mut instance = Instance {
+            name: instance_name.to_owned(),
+            resource_location: resource_location.map(str::to_owned),
+            run: Snapshot::instantiated(),
+            model: ModelCache::default(),
+            log_filter: LogFilter::new(logging_on, None),
+            sink,
+        };
+        instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
+        Some(instance)
+    }
+
+    /// The name the master gave.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The resource location the master gave (`None` if it passed NULL).
+    pub fn resource_location(&self) -> Option<&str> {
+        self.resource_location.as_deref()
+    }
+
+    pub fn state(&self) -> Mode {
+        self.run.mode
+    }
+
+    /// The instance's values (inputs, parameters, last outputs).
+    pub fn values(&self) -> &Values {
+        &self.run.values
+    }
+
+    /// Runs one FMI call. A panic inside it (a bug: no valid input panics) becomes `Fatal`, is
+    /// logged, and leaves the instance in the `fatal` state, where every call but
+    /// fmi2FreeInstance is refused. `AssertUnwindSafe` is sound for that reason: nothing reads
+    /// the values a panic may have left half-updated.
+    #[inline]
+    pub fn guarded(&mut self, call: Call, body: impl FnOnce(&mut Instance) -> Status) -> Status {
+        match catch_unwind(AssertUnwindSafe(|| body(self))) {
+            Ok(status) => status,
+            Err(payload) => self.panicked(call, payload.as_ref()),
+        }
+    }
+
+    #[cold]
+    fn panicked(&mut self, call: Call, payload: &(dyn std::any::Any + Send)) -> Status {
+        self.run.mode = Mode::Fatal;
+        let reason = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".to_owned());
+        let message = format!("{call}: internal error ({reason}); this instance can only be freed");
+        self.emit(Status::Fatal, &message);
+        Status::Fatal
+    }
+
+    fn emit(&mut self, status: Status, message: &str) {
+        if self.log_filter.passes(status) {
+            self.sink.log(status, status_category(status), message);
+        }
+    }
+
+    /// Logs a call trace (category logCalls); the message is only formatted when it will be sent.
+    #[inline]
+    fn trace(&mut self, message: impl FnOnce() -> String) {
+        if self.log_filter.passes(Status::Ok) {
+            let text = message();
+            self.sink.log(Status::Ok, status_category(Status::Ok), &text);
+        }
+    }
+
+    fn fail(&mut self, call: Call, reason: &str) -> Status {
+        self.emit(Status::Error, &format!("{call}: {reason}"));
+        Status::Error
+    }
+
+    #[inline]
+    fn require(&mut self, call: Call) -> Result<(), Status> {
+        self.require_in(call, call.allowed())
+    }
+
+    /// Like [`Instance::require`] with other modes than the call's own (an argument error is
+    /// reported in every live mode).
+    #[inline]
+    fn require_in(&mut self, call: Call, allowed: Modes) -> Result<(), Status> {
+        if allowed.contains(self.run.mode) {
+            Ok(())
+        } else {
+            Err(self.illegal_call(call))
+        }
+    }
+
+    #[cold]
+    fn illegal_call(&mut self, call: Call) -> Status {
+        let state = self.run.mode.name();
+        self.fail(call, &format!("illegal call in state {state}"))
+    }
+
+    /// fmi2SetDebugLogging. Unknown categories are ignored with a warning.
+    pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
+        const CALL: Call = Call::SetDebugLogging;
+        #[cfg(test)]
+        if categories.contains(&PANIC_CATEGORY_FOR_TESTS) {
+            panic!("forced by a test through the category {PANIC_CATEGORY_FOR_TESTS}");
+        }
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        let selection = if categories.is_empty() { None } else { Some(categories) };
+        self.log_filter = LogFilter::new(logging_on, selection);
+        let unknown: Vec<&&str> = categories.iter().filter(|c| !LOG_CATEGORIES.contains(c)).collect();
+        self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
+        if unknown.is_empty() {
+            Status::Ok
+        } else {
+            let message = format!("{CALL}: unknown log categories {unknown:?} ignored; known: {LOG_CATEGORIES:?}");
+            self.emit(Status::Warning, &message);
+            Status::Warning
+        }
+    }
+
+    /// fmi2SetupExperiment. The tolerance is not used: the outputs are algebraic in the inputs.
+    pub fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status {
+        const CALL: Call = Call::SetupExperiment;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
+        if !start_time.is_finite() {
+            return self.fail(CALL, &format!("startTime = {start_time} is invalid: must be finite"));
+        }
+        if let Some(stop) = stop_time.filter(|stop| stop.is_nan() || *stop < start_time) {
+            return self.fail(CALL, &format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"));
+        }
+        self.run.time = start_time;
+        self.run.stop_time = stop_time;
+        Status::Ok
+    }
+
+    pub fn enter_initialization_mode(&mut self) -> Status {
+        const CALL: Call = Call::EnterInitializationMode;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.trace(|| CALL.name().to_owned());
+        self.run.mode = Mode::InitializationMode;
+        Status::Ok
+    }
+
+    /// fmi2ExitInitializationMode: computes the outputs; with an invalid value it stays in
+    /// initialization mode so that the master can correct it.
+    pub fn exit_initialization_mode(&mut self) -> Status {
+        const CALL: Call = Call::ExitInitializationMode;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.trace(|| CALL.name().to_owned());
+        if let Err(status) = self.update_outputs(CALL, Evaluation::Initialise) {
+            return status;
+        }
+        self.run.mode = Mode::StepComplete;
+        Status::Ok
+    }
+
+    pub fn terminate(&mut self) -> Status {
+        const CALL: Call = Call::Terminate;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.trace(|| CALL.name().to_owned());
+        self.run.mode = Mode::Terminated;
+        Status::Ok
+    }
+
+    /// fmi2Reset: back to the start values and the `instantiated` state (the log settings stay).
+    pub fn reset(&mut self) -> Status {
+        const CALL: Call = Call::Reset;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.trace(|| CALL.name().to_owned());
+        self.run = Snapshot::instantiated();
+        self.model = ModelCache::default();
+        Status::Ok
+    }
+
+    fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
+        let message = format!("{call}: no {kind:?} to report: fmi2DoStep never returns fmi2Pending or fmi2Discard");
+        self.emit(Status::Discard, &message);
+        Status::Discard
+    }
+
+    /// fmi2GetStatus: nothing to report (steps are synchronous and never discarded).
+    pub fn get_status(&mut self, kind: StatusKind) -> Status {
+        const CALL: Call = Call::GetStatus;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.discard_status(CALL, kind)
+    }
+
+    /// fmi2GetRealStatus: `fmi2LastSuccessfulTime` is the end of the last completed step.
+    pub fn get_real_status(&mut self, kind: StatusKind) -> Result<f64, Status> {
+        const CALL: Call = Call::GetRealStatus;
+        self.require(CALL)?;
+        match kind {
+            StatusKind::LastSuccessfulTime => Ok(self.run.time),
+            _ => Err(self.discard_status(CALL, kind)),
+        }
+    }
+
+    /// fmi2GetIntegerStatus: the standard defines no integer status.
+    pub fn get_integer_status(&mut self, kind: StatusKind) -> Status {
+        const CALL: Call = Call::GetIntegerStatus;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.discard_status(CALL, kind)
+    }
+
+    /// fmi2GetBooleanStatus: `fmi2Terminated` is false: this FMU never asks to stop.
+    pub fn get_boolean_status(&mut self, kind: StatusKind) -> Result<bool, Status> {
+        const CALL: Call = Call::GetBooleanStatus;
+        self.require(CALL)?;
+        match kind {
+            StatusKind::Terminated => Ok(false),
+            _ => Err(self.discard_status(CALL, kind)),
+        }
+    }
+
+    /// fmi2GetStringStatus: `fmi2PendingStatus` has nothing to report (no pending step).
+    pub fn get_string_status(&mut self, kind: StatusKind) -> Status {
+        const CALL: Call = Call::GetStringStatus;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.discard_status(CALL, kind)
+    }
+
+    /// An unsupported capability: `Error` with the capability flag that says so.
+    pub fn unsupported(&mut self, capability: Unsupported) -> Status {
+        let (call, flag) = capability.describe();
+        if let Err(status) = self.require(call) {
+            return status;
+        }
+        self.fail(call, &format!("not supported ({flag} in modelDescription.xml)"))
+    }
+
+    /// An argument the C layer found unusable (a NULL pointer with n > 0, an unknown enum value).
+    pub fn invalid_argument(&mut self, call: Call, reason: &str) -> Status {
+        if let Err(status) = self.require_in(call, LIVE) {
+            return status;
+        }
+        self.fail(call, reason)
+    }
+}
+
+/// The capabilities this FMU declares false.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unsupported {
+    RealInputDerivatives,
+    RealOutputDerivatives,
+}
+
+impl Unsupported {
+    fn describe(self) -> (Call, &'static str) {
+        match self {
+            Unsupported::RealInputDerivatives => (Call::SetRealInputDerivatives, "canInterpolateInputs = false"),
+            Unsupported::RealOutputDerivatives => (Call::GetRealOutputDerivatives, "maxOutputDerivativeOrder = 0"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod derivative_tests;
+#[cfg(test)]
+mod fmu_state_tests;
+#[cfg(test)]
+mod instance_tests;
+#[cfg(test)]
+mod step_tests;
+#[cfg(test)]
+mod test_support;
+#[cfg(test)]
+mod values_tests;

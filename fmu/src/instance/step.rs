@@ -1,0 +1,95 @@
+//! fmi2DoStep and the evaluation of the outputs: the core's scene over the step, kept only if
+//! every output is finite.
+
+use super::Instance;
+use crate::logging::Status;
+use crate::mode::Call;
+use crate::model_description::Outputs;
+use crate::scene::compute_outputs;
+use wheel_rail_contact::scene::Evaluation;
+
+/// Two communication points closer than this (relative to max(1, |t|)) are the same: masters
+/// compute t + h in their own rounding.
+const TIME_TOLERANCE: f64 = 1e-9;
+
+impl Instance {
+    #[inline]
+    pub(super) fn update_outputs(&mut self, call: Call, evaluation: Evaluation) -> Result<(), Status> {
+        // The relaxed forces advance on a copy, kept only if the outputs are good.
+        let mut relaxed_forces = self.run.relaxed_forces;
+        let outputs = compute_outputs(&self.run.values, &mut self.model, &mut relaxed_forces, evaluation)
+            .and_then(|outputs| finite(&outputs).map(|_| outputs));
+        match outputs {
+            Ok(outputs) => {
+                self.run.values.outputs = outputs;
+                self.run.relaxed_forces = relaxed_forces;
+                Ok(())
+            }
+            Err(reason) => Err(self.fail(call, &reason)),
+        }
+    }
+
+    /// fmi2DoStep: outputs at t + h from the inputs set before the step (the model is algebraic).
+    #[inline]
+    pub fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
+        const CALL: Call = Call::DoStep;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        let (t, h) = (current_communication_point, communication_step_size);
+        self.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
+        if !(h > 0.0 && h.is_finite()) {
+            return self.fail(CALL, &format!("communicationStepSize = {h} is invalid: must be finite and > 0"));
+        }
+        let tolerance = TIME_TOLERANCE * self.run.time.abs().max(1.0);
+        let on_time = (t - self.run.time).abs() <= tolerance; // false for a NaN t
+        if !on_time {
+            let time = self.run.time;
+            return self.fail(CALL, &format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
+        }
+        let end = t + h;
+        if !end.is_finite() {
+            return self.fail(
+                CALL,
+                &format!("the step would end at {end}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is not finite"),
+            );
+        }
+        if let Some(stop) = self.run.stop_time.filter(|stop| end > stop + tolerance) {
+            return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
+        }
+        if let Err(status) = self.update_outputs(CALL, Evaluation::Step(h)) {
+            return status;
+        }
+        self.run.time = end;
+        Status::Ok
+    }
+
+    /// fmi2CancelStep: DoStep never returns fmi2Pending, so there is never a step to cancel.
+    pub fn cancel_step(&mut self) -> Status {
+        match self.require(Call::CancelStep) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+}
+
+/// Every output finite, or why not: the last guard of "never NaN or Inf out", for finite
+/// inputs so large that a model's arithmetic overflows. A few compares on the hot path; the
+/// message is built only on failure.
+pub(super) fn finite(outputs: &Outputs) -> Result<(), String> {
+    let reals = outputs.reals();
+    // x·0 is ±0 for a finite x and NaN for ±Inf or NaN: one branch-free sum tells.
+    if reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0 {
+        return Ok(());
+    }
+    let overflowing: Vec<String> = Outputs::NAMES
+        .iter()
+        .zip(reals)
+        .filter(|(_, x)| !x.is_finite())
+        .map(|(name, x)| format!("{name} = {x}"))
+        .collect();
+    Err(format!(
+        "{} for these values: an input or parameter is too large for the model's floating-point range",
+        overflowing.join(", ")
+    ))
+}

@@ -1,0 +1,120 @@
+//! Unit tests of fmi2DoStep and the outputs.
+
+use super::test_support::*;
+use super::*;
+use crate::logging::Status;
+use crate::model_description::value_reference as vr;
+
+#[test]
+fn outputs_follow_the_inputs_set_before_each_step() {
+    let (mut instance, _) = new_instance();
+    instance.setup_experiment(0.5, Some(2.0));
+    instance.enter_initialization_mode();
+    assert_eq!(instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[-2e-3]), Status::Ok);
+    // In initialization mode a Get sees the input just set.
+    let traction = get(&mut instance, vr::FORCE_LONGITUDINAL);
+    assert!(traction > 0.0, "negative creepage gives a positive force: {traction}");
+    assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+    assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), traction);
+    // After the step, not before: the outputs change with DoStep only.
+    instance.set_real(&[vr::CREEPAGE_LONGITUDINAL], &[2e-3]);
+    assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), traction);
+    assert_eq!(instance.do_step(0.5, 0.25), Status::Ok);
+    assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL), -traction, "odd in the creepage");
+    assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.75));
+    // Variable step sizes, each continuing from the end of the last.
+    for (t, h) in [(0.75, 1e-3), (0.751, 0.249), (1.0, 1.0)] {
+        assert_eq!(instance.do_step(t, h), Status::Ok, "t = {t}, h = {h}");
+    }
+}
+
+#[test]
+fn do_step_checks_time_and_step_size() {
+    let (mut instance, log) = new_instance();
+    instance.setup_experiment(0.0, Some(1.0));
+    instance.enter_initialization_mode();
+    instance.exit_initialization_mode();
+    for (t, h, expected) in [
+        (0.0, 0.0, "fmi2DoStep: communicationStepSize = 0 is invalid: must be finite and > 0"),
+        (0.0, -1e-3, "fmi2DoStep: communicationStepSize = -0.001 is invalid: must be finite and > 0"),
+        (0.0, f64::NAN, "fmi2DoStep: communicationStepSize = NaN is invalid: must be finite and > 0"),
+        (0.1, 1e-3, "fmi2DoStep: currentCommunicationPoint = 0.1 is not the instance's time 0"),
+        (f64::NAN, 1e-3, "fmi2DoStep: currentCommunicationPoint = NaN is not the instance's time 0"),
+        (0.0, 1.5, "fmi2DoStep: the step would end at 1.5, after stopTime = 1"),
+    ] {
+        assert_eq!(instance.do_step(t, h), Status::Error);
+        assert_eq!(last_message(&log), expected);
+    }
+    // A master's own rounding of t + h is accepted.
+    assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+    assert_eq!(instance.do_step(0.1 + 1e-15, 0.2), Status::Ok);
+}
+
+#[test]
+fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
+    let (mut instance, log) = stepping();
+    let before = *instance.values();
+    for (value_reference, value, expected) in [
+        (vr::CREEPAGE_LATERAL, f64::NAN, "fmi2DoStep: creepage_lateral = NaN is invalid: must be finite"),
+        (vr::NORMAL_FORCE, f64::INFINITY, "fmi2DoStep: normal_force = inf is invalid: must be finite"),
+        (vr::SEMI_AXIS_A, 0.0, "fmi2DoStep: semi_axis_a = 0 is invalid: must be finite and > 0"),
+        (vr::FRICTION_COEFFICIENT, -0.1, "fmi2DoStep: friction_coefficient = -0.1 is invalid: must be finite and >= 0"),
+        (vr::SHEAR_MODULUS, -1.0, "fmi2DoStep: shear_modulus = -1 is invalid: must be finite and > 0"),
+        (vr::POISSON_RATIO, 0.6, "fmi2DoStep: poisson_ratio = 0.6 is invalid: must lie in [0, 0.5]"),
+    ] {
+        assert_eq!(instance.set_real(&[value_reference], &[value]), Status::Ok);
+        assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
+        assert_eq!(last_message(&log), expected);
+        assert_eq!(instance.values().outputs, before.outputs, "outputs keep their last valid values");
+        let start = before.real(value_reference).unwrap();
+        instance.set_real(&[value_reference], &[start]);
+    }
+    assert_eq!(instance.do_step(0.0, 0.1), Status::Ok, "usable again once the values are good");
+    assert_eq!(*instance.values(), before);
+}
+
+#[test]
+fn lift_off_gives_zero_forces_without_error() {
+    let (mut instance, _) = stepping();
+    instance.set_real(&[vr::NORMAL_FORCE], &[-10.0]);
+    assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
+    let mut outputs = [f64::NAN; 3];
+    instance.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::ADHESION_UTILISATION], &mut outputs);
+    assert_eq!(outputs, [0.0; 3]);
+}
+
+#[test]
+fn an_overflowing_coulomb_limit_is_an_error_and_keeps_the_last_valid_values() {
+    // Found by the fuzz harness: finite μ and Q whose product overflows. The core rejects it
+    // by name; the finite-outputs check behind it stays as a backstop.
+    let (mut instance, log) = stepping();
+    let before = instance.values().outputs;
+    instance.set_real(&[vr::FRICTION_COEFFICIENT], &[f64::MAX]);
+    assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
+    assert_eq!(
+        last_message(&log),
+        "fmi2DoStep: friction_coefficient = 1.7976931348623157e308 is invalid: times normal_force \
+         (the Coulomb limit μQ) must be finite"
+    );
+    assert_eq!(instance.values().outputs, before);
+}
+
+/// A tunable parameter written between steps applies from the next step on (the scene built
+/// from the parameters is rebuilt), and writing it back restores the outputs bit for bit.
+#[test]
+fn a_tunable_parameter_applies_from_the_next_step() {
+    let (mut instance, _) = stepping();
+    assert_eq!(instance.do_step(0.0, 1e-3), Status::Ok);
+    let kalker = get(&mut instance, vr::FORCE_LONGITUDINAL);
+    assert_eq!(instance.set_integer(&[vr::STIFFNESS_SOURCE], &[MEASURED_CURVE]), Status::Ok);
+    assert_eq!(instance.do_step(1e-3, 1e-3), Status::Ok);
+    let measured = get(&mut instance, vr::FORCE_LONGITUDINAL);
+    assert!((measured - kalker).abs() > 1.0, "{kalker} vs {measured}");
+    assert_eq!(instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.36]), Status::Ok);
+    assert_eq!(instance.do_step(2e-3, 1e-3), Status::Ok);
+    assert_ne!(get(&mut instance, vr::FORCE_LONGITUDINAL), measured);
+    let kalker_source = crate::model_description::StiffnessSource::Kalker as i32;
+    assert_eq!(instance.set_integer(&[vr::STIFFNESS_SOURCE], &[kalker_source]), Status::Ok);
+    assert_eq!(instance.do_step(3e-3, 1e-3), Status::Ok);
+    assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL).to_bits(), kalker.to_bits());
+}

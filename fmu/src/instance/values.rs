@@ -1,0 +1,182 @@
+//! fmi2Get/Set of values: every value reference checked first (all or nothing), the variable's
+//! type and causality, fixed parameters only before initialisation ends; in initialization mode
+//! a read of an output first brings the outputs up to date.
+
+use super::Instance;
+use crate::logging::Status;
+use crate::mode::{Call, Mode};
+use crate::model_description::{access, access_of, variable, Causality, Kind};
+use wheel_rail_contact::scene::Evaluation;
+
+/// The FMI base types of the Get/Set functions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ValueType {
+    Real,
+    Integer,
+    Boolean,
+    String,
+}
+
+impl ValueType {
+    fn of(kind: &Kind) -> ValueType {
+        match kind {
+            Kind::Real { .. } => ValueType::Real,
+            Kind::Integer { .. } | Kind::Enumeration { .. } => ValueType::Integer,
+        }
+    }
+
+    /// The [`ACCESS`](crate::model_description::ACCESS) bit of the type (none for Boolean and
+    /// String: this FMU has no such variables).
+    #[inline]
+    fn access_bit(self) -> u8 {
+        match self {
+            ValueType::Real => access::REAL,
+            ValueType::Integer => access::INTEGER,
+            ValueType::Boolean | ValueType::String => 0,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            ValueType::Real => "Real",
+            ValueType::Integer => "Integer",
+            ValueType::Boolean => "Boolean",
+            ValueType::String => "String",
+        }
+    }
+}
+
+impl Instance {
+    /// Whether `value_reference` can be written as `value_type` now: one byte of the generated
+    /// access table.
+    #[inline]
+    fn settable(&self, value_reference: u32, value_type: ValueType) -> bool {
+        let bits = access_of(value_reference);
+        bits & value_type.access_bit() != 0
+            && (bits & access::WRITABLE != 0 || (bits & access::FIXED != 0 && self.run.mode != Mode::StepComplete))
+    }
+
+    /// Why `value_reference` cannot be written as `value_type` now (only called when it cannot).
+    #[cold]
+    fn not_settable(&self, value_reference: u32, value_type: ValueType) -> String {
+        match variable(value_reference) {
+            None => format!("unknown value reference {value_reference}"),
+            Some(v) if ValueType::of(&v.kind) != value_type => {
+                format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name())
+            }
+            Some(v) if v.causality == Causality::Output => format!("{} is an output and cannot be set", v.name),
+            Some(v) => format!("{} is a fixed parameter and cannot be set after initialization", v.name),
+        }
+    }
+
+    #[inline]
+    fn readable(value_reference: u32, value_type: ValueType) -> bool {
+        access_of(value_reference) & value_type.access_bit() != 0
+    }
+
+    #[cold]
+    fn not_readable(value_reference: u32, value_type: ValueType) -> String {
+        match variable(value_reference) {
+            None => format!("unknown value reference {value_reference}"),
+            Some(v) => format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name()),
+        }
+    }
+
+    /// Checks every reference first, so that a call sets either all its values or none; when
+    /// one is a parameter, the scene built from the parameters is forgotten.
+    #[inline]
+    fn prepare_set(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
+        self.require(call)?;
+        if let Some(&value_reference) = value_references.iter().find(|&&r| !self.settable(r, value_type)) {
+            let reason = self.not_settable(value_reference, value_type);
+            return Err(self.fail(call, &reason));
+        }
+        if value_references.iter().any(|&r| access_of(r) & access::PARAMETER != 0) {
+            self.model.parameters_changed();
+        }
+        Ok(())
+    }
+
+    /// Checks the references and, in initialization mode, brings the outputs up to date with
+    /// the values just set if any is read.
+    #[inline]
+    fn prepare_get(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
+        self.require(call)?;
+        if let Some(&value_reference) = value_references.iter().find(|&&r| !Self::readable(r, value_type)) {
+            let reason = Self::not_readable(value_reference, value_type);
+            return Err(self.fail(call, &reason));
+        }
+        let reads_output = || value_references.iter().any(|&r| access_of(r) & access::OUTPUT != 0);
+        if self.run.mode == Mode::InitializationMode && reads_output() {
+            self.update_outputs(call, Evaluation::Initialise)?;
+        }
+        Ok(())
+    }
+
+    #[inline]
+    pub fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
+        if let Err(status) = self.prepare_set(Call::SetReal, value_references, ValueType::Real) {
+            return status;
+        }
+        for (&value_reference, &value) in value_references.iter().zip(values) {
+            if let Some(field) = self.run.values.real_mut(value_reference) {
+                *field = value;
+            }
+        }
+        self.trace(|| format!("fmi2SetReal: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    #[inline]
+    pub fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
+        if let Err(status) = self.prepare_get(Call::GetReal, value_references, ValueType::Real) {
+            return status;
+        }
+        for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
+            *slot = self.run.values.real(value_reference).unwrap_or(f64::NAN);
+        }
+        self.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    /// fmi2SetInteger: Integer and Enumeration variables.
+    pub fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status {
+        if let Err(status) = self.prepare_set(Call::SetInteger, value_references, ValueType::Integer) {
+            return status;
+        }
+        for (&value_reference, &value) in value_references.iter().zip(values) {
+            if let Some(field) = self.run.values.integer_mut(value_reference) {
+                *field = value;
+            }
+        }
+        self.trace(|| format!("fmi2SetInteger: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    pub fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
+        if let Err(status) = self.prepare_get(Call::GetInteger, value_references, ValueType::Integer) {
+            return status;
+        }
+        for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
+            *slot = self.run.values.integer(value_reference).unwrap_or_default();
+        }
+        self.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
+        Status::Ok
+    }
+
+    /// fmi2GetBoolean / fmi2GetString: this FMU has no such variables, so only n = 0 succeeds.
+    pub fn get_absent_type(&mut self, call: Call, value_type: ValueType, value_references: &[u32]) -> Status {
+        match self.prepare_get(call, value_references, value_type) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+
+    /// fmi2SetBoolean / fmi2SetString: this FMU has no such variables, so only n = 0 succeeds.
+    pub fn set_absent_type(&mut self, call: Call, value_type: ValueType, value_references: &[u32]) -> Status {
+        match self.prepare_set(call, value_references, value_type) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+}

@@ -1,0 +1,195 @@
+//! Which variables each model choice and scene option uses — declared once, here. The FMU's
+//! documentation prints this table (`packaging/src/documentation.rs`), the README carries the
+//! same table (checked by `packaging/tests/options_table.rs`), and the tests check it against the
+//! model description: every name is a variable of the stated causality, and every input listed
+//! for an output is among that output's declared dependencies.
+
+/// One row: what a model choice or option reads and what it sets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OptionUse {
+    /// The choice or option, as a user selects it (`parameter = item`).
+    pub option: &'static str,
+    /// The inputs it reads.
+    pub inputs: &'static [&'static str],
+    /// The inputs it makes unused (replaced by what it computes).
+    pub replaces: &'static [&'static str],
+    /// The parameters it reads.
+    pub parameters: &'static [&'static str],
+    /// The outputs it sets (beyond the forces every scene gives).
+    pub outputs: &'static [&'static str],
+}
+
+/// Every scene, then each model that has parameters, then each option.
+pub const OPTION_USES: &[OptionUse] = &[
+    OptionUse {
+        option: "every scene",
+        inputs: &["normal_force", "friction_coefficient", "rolling_speed"],
+        replaces: &[],
+        parameters: &["shear_modulus", "poisson_ratio", "creep_force_model"],
+        outputs: &["force_longitudinal", "force_lateral", "adhesion_utilisation", "spin_moment"],
+    },
+    OptionUse {
+        option: "creepages as inputs (default)",
+        inputs: &["creepage_longitudinal", "creepage_lateral", "spin_creepage"],
+        replaces: &[],
+        parameters: &[],
+        outputs: &["effective_creepage_longitudinal", "effective_creepage_lateral", "effective_spin_creepage"],
+    },
+    OptionUse {
+        option: "ellipse as inputs (default)",
+        inputs: &["semi_axis_a", "semi_axis_b"],
+        replaces: &[],
+        parameters: &[],
+        outputs: &["contact_semi_axis_a", "contact_semi_axis_b", "max_pressure"],
+    },
+    OptionUse {
+        option: "creep_force_model = polach",
+        inputs: &[],
+        replaces: &[],
+        parameters: &[
+            "stiffness_source",
+            "measured_peak_adhesion",
+            "measured_creepage_at_peak",
+            "measured_kinetic_friction",
+        ],
+        outputs: &[],
+    },
+    OptionUse {
+        option: "creep_force_model = fastsim",
+        inputs: &[],
+        replaces: &[],
+        parameters: &["fastsim_strips", "fastsim_elements", "fastsim_traction_bound", "fastsim_flexibility"],
+        outputs: &["spin_moment"],
+    },
+    OptionUse {
+        option: "creep_force_model = exact",
+        inputs: &[],
+        replaces: &[],
+        parameters: &["exact_elements_longitudinal", "exact_elements_lateral"],
+        outputs: &["spin_moment"],
+    },
+    OptionUse {
+        option: "traction_law = polach2005_*",
+        inputs: &["rolling_speed"],
+        replaces: &[],
+        parameters: &[
+            "traction_law",
+            "adhesion_reduction_factor",
+            "slip_reduction_factor",
+            "friction_limit_ratio",
+            "friction_decay_rate",
+        ],
+        outputs: &["current_friction_coefficient", "slip_velocity"],
+    },
+    OptionUse {
+        option: "hertz_contact = on",
+        inputs: &["wheel_rolling_radius"],
+        replaces: &["semi_axis_a", "semi_axis_b"],
+        parameters: &["hertz_contact", "wheel_profile_curvature", "rail_profile_curvature"],
+        outputs: &["contact_semi_axis_a", "contact_semi_axis_b", "max_pressure", "approach"],
+    },
+    OptionUse {
+        option: "creepages_from_kinematics = on",
+        inputs: &[
+            "rolling_speed",
+            "wheel_angular_speed",
+            "wheel_rolling_radius",
+            "lateral_slip_velocity",
+            "spin_angular_velocity",
+        ],
+        replaces: &["creepage_longitudinal", "creepage_lateral", "spin_creepage"],
+        parameters: &["creepages_from_kinematics", "regularisation_speed"],
+        outputs: &[
+            "effective_creepage_longitudinal",
+            "effective_creepage_lateral",
+            "effective_spin_creepage",
+            "slip_velocity",
+        ],
+    },
+    OptionUse {
+        option: "creep_relaxation = on",
+        // The renewal speed: |V|, or (|V| + |ωr|)/2 with the kinematics.
+        inputs: &["rolling_speed", "wheel_angular_speed", "wheel_rolling_radius"],
+        replaces: &[],
+        parameters: &["creep_relaxation", "relaxation_length"],
+        outputs: &["force_longitudinal", "force_lateral", "adhesion_utilisation"],
+    },
+];
+
+/// The table as Markdown (the README's copy).
+pub fn markdown_table() -> String {
+    let list = |names: &[&str]| {
+        if names.is_empty() {
+            "—".to_owned()
+        } else {
+            names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+        }
+    };
+    let mut table = String::from(
+        "| choice or option | inputs used | inputs it replaces | parameters used | outputs it sets |\n|---|---|---|---|---|\n",
+    );
+    for row in OPTION_USES {
+        table.push_str(&format!(
+            "| {} | {} | {} | {} | {} |\n",
+            row.option,
+            list(row.inputs),
+            list(row.replaces),
+            list(row.parameters),
+            list(row.outputs)
+        ));
+    }
+    table
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model_description::{Causality, VARIABLES};
+
+    fn variable(name: &str) -> &'static crate::model_description::Variable {
+        VARIABLES.iter().find(|v| v.name == name).unwrap_or_else(|| panic!("{name} is not a variable"))
+    }
+
+    #[test]
+    fn every_name_is_a_variable_of_its_causality() {
+        for row in OPTION_USES {
+            for name in row.inputs.iter().chain(row.replaces) {
+                assert_eq!(variable(name).causality, Causality::Input, "{}: {name}", row.option);
+            }
+            for name in row.parameters {
+                assert_eq!(variable(name).causality, Causality::Parameter, "{}: {name}", row.option);
+            }
+            for name in row.outputs {
+                assert_eq!(variable(name).causality, Causality::Output, "{}: {name}", row.option);
+            }
+        }
+    }
+
+    /// What an option reads can change what it sets: every input of a row is a declared
+    /// dependency (`<ModelStructure>`, itself checked against perturbations by the scene tests)
+    /// of some output of the row, and every output of the row depends on some input of it.
+    #[test]
+    fn the_inputs_and_outputs_of_a_row_are_declared_dependencies() {
+        for row in OPTION_USES.iter().filter(|row| !row.inputs.is_empty() && !row.outputs.is_empty()) {
+            let depends =
+                |output: &str, input: &str| variable(output).dependencies.contains(&variable(input).value_reference);
+            for input in row.inputs {
+                assert!(row.outputs.iter().any(|o| depends(o, input)), "{}: nothing depends on {input}", row.option);
+            }
+            for output in row.outputs {
+                assert!(row.inputs.iter().any(|i| depends(output, i)), "{}: {output} depends on none", row.option);
+            }
+        }
+    }
+
+    /// Every parameter and input appears in some row: nothing the FMU has is left undocumented.
+    #[test]
+    fn every_input_and_parameter_is_listed() {
+        for v in VARIABLES.iter().filter(|v| v.causality != Causality::Output) {
+            let listed = OPTION_USES.iter().any(|row| {
+                row.inputs.contains(&v.name) || row.replaces.contains(&v.name) || row.parameters.contains(&v.name)
+            });
+            assert!(listed, "{} is in no row of OPTION_USES", v.name);
+        }
+    }
+}

@@ -1,0 +1,495 @@
+//! One scene, end to end: where the creepages come from → where the contact ellipse comes from →
+//! the creep-force model → the traction law → creep relaxation. The FMU, the packaging tool's
+//! reference outputs and Rust users all evaluate a scene through [`Scene::evaluate`].
+//!
+//! Per evaluation, in order (each option only when the scene selects it; an option that is off
+//! costs a branch and nothing else, and its inputs are not read):
+//! 1. creepages: the inputs, or from the kinematics ([`super::kinematics`]);
+//! 2. contact ellipse: the inputs, or Hertz's ([`super::hertz`]; Q ≤ 0 is lift-off and gives
+//!    zero forces before any Hertz computation);
+//! 3. forces: the chosen [`ModelChoice`], with Polach's 2005 traction law applied at this
+//!    evaluation's speed when selected;
+//! 4. relaxation ([`super::relaxation`]): the relaxed forces, the scene's only state, advanced
+//!    exactly over the step from the steady-state forces of step 3, at the speed that renews
+//!    the contact (|V|, or (|V| + |ωr|)/2 with the kinematics: a wheel spinning at standstill
+//!    builds up its force, a contact at rest holds it).
+
+use std::fmt;
+
+use num_dual::Dual64;
+
+use super::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use super::kinematics::WheelKinematics;
+use super::relaxation::{renewal_speed, RelaxationLengths};
+use crate::contact_input::hertz_max_pressure;
+use crate::models::polach::resulting_creepage_at;
+use crate::{
+    ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, ModelChoice, Polach, Polach2005,
+    ShapeCache,
+};
+
+/// Where the creepages ξ, η, φ come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CreepageSource {
+    /// The creepage inputs, as given.
+    Inputs,
+    /// From the wheel's velocities ([`WheelKinematics`]), smooth through standstill with the
+    /// regularisation speed v_c [m/s].
+    Kinematics { regularisation_speed: f64 },
+}
+
+/// Where the contact ellipse comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EllipseSource {
+    /// The semi-axis inputs a, b, with Hertz's p₀ = 3Q/(2πab) and no approach.
+    Inputs,
+    /// Hertz's ellipse from the load, the wheel's rolling radius and the signed profile
+    /// curvatures [1/m] (0 = straight; a concave profile is negative).
+    Hertz { wheel_profile_curvature: f64, rail_profile_curvature: f64 },
+}
+
+/// The friction law of the contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TractionLaw {
+    /// Constant friction coefficient μ (the input).
+    Coulomb,
+    /// Polach 2005: μ falls with the slip velocity from μ₀ (the input), with reduced stiffness
+    /// ([`Polach2005`]). Polach's model only.
+    Polach2005(Polach2005),
+}
+
+/// Creep relaxation of F_x, F_y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Relaxation {
+    /// The forces follow the creepages at once.
+    Off,
+    /// The forces relax over `length` \[m\] of rolling (0: derived from the contact,
+    /// [`RelaxationLengths::from_contact`]).
+    On { length: f64 },
+}
+
+/// A scene: the model and every option, with the material constants.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scene {
+    pub model: ModelChoice,
+    pub creepages: CreepageSource,
+    pub ellipse: EllipseSource,
+    pub traction_law: TractionLaw,
+    pub relaxation: Relaxation,
+    /// Combined shear modulus G \[Pa\].
+    pub shear_modulus: f64,
+    /// Combined Poisson's ratio ν \[1\].
+    pub poisson_ratio: f64,
+}
+
+/// What a scene reads per evaluation (SI units); the option inputs are read only by their option.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SceneInput {
+    /// ξ \[1\] (creepages from the inputs).
+    pub creepage_longitudinal: f64,
+    /// η \[1\].
+    pub creepage_lateral: f64,
+    /// φ [1/m].
+    pub spin_creepage: f64,
+    /// Q \[N\]; Q ≤ 0 is lift-off (zero forces).
+    pub normal_force: f64,
+    /// a \[m\] (ellipse from the inputs).
+    pub semi_axis_a: f64,
+    /// b \[m\].
+    pub semi_axis_b: f64,
+    /// μ, or μ₀ under Polach 2005 \[1\].
+    pub friction_coefficient: f64,
+    /// V [m/s]: the kinematics' rolling speed; with creepages from the inputs, the speed that
+    /// turns creepage into slip velocity (Polach 2005, relaxation).
+    pub rolling_speed: f64,
+    /// ω [rad/s] (kinematics).
+    pub wheel_angular_speed: f64,
+    /// r \[m\] (kinematics, Hertz).
+    pub wheel_rolling_radius: f64,
+    /// v_y [m/s] (kinematics).
+    pub lateral_slip_velocity: f64,
+    /// ω_z [rad/s] (kinematics).
+    pub spin_angular_velocity: f64,
+}
+
+/// What a scene gives per evaluation (SI units).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SceneOutput {
+    /// F_x \[N\] on the wheel.
+    pub force_longitudinal: f64,
+    /// F_y \[N\].
+    pub force_lateral: f64,
+    /// |F|/(μQ) with the friction applied \[1\].
+    pub adhesion_utilisation: f64,
+    /// M_z [N·m] (0 for the models that have none).
+    pub spin_moment: f64,
+    /// The friction coefficient applied (μ(w) under Polach 2005) \[1\].
+    pub current_friction_coefficient: f64,
+    /// s_C·speed [m/s] (Polach's eqs. 21, 22).
+    pub slip_velocity: f64,
+    /// The creepages the model used.
+    pub effective_creepage_longitudinal: f64,
+    pub effective_creepage_lateral: f64,
+    pub effective_spin_creepage: f64,
+    /// The ellipse the model used \[m\] (0 after a Hertzian lift-off).
+    pub contact_semi_axis_a: f64,
+    pub contact_semi_axis_b: f64,
+    /// Hertz's p₀ \[Pa\].
+    pub max_pressure: f64,
+    /// Hertz's approach δ \[m\] (0 with the ellipse from the inputs).
+    pub approach: f64,
+}
+
+/// What a scene carries from one evaluation to the next. `relaxed_forces` is the physical state
+/// (an FMU state saves it); the rest is derived data, kept for speed only.
+#[derive(Debug, Clone, Default)]
+pub struct SceneState {
+    /// The relaxed forces [F_x, F_y] \[N\] (with creep relaxation on).
+    pub relaxed_forces: [f64; 2],
+    /// Polach's shape factors for the last ellipse shape (bit-identical reuse).
+    shape: ShapeCache,
+}
+
+impl SceneState {
+    /// A state with these relaxed forces and no cached data.
+    pub fn with_relaxed_forces(relaxed_forces: [f64; 2]) -> Self {
+        Self { relaxed_forces, shape: ShapeCache::default() }
+    }
+}
+
+/// What an evaluation is for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Evaluation {
+    /// The start: the relaxed forces are set to the steady state.
+    Initialise,
+    /// A step of this size \[s\] (> 0): the relaxed forces advance over it.
+    Step(f64),
+}
+
+/// Why a scene cannot be evaluated or differentiated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SceneError {
+    /// An input or parameter outside the models' domain (names it).
+    Invalid(InvalidInput),
+    /// Polach 2005 with another model than Polach's.
+    TractionLawNeedsPolach,
+    /// A directional derivative was asked with an option on that transforms the inputs in a way
+    /// not differentiated (named).
+    NoDerivativeWith(&'static str),
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Invalid(error) => error.fmt(f),
+            Self::TractionLawNeedsPolach => f.write_str("the Polach 2005 traction law needs Polach's model"),
+            Self::NoDerivativeWith(option) => write!(f, "directional derivatives are not available with {option} on"),
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+impl From<InvalidInput> for SceneError {
+    fn from(error: InvalidInput) -> Self {
+        Self::Invalid(error)
+    }
+}
+
+/// The creepages the model uses and the speed that turns creepage into slip velocity.
+struct Creepages {
+    longitudinal: f64,
+    lateral: f64,
+    spin: f64,
+    /// |V|, or D = √(V² + v_c²) from the kinematics (ξ·D is then the slip velocity exactly).
+    speed: f64,
+    /// The speed at which the contact's material is renewed, for creep relaxation: |V|, or
+    /// (|V| + |ωr|)/2 from the kinematics ([`super::relaxation::renewal_speed`]).
+    renewal: f64,
+}
+
+impl Scene {
+    /// A scene of `model` with every option off.
+    pub fn of_model(model: ModelChoice, shear_modulus: f64, poisson_ratio: f64) -> Self {
+        Self {
+            model,
+            creepages: CreepageSource::Inputs,
+            ellipse: EllipseSource::Inputs,
+            traction_law: TractionLaw::Coulomb,
+            relaxation: Relaxation::Off,
+            shear_modulus,
+            poisson_ratio,
+        }
+    }
+
+    /// The core's contact input with every option off (creepages and ellipse as given).
+    pub fn contact_input(&self, input: &SceneInput) -> ContactInput {
+        ContactInput {
+            creepage_longitudinal: input.creepage_longitudinal,
+            creepage_lateral: input.creepage_lateral,
+            spin_creepage: input.spin_creepage,
+            normal_force: input.normal_force,
+            semi_axis_a: input.semi_axis_a,
+            semi_axis_b: input.semi_axis_b,
+            friction_coefficient: input.friction_coefficient,
+            shear_modulus: self.shear_modulus,
+            poisson_ratio: self.poisson_ratio,
+        }
+    }
+
+    /// The outputs for `input`. `state` is read and, on success only, advanced (or initialised).
+    pub fn evaluate(
+        &self,
+        input: &SceneInput,
+        state: &mut SceneState,
+        evaluation: Evaluation,
+    ) -> Result<SceneOutput, SceneError> {
+        if !input.rolling_speed.is_finite() {
+            return Err(InvalidInput::new("rolling_speed", input.rolling_speed, "must be finite").into());
+        }
+        let creepages = self.creepages_of(input)?;
+        // Lift-off with Hertz on: no contact, zero forces, and nothing of Hertz's is computed.
+        let hertz_lift_off = matches!(self.ellipse, EllipseSource::Hertz { .. }) && input.normal_force <= 0.0;
+        let ellipse = match self.ellipse {
+            _ if hertz_lift_off => {
+                HertzContact { semi_axis_a: 0.0, semi_axis_b: 0.0, max_pressure: 0.0, approach: 0.0 }
+            }
+            EllipseSource::Hertz { wheel_profile_curvature, rail_profile_curvature } => {
+                let curvature =
+                    relative_curvature(input.wheel_rolling_radius, wheel_profile_curvature, rail_profile_curvature)?;
+                let modulus = contact_modulus(self.shear_modulus, self.poisson_ratio)?;
+                HertzContact::solve(input.normal_force, &curvature, modulus)?
+            }
+            EllipseSource::Inputs => {
+                let given = self.contact_input(input);
+                HertzContact {
+                    semi_axis_a: input.semi_axis_a,
+                    semi_axis_b: input.semi_axis_b,
+                    max_pressure: given.max_pressure().min(f64::MAX),
+                    approach: 0.0,
+                }
+            }
+        };
+        let contact = ContactInput {
+            creepage_longitudinal: creepages.longitudinal,
+            creepage_lateral: creepages.lateral,
+            spin_creepage: creepages.spin,
+            normal_force: input.normal_force,
+            // After a Hertzian lift-off any valid ellipse will do: every model checks the other
+            // values and returns zero force for Q ≤ 0 before using the ellipse.
+            semi_axis_a: if hertz_lift_off { 1.0 } else { ellipse.semi_axis_a },
+            semi_axis_b: if hertz_lift_off { 1.0 } else { ellipse.semi_axis_b },
+            friction_coefficient: input.friction_coefficient,
+            shear_modulus: self.shear_modulus,
+            poisson_ratio: self.poisson_ratio,
+        };
+        // Polach 2005's slip velocity: the resulting creepage s_C times the speed.
+        let s_c =
+            Polach::resulting_creepage(creepages.longitudinal, creepages.lateral, creepages.spin, ellipse.semi_axis_a);
+        let slip_velocity = s_c * creepages.speed;
+        let (steady, friction) = match (self.traction_law, self.model) {
+            (TractionLaw::Polach2005(law), ModelChoice::Polach(polach)) => {
+                let model = Polach { large_creepage: Some(LargeCreepage::new(law, creepages.speed)?), ..polach };
+                let forces = model.creep_forces_with_cache(&contact, &mut state.shape)?;
+                (forces, law.friction(input.friction_coefficient, slip_velocity))
+            }
+            (TractionLaw::Polach2005(_), _) => return Err(SceneError::TractionLawNeedsPolach),
+            (TractionLaw::Coulomb, ModelChoice::Polach(polach)) => {
+                (polach.creep_forces_with_cache(&contact, &mut state.shape)?, input.friction_coefficient)
+            }
+            (TractionLaw::Coulomb, model) => (model.creep_forces(&contact)?, input.friction_coefficient),
+        };
+        let (forces, relaxed) = match self.relaxation {
+            Relaxation::On { length } => relax_forces(
+                &contact,
+                &steady,
+                friction,
+                state.relaxed_forces,
+                creepages.renewal,
+                length,
+                evaluation,
+            )?,
+            Relaxation::Off => (steady, state.relaxed_forces),
+        };
+        state.relaxed_forces = relaxed;
+        Ok(SceneOutput {
+            force_longitudinal: forces.force_longitudinal,
+            force_lateral: forces.force_lateral,
+            adhesion_utilisation: forces.adhesion_utilisation,
+            spin_moment: forces.spin_moment.unwrap_or(0.0),
+            current_friction_coefficient: friction,
+            slip_velocity,
+            effective_creepage_longitudinal: creepages.longitudinal,
+            effective_creepage_lateral: creepages.lateral,
+            effective_spin_creepage: creepages.spin,
+            contact_semi_axis_a: ellipse.semi_axis_a,
+            contact_semi_axis_b: ellipse.semi_axis_b,
+            max_pressure: ellipse.max_pressure,
+            approach: ellipse.approach,
+        })
+    }
+
+    /// The option, if any, under which the outputs are not the model's forces of the inputs, so
+    /// that J·v by the model's derivative would be wrong: kinematics → creepages, Hertz →
+    /// semi-axes, relaxation → lagged forces, Polach 2005 → μ of the slip velocity.
+    pub fn option_without_derivatives(&self) -> Option<&'static str> {
+        if matches!(self.traction_law, TractionLaw::Polach2005(_)) {
+            Some("traction_law (Polach 2005)")
+        } else if matches!(self.ellipse, EllipseSource::Hertz { .. }) {
+            Some("hertz_contact")
+        } else if matches!(self.creepages, CreepageSource::Kinematics { .. }) {
+            Some("creepages_from_kinematics")
+        } else if matches!(self.relaxation, Relaxation::On { .. }) {
+            Some("creep_relaxation")
+        } else {
+            None
+        }
+    }
+
+    /// d(outputs) along `direction` (one rate per input) at `input`, of the outputs at `input`
+    /// itself — never of a stored output.
+    ///
+    /// With no option on, the forces and M_z are the model's
+    /// ([`CreepForceModel::directional_derivative`]); the other outputs pass inputs through
+    /// (friction, creepages, semi-axes), or are p₀ = 3Q/(2πab) and the slip velocity s_C·|V|
+    /// (Polach's eqs. 21, 22), both differentiated with dual numbers; the approach is 0. At the
+    /// kinks Q = 0 and V = 0 the rate of the positive side is given.
+    pub fn directional_derivative(
+        &self,
+        input: &SceneInput,
+        direction: &SceneInput,
+    ) -> Result<SceneOutput, SceneError> {
+        if let Some(option) = self.option_without_derivatives() {
+            return Err(SceneError::NoDerivativeWith(option));
+        }
+        let mut rates = self.contact_input(direction);
+        // Material constants are parameters, never knowns: their rates are zero.
+        rates.shear_modulus = 0.0;
+        rates.poisson_ratio = 0.0;
+        let at = self.contact_input(input);
+        let forces = self.model.directional_derivative(&at, &rates)?;
+
+        let (x, d) = (input, direction);
+        let dual = |value: f64, rate: f64| Dual64::new(value, rate);
+        let resulting_creepage = resulting_creepage_at(
+            dual(x.creepage_longitudinal, d.creepage_longitudinal),
+            dual(x.creepage_lateral, d.creepage_lateral),
+            dual(x.spin_creepage, d.spin_creepage),
+            dual(x.semi_axis_a, d.semi_axis_a),
+        );
+        let speed = dual(x.rolling_speed, d.rolling_speed);
+        // |V|: at V = 0 the rate of the positive side (the slip velocity grows either way).
+        let slip_velocity = resulting_creepage * if x.rolling_speed < 0.0 { -speed } else { speed };
+        // At Q = 0 the rate of the loaded side, 3/(2πab)·dQ: p₀ is taken at the smallest Q > 0.
+        let max_pressure = hertz_max_pressure(
+            dual(if x.normal_force == 0.0 { f64::MIN_POSITIVE } else { x.normal_force }, d.normal_force),
+            dual(x.semi_axis_a, d.semi_axis_a),
+            dual(x.semi_axis_b, d.semi_axis_b),
+        );
+        Ok(SceneOutput {
+            force_longitudinal: forces.force_longitudinal,
+            force_lateral: forces.force_lateral,
+            adhesion_utilisation: forces.adhesion_utilisation,
+            spin_moment: forces.spin_moment.unwrap_or(0.0),
+            current_friction_coefficient: d.friction_coefficient,
+            slip_velocity: slip_velocity.eps,
+            effective_creepage_longitudinal: d.creepage_longitudinal,
+            effective_creepage_lateral: d.creepage_lateral,
+            effective_spin_creepage: d.spin_creepage,
+            contact_semi_axis_a: d.semi_axis_a,
+            contact_semi_axis_b: d.semi_axis_b,
+            max_pressure: max_pressure.eps,
+            approach: 0.0,
+        })
+    }
+
+    fn creepages_of(&self, input: &SceneInput) -> Result<Creepages, InvalidInput> {
+        Ok(match self.creepages {
+            CreepageSource::Kinematics { regularisation_speed } => {
+                let kinematics = WheelKinematics {
+                    rolling_speed: input.rolling_speed,
+                    wheel_angular_speed: input.wheel_angular_speed,
+                    wheel_rolling_radius: input.wheel_rolling_radius,
+                    lateral_slip_velocity: input.lateral_slip_velocity,
+                    spin_angular_velocity: input.spin_angular_velocity,
+                };
+                let computed = kinematics.creepages(regularisation_speed)?;
+                Creepages {
+                    longitudinal: computed.longitudinal,
+                    lateral: computed.lateral,
+                    spin: computed.spin,
+                    speed: computed.reference_speed,
+                    renewal: renewal_speed(&kinematics),
+                }
+            }
+            CreepageSource::Inputs => Creepages {
+                longitudinal: input.creepage_longitudinal,
+                lateral: input.creepage_lateral,
+                spin: input.spin_creepage,
+                speed: input.rolling_speed.abs(),
+                renewal: input.rolling_speed.abs(),
+            },
+        })
+    }
+}
+
+/// The relative curvatures from the signed profile curvatures (0 = straight), with errors named
+/// after the scene's variables.
+fn relative_curvature(
+    wheel_rolling_radius: f64,
+    wheel_profile_curvature: f64,
+    rail_profile_curvature: f64,
+) -> Result<RelativeCurvature, InvalidInput> {
+    let curvatures =
+        [("wheel_profile_curvature", wheel_profile_curvature), ("rail_profile_curvature", rail_profile_curvature)];
+    for (variable, value) in curvatures {
+        if !value.is_finite() {
+            return Err(InvalidInput::new(variable, value, "must be finite"));
+        }
+    }
+    // 1/0 = ∞: a straight profile, as `from_radii` takes it.
+    let (wheel, rail) = (wheel_profile_curvature, rail_profile_curvature);
+    RelativeCurvature::from_radii(wheel_rolling_radius, 1.0 / wheel, 1.0 / rail).map_err(|e| match e.variable {
+        "wheel_profile_radius" => InvalidInput { variable: "wheel_profile_curvature", value: wheel, ..e },
+        "rail_profile_radius" => InvalidInput { variable: "rail_profile_curvature", value: rail, ..e },
+        _ => e,
+    })
+}
+
+/// The relaxation lengths: `length` > 0, or (0) the module's default from the contact.
+fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationLengths, InvalidInput> {
+    if length == 0.0 {
+        RelaxationLengths::from_contact(contact.semi_axis_a, contact.semi_axis_b, contact.poisson_ratio)
+    } else if length > 0.0 {
+        RelaxationLengths::uniform(length)
+    } else {
+        Err(InvalidInput::new("relaxation_length", length, "must be finite and >= 0 (0: derived from the contact)"))
+    }
+}
+
+/// The relaxed forces at the end of this evaluation, and the output forces from them: F_x and
+/// F_y relaxed, M_z the steady state's, the utilisation against the friction `friction` applied.
+fn relax_forces(
+    contact: &ContactInput,
+    steady: &CreepForces,
+    friction: f64,
+    relaxed_forces: [f64; 2],
+    renewal_speed: f64,
+    relaxation_length: f64,
+    evaluation: Evaluation,
+) -> Result<(CreepForces, [f64; 2]), InvalidInput> {
+    if contact.transmits_no_force() {
+        // Lift-off or no friction: the contact holds no elastic deformation to relax.
+        return Ok((CreepForces { spin_moment: steady.spin_moment, ..CreepForces::default() }, [0.0; 2]));
+    }
+    let steady_forces = [steady.force_longitudinal, steady.force_lateral];
+    // Checked at initialisation too, so that a bad length is reported at the start.
+    let lengths = relaxation_lengths(contact, relaxation_length)?;
+    let relaxed = match evaluation {
+        // Initialised at the steady state: the outputs are the model's, exactly.
+        Evaluation::Initialise => return Ok((*steady, steady_forces)),
+        Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, renewal_speed, step)?,
+    };
+    let friction_limit = contact.normal_force * friction;
+    Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
+}
