@@ -193,6 +193,18 @@ def summary(outcome, prepared, errors):
             values = rows[output]
             if len(values):
                 lines.append(f"  {title:<28} {output:<28} {values.mean():.6g} [{values.min():.6g}, {values.max():.6g}]")
+    x = study["plot"]["x"]
+    if x is not None and ok["sample"].nunique() > 1:
+        # Monte-Carlo: each sample's curve has one peak; its spread is what the draws change.
+        lines.append(f"peak |output| over {x} per sample (ok scenes): median [5 %, 95 %] of the samples")
+        others = [c for c in ok.columns if c not in set(study["outputs"]) | set(DERIVED)
+                  | {"scene", "status", "message", x}]
+        for title, rows in panels(ok):
+            for output in study["plot"]["y"]:
+                peaks = rows.assign(magnitude=rows[output].abs()).groupby(others)["magnitude"].max()
+                q = peaks.quantile([0.05, 0.5, 0.95])
+                lines.append(f"  {title:<28} {output:<28} {q[0.5]:.6g} [{q[0.05]:.6g}, {q[0.95]:.6g}] "
+                             f"over {len(peaks)} samples")
     for model, table in errors.items():
         error = table["error"].dropna()
         unmatched = len(table) - len(error)
