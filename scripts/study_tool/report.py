@@ -10,8 +10,9 @@ import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
 MODEL = "creep_force_model"
-# Derived columns a plot may use besides the FMU's variables.
+# Symbols of the usual axes.
 LABELS = {"friction_coefficient": "μ", "creepage_longitudinal": "ξ", "creepage_lateral": "η", "spin_creepage": "φ"}
+# Derived columns a plot may use besides the FMU's variables (spec.DERIVED: the columns each needs).
 DERIVED = {"a_over_b": ("a/b", lambda frame: frame["semi_axis_a"] / frame["semi_axis_b"]),
            "adhesion_coefficient": ("adhesion coefficient |F|/Q",
                                     lambda frame: np.hypot(frame["force_longitudinal"], frame["force_lateral"])
