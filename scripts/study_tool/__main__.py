@@ -5,7 +5,7 @@ import argparse
 import pathlib
 import sys
 
-from . import execute, report, spec
+from . import spec  # the rest (Dask, pandas, matplotlib) is imported once the study is valid
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 FMU = ROOT / "target" / "fmu" / "wheel_rail_contact.fmu"
@@ -20,7 +20,7 @@ def main(argv=None):
                                          "(default: a LocalCluster on this machine)")
     run.add_argument("--workers", type=int, help="LocalCluster worker processes (default: one per core)")
     run.add_argument("--serial", action="store_true", help="run in this process, without Dask")
-    run.add_argument("--out", type=pathlib.Path, help="results directory (default: target/studies/STUDY-NAME)")
+    run.add_argument("--out", type=pathlib.Path, help="results directory (default: target/studies/NAME, NAME the study's name)")
     run.add_argument("--fmu", type=pathlib.Path, default=FMU, help=f"the FMU (default: {FMU.relative_to(ROOT)})")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
     bench = commands.add_parser("bench", help="scenes per second per model, in-process and on LocalClusters")
@@ -40,12 +40,14 @@ def main(argv=None):
         parser.error("--scheduler and --serial exclude each other")
     if not arguments.fmu.exists():
         parser.error(f"no FMU at {arguments.fmu}: build it with `cargo fmu package`")
-    out = arguments.out or ROOT / "target" / "studies" / arguments.study.stem
     try:
-        prepared = execute.prepare(arguments.study, arguments.fmu)
+        prepared = spec.prepare(arguments.study, arguments.fmu)
     except spec.StudyError as error:
         print(f"{arguments.study}: {error}", file=sys.stderr)
         return 2
+    from . import execute, report
+
+    out = arguments.out or ROOT / "target" / "studies" / prepared.study["name"]
     try:
         outcome = execute.run(prepared, out, scheduler=arguments.scheduler,
                               workers=arguments.workers, serial=arguments.serial, progress=not arguments.no_progress)

@@ -8,7 +8,7 @@ import pathlib
 import tempfile
 import time
 
-from . import execute
+from . import execute, spec
 
 # The default grid: a/b from 0.5 to 2, ξ over the whole creep curve, with and without η and φ.
 GRID = """
@@ -60,7 +60,7 @@ def bench(fmu, models, workers, serial=True):
             points, chunk_size = SIZES.get(model, SIZES["exact"])
             path = directory / f"{model}.toml"
             path.write_text(study_text(model, points, chunk_size))
-            prepared = execute.prepare(path, fmu)
+            prepared = spec.prepare(path, fmu)
             runs = ([("in-process", {"serial": True})] if serial else []) + \
                    [(f"{n} worker{'s' if n > 1 else ''}", {"workers": n}) for n in workers]
             for label, options in runs:

@@ -16,10 +16,9 @@ import cloudpickle
 import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
-from fmpy import read_model_description
 from tqdm import tqdm
 
-from . import runner, spec
+from . import runner
 
 # Workers get the runner's code by value: nothing of this project is needed on their disks.
 cloudpickle.register_pickle_by_value(runner)
@@ -47,21 +46,6 @@ PARTS = "parts"
 
 
 @dataclasses.dataclass
-class Study:
-    path: pathlib.Path
-    fmu_bytes: bytes
-    interface: dict
-    study: dict
-    scenes: list
-    key: str
-
-    @property
-    def chunks(self):
-        size = self.study["chunk_size"]
-        return [self.scenes[i:i + size] for i in range(0, len(self.scenes), size)]
-
-
-@dataclasses.dataclass
 class Outcome:
     results: pathlib.Path
     frame: pd.DataFrame
@@ -72,15 +56,6 @@ class Outcome:
     seconds: float  # wall time of the computed chunks, from the first submission to the last part written
     cpu_seconds: float  # the workers' CPU time for the computed chunks (running the scenes, building the tables)
     client_cpu_seconds: float  # this process's CPU time meanwhile (client, LocalCluster's scheduler, writing parts)
-
-
-def prepare(study_path, fmu_path):
-    """Reads the FMU and the study file and validates the study against the FMU's variables."""
-    fmu_bytes = pathlib.Path(fmu_path).read_bytes()
-    interface = spec.fmu_interface(read_model_description(str(fmu_path)))
-    study = spec.load(study_path, interface)
-    return Study(pathlib.Path(study_path), fmu_bytes, interface, study, spec.scenes(study, interface),
-                 spec.study_key(study, fmu_bytes))
 
 
 def part_path(out, key, index):

@@ -10,8 +10,9 @@ import numpy as np  # noqa: E402
 from matplotlib.colors import LogNorm  # noqa: E402
 
 MODEL = "creep_force_model"
-# Derived columns a plot may use besides the FMU's variables.
+# Symbols of the usual axes.
 LABELS = {"friction_coefficient": "μ", "creepage_longitudinal": "ξ", "creepage_lateral": "η", "spin_creepage": "φ"}
+# Derived columns a plot may use besides the FMU's variables (spec.DERIVED: the columns each needs).
 DERIVED = {"a_over_b": ("a/b", lambda frame: frame["semi_axis_a"] / frame["semi_axis_b"]),
            "adhesion_coefficient": ("adhesion coefficient |F|/Q",
                                     lambda frame: np.hypot(frame["force_longitudinal"], frame["force_lateral"])
@@ -193,6 +194,18 @@ def summary(outcome, prepared, errors):
             values = rows[output]
             if len(values):
                 lines.append(f"  {title:<28} {output:<28} {values.mean():.6g} [{values.min():.6g}, {values.max():.6g}]")
+    x = study["plot"]["x"]
+    if x is not None and ok["sample"].nunique() > 1:
+        # Monte-Carlo: each sample's curve has one peak; its spread is what the draws change.
+        lines.append(f"peak |output| over {x} per sample (ok scenes): median [5 %, 95 %] of the samples")
+        others = [c for c in ok.columns if c not in set(study["outputs"]) | set(DERIVED)
+                  | {"scene", "status", "message", x}]
+        for title, rows in panels(ok):
+            for output in study["plot"]["y"]:
+                peaks = rows.assign(magnitude=rows[output].abs()).groupby(others)["magnitude"].max()
+                q = peaks.quantile([0.05, 0.5, 0.95])
+                lines.append(f"  {title:<28} {output:<28} {q[0.5]:.6g} [{q[0.05]:.6g}, {q[0.95]:.6g}] "
+                             f"over {len(peaks)} samples")
     for model, table in errors.items():
         error = table["error"].dropna()
         unmatched = len(table) - len(error)

@@ -1,6 +1,6 @@
 """The worker side of a study: runs one chunk of scenes on one FMU instance.
 
-Self-contained on purpose (imports only the standard library, fmpy and distributed): the client
+Self-contained on purpose (imports only the standard library, fmpy, pyarrow and distributed): the client
 ships this module's code to the workers by value (cloudpickle), so a Dask worker needs the
 packages installed but nothing of this project on its disk. The FMU itself reaches a worker as
 bytes in a worker plugin, which unpacks it once per worker into a worker-local temporary directory.
@@ -16,9 +16,9 @@ import zipfile
 
 # Modules, not names from them: shipped by value, this code refers to fmpy's ctypes types through
 # their modules (cloudpickle sends a module by name; a ctypes type by value it cannot).
+import fmpy
 import fmpy.fmi1
 import fmpy.fmi2
-import fmpy.logging
 import pyarrow as pa
 from distributed.diagnostics.plugin import WorkerPlugin
 
@@ -57,25 +57,37 @@ def plugin_directory(plugin_name):
     return get_worker().plugins[plugin_name].directory
 
 
+def raw_logger_type():
+    """The FMU's logger as this FMU calls it: format "%s" and the message as the one variadic
+    argument, which on the platforms the FMU is built for (linux64) arrives like a sixth named
+    argument. fmpy's logger proxy (fmpy.logging) would format any printf call, but it keeps one
+    Python callback for the whole process: instances in two worker threads would swap messages.
+    (A function, not a module constant: this code travels by value, a ctypes type cannot.)"""
+    return ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p,
+                            ctypes.c_char_p, ctypes.c_char_p)
+
+
 class Instance:
-    """One FMU instance whose log messages are kept (fmpy's logger proxy formats the FMU's
-    printf-style message before the Python callback sees it)."""
+    """One FMU instance with its own logger, which keeps the messages of status warning and worse."""
 
     def __init__(self, directory, interface, name):
         self.messages = []
 
-        def log(environment, instance_name, status, category, message):
-            label = STATUS_LABELS[status] if 0 <= status < len(STATUS_LABELS) else str(status)
-            if label != "ok":
-                self.messages.append(f"[{label}] {message.decode('utf-8', 'replace')}")
+        def log(environment, instance_name, status, category, format_, text):
+            if status == 0:
+                return
+            label = STATUS_LABELS[status] if 0 < status < len(STATUS_LABELS) else str(status)
+            message = text if format_ == b"%s" else format_
+            self.messages.append(f"[{label}] {(message or b'').decode('utf-8', 'replace')}")
 
+        self.logger = raw_logger_type()(log)  # kept alive as long as the instance
         self.callbacks = fmpy.fmi2.fmi2CallbackFunctions()
-        self.callbacks.logger = fmpy.fmi2.fmi2CallbackLoggerTYPE(log)
-        self.callbacks.allocateMemory = fmpy.fmi2.fmi2CallbackAllocateMemoryTYPE(ctypes.CDLL(None).calloc)
-        self.callbacks.freeMemory = fmpy.fmi2.fmi2CallbackFreeMemoryTYPE(ctypes.CDLL(None).free)
-        fmpy.logging.addLoggerProxy(ctypes.byref(self.callbacks))
+        ctypes.cast(ctypes.byref(self.callbacks), ctypes.POINTER(ctypes.c_void_p))[0] = \
+            ctypes.cast(self.logger, ctypes.c_void_p)
+        self.callbacks.allocateMemory = fmpy.fmi2.fmi2CallbackAllocateMemoryTYPE(fmpy.calloc)
+        self.callbacks.freeMemory = fmpy.fmi2.fmi2CallbackFreeMemoryTYPE(fmpy.free)
         self.slave = fmpy.fmi2.FMU2Slave(guid=interface["guid"], unzipDirectory=directory,
-                               modelIdentifier=interface["model_identifier"], instanceName=name)
+                                         modelIdentifier=interface["model_identifier"], instanceName=name)
         self.slave.instantiate(callbacks=self.callbacks, loggingOn=False)
 
     def free(self):

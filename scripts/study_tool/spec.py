@@ -1,37 +1,13 @@
 """Study files (TOML): reading, validation against the FMU's modelDescription, and expansion into
 scenes.
 
-A study file (see examples/studies/ and README.md, "Parameter studies"):
-
-    name = "creep curves"                   # optional
-    models = ["polach", "exact"]            # creep_force_model values by name (an axis)
-    outputs = ["force_longitudinal"]        # outputs kept (default: every output)
-    chunk_size = 50                         # scenes per chunk: one FMU instance each
-    steps = 0                               # fmi2DoStep calls after initialisation
-    step_size = 0.001                       # their communication step size [s]
-    reference_model = "exact"               # compared against in the error maps
-
-    [fixed]                                 # parameters and inputs set in every scene
-    traction_law = "coulomb"
-    [grid]                                  # axes of a Cartesian product
-    friction_coefficient = [0.2, 0.3]
-    creepage_longitudinal = { geomspace = [1e-4, 0.05, 30] }   # also linspace = [a, b, n]
-    [random]                                # `samples` seeded draws, crossed with the grid
-    seed = 1
-    samples = 100
-    friction_coefficient = { distribution = "normal", mean = 0.3, std = 0.03 }
-    [[cases]]                               # named sets of values (an axis), each may
-    name = "dry"                            # override [random] in its own [cases.random]
-    traction_law = "polach2005_dry"
-    [plot]                                  # creep-curve families and error maps
-    x = "creepage_longitudinal"
-    y = ["force_longitudinal"]                # outputs, or adhesion_coefficient = |F|/Q
-    family = ["friction_coefficient", "a_over_b"]   # one line per combination
-    error_map = { x = "semi_axis_a", y = "creepage_longitudinal", output = "force_longitudinal" }
+The keys of a study file are listed in examples/studies/README.md, with three example studies
+beside it. Scenes are case × model × grid point × random sample.
 
 Every key is checked up front; a mistake raises StudyError naming the key (e.g. `grid.mu`).
 """
 
+import dataclasses
 import difflib
 import hashlib
 import itertools
@@ -41,6 +17,7 @@ import pathlib
 import tomllib
 
 import numpy as np
+from fmpy import read_model_description
 
 TOP_LEVEL = {"name", "description", "models", "outputs", "chunk_size", "steps", "step_size", "reference_model",
              "fixed", "grid", "random", "cases", "plot"}
@@ -423,3 +400,27 @@ def study_key(study, fmu_bytes):
     digest = hashlib.sha256(json.dumps({k: study[k] for k in KEYED}, sort_keys=True).encode())
     digest.update(hashlib.sha256(fmu_bytes).digest())
     return digest.hexdigest()[:16]
+
+
+@dataclasses.dataclass
+class Study:
+    path: pathlib.Path
+    fmu_bytes: bytes
+    interface: dict
+    study: dict
+    scenes: list
+    key: str
+
+    @property
+    def chunks(self):
+        size = self.study["chunk_size"]
+        return [self.scenes[i:i + size] for i in range(0, len(self.scenes), size)]
+
+
+def prepare(study_path, fmu_path):
+    """Reads the FMU and the study file and validates the study against the FMU's variables."""
+    fmu_bytes = pathlib.Path(fmu_path).read_bytes()
+    interface = fmu_interface(read_model_description(str(fmu_path)))
+    study = load(study_path, interface)
+    return Study(pathlib.Path(study_path), fmu_bytes, interface, study, scenes(study, interface),
+                 study_key(study, fmu_bytes))

@@ -13,7 +13,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 FMU = ROOT / "target" / "fmu" / "wheel_rail_contact.fmu"
 sys.path.insert(0, str(ROOT / "scripts"))
 
-from study_tool import execute, spec  # noqa: E402
+from study_tool import execute, report, spec  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -40,7 +40,7 @@ def study_file(tmp_path):
 
 def run_in_process(path, fmu_path, out, **options):
     """The study run without Dask, in this process (the reference the parallel runs must equal)."""
-    return execute.run(execute.prepare(path, fmu_path), out, serial=True, progress=False, **options)
+    return execute.run(spec.prepare(path, fmu_path), out, serial=True, progress=False, **options)
 
 
 def command(*arguments, timeout=120, **kwargs):

@@ -5,7 +5,7 @@ import math
 
 import pandas as pd
 
-from conftest import execute, run_in_process
+from .conftest import execute, run_in_process, spec
 
 STUDY = """
 name = "bad"
@@ -43,7 +43,7 @@ def test_bad_scenes_are_recorded_and_the_others_complete(study_file, fmu_path, t
 def test_bad_scenes_on_dask_are_recorded_the_same(study_file, fmu_path, tmp_path):
     path = study_file(STUDY)
     serial = run_in_process(path, fmu_path, tmp_path / "serial")
-    parallel = execute.run(execute.prepare(path, fmu_path), tmp_path / "dask", workers=2, progress=False)
+    parallel = execute.run(spec.prepare(path, fmu_path), tmp_path / "dask", workers=2, progress=False)
     pd.testing.assert_frame_equal(parallel.frame, serial.frame, check_exact=True)
     assert (parallel.frame["status"] == "error").sum() == 16
     assert math.isnan(parallel.frame.loc[2, "force_longitudinal"]) and parallel.frame.loc[2, "status"] == "error"

@@ -1,7 +1,8 @@
 """A study run against a real Dask cluster the test starts itself: `dask scheduler` and
 `dask worker` processes on 127.0.0.1 with free ports, started from an empty directory without
 PYTHONPATH (so they cannot import this project: the runner's code and the FMU's bytes come from
-the client), and always stopped afterwards."""
+the client), and always stopped afterwards. Each worker runs two threads, so two chunks share a
+process: each scene's message must still be its own."""
 
 import os
 import signal
@@ -12,7 +13,7 @@ import time
 import pandas as pd
 import pytest
 
-from conftest import ROOT, clean_environment, command, run_in_process
+from .conftest import ROOT, clean_environment, command, run_in_process
 
 DASK = ROOT / ".venv" / "bin" / "dask"
 STUDY = """
@@ -24,7 +25,7 @@ exact_elements_longitudinal = 8
 exact_elements_lateral = 8
 [grid]
 creepage_longitudinal = { geomspace = [1e-4, 1e-2, 6] }
-friction_coefficient = [0.2, 0.4]
+friction_coefficient = [0.2, -0.15, 0.4, -0.25]
 """
 
 
@@ -70,7 +71,7 @@ def cluster(tmp_path):
     try:
         wait_for_port(port, processes[0])
         address = f"tcp://127.0.0.1:{port}"
-        processes.append(subprocess.Popen([DASK, "worker", address, "--nworkers", "2", "--nthreads", "1",
+        processes.append(subprocess.Popen([DASK, "worker", address, "--nworkers", "2", "--nthreads", "2",
                                            "--host", "127.0.0.1", "--no-dashboard", "--local-directory",
                                            str(empty)], **common))
         yield address
@@ -84,10 +85,13 @@ def test_run_on_a_cluster_started_by_address_equals_the_serial_run(cluster, stud
     result = command("run", path, "--scheduler", cluster, "--out", tmp_path / "cluster-out", "--no-progress",
                      timeout=120)
     assert result.returncode == 0, result.stderr
-    assert "36 scenes in 8 chunks of up to 5; 8 chunks computed, 0 reused" in result.stdout
+    assert "72 scenes in 15 chunks of up to 5; 15 chunks computed, 0 reused" in result.stdout
     reference = run_in_process(path, fmu_path, tmp_path / "serial-out")
     frame = pd.read_parquet(tmp_path / "cluster-out" / "results.parquet")
-    assert (frame["status"] == "ok").all()
+    negative = frame["friction_coefficient"] < 0
+    assert list(frame["status"]) == ["error" if n else "ok" for n in negative]
+    for mu, message in zip(frame.loc[negative, "friction_coefficient"], frame.loc[negative, "message"]):
+        assert message == f"[error] fmi2ExitInitializationMode: friction_coefficient = {mu} is invalid: must be finite and >= 0"
     pd.testing.assert_frame_equal(frame, reference.frame, check_exact=True)
     for plot in ("creep_curves.png", "creep_curves.svg"):
         assert (tmp_path / "cluster-out" / plot).stat().st_size > 0

@@ -11,7 +11,7 @@ import pytest
 from fmpy import extract
 from fmpy.fmi2 import FMU2Slave
 
-from conftest import execute, run_in_process, spec
+from .conftest import execute, run_in_process, spec
 
 # Three models, two cases of which one switches an option on (a reset that failed to restore the
 # start values would carry hertz_contact = on into the next scenes), seeded random friction, and a
@@ -55,7 +55,7 @@ def serial(fmu_path, tmp_path_factory):
 
 def test_two_worker_local_cluster_equals_the_serial_run(serial, fmu_path, tmp_path):
     path, reference = serial
-    outcome = execute.run(execute.prepare(path, fmu_path), tmp_path / "out", workers=2, progress=False)
+    outcome = execute.run(spec.prepare(path, fmu_path), tmp_path / "out", workers=2, progress=False)
     assert outcome.computed == outcome.chunks == math.ceil(108 / 7)
     assert len(outcome.frame) == 108 and (outcome.frame["status"] == "ok").all()
     pd.testing.assert_frame_equal(outcome.frame, reference.frame, check_exact=True)

@@ -5,7 +5,7 @@ import tomllib
 
 import pytest
 
-from conftest import command, spec
+from .conftest import ROOT, command, spec
 
 GRID = '[grid]\ncreepage_longitudinal = [1e-3]\n'
 
@@ -81,7 +81,6 @@ def test_the_command_reports_invalid_toml(study_file):
 
 
 def test_the_examples_are_valid(interface):
-    from conftest import ROOT
     examples = sorted((ROOT / "examples" / "studies").glob("*.toml"))
     assert len(examples) == 3
     for path in examples:
