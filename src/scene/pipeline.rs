@@ -150,7 +150,7 @@ pub struct SceneState {
     shape: ShapeCache,
     /// The exact theory's last tractions, the start of its next solve ([`WarmStart`]): in a
     /// co-simulation with slowly varying creepages a step then costs a few iterations. It
-    /// changes the result only within the solver's tolerance (1e-9 of the largest traction).
+    /// changes the result only within the solver's tolerance ([`crate::models::exact`]).
     exact_start: WarmStart,
 }
 
