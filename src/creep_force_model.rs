@@ -166,7 +166,8 @@ const NO_FORCE_DEPTH: f64 = 1e-6;
 
 /// (μ, Q) just inside the contact for an input on the no-force boundary (μ = 0 or Q = 0, with
 /// Q ≥ 0: lift-off, Q < 0, is inside the zero-force region, not on its edge) with creepages
-/// `creepages` (ξ, η, φ); `None` off the boundary, or without creepage (no force on either side).
+/// `creepages` (ξ, η, φ); `None` off the boundary, without creepage (no force on either side) or
+/// at scales where the point's μQ (outside 1e-150 … 1e150) or its μ and Q would not be usable.
 /// The zero one of μ and Q is raised (both, to the same value, when both are zero) so that μQ
 /// is [`NO_FORCE_DEPTH`] of the saturating limit.
 pub(crate) fn inside_no_force_boundary(input: &ContactInput, creepages: [f64; 3]) -> Option<(f64, f64)> {
@@ -177,14 +178,18 @@ pub(crate) fn inside_no_force_boundary(input: &ContactInput, creepages: [f64; 3]
     let [xi, eta, spin] = creepages;
     let largest = xi.abs().max(eta.abs()).max((spin * input.semi_axis_a).abs());
     let friction_limit = NO_FORCE_DEPTH * input.shear_modulus * input.semi_axis_a * input.semi_axis_b * 3.0 * largest;
-    if !(friction_limit > 0.0 && friction_limit.is_finite()) {
+    // Squares of μQ appear in the derivatives (d(1/μQ)): outside 1e-150 … 1e150 they would
+    // underflow or overflow, so at such extreme scales the zero force's derivative is given.
+    if !(1e-150..=1e150).contains(&friction_limit) {
         return None;
     }
-    Some(match (friction > 0.0, load > 0.0) {
+    let inside = match (friction > 0.0, load > 0.0) {
         (false, true) => (friction_limit / load, load),
         (true, false) => (friction, friction_limit / friction),
         _ => (friction_limit.sqrt(), friction_limit.sqrt()),
-    })
+    };
+    // At extreme scales the quotient may overflow or underflow: no usable point inside then.
+    (inside.0 > 0.0 && inside.0 <= f64::MAX && inside.1 > 0.0 && inside.1 <= f64::MAX).then_some(inside)
 }
 
 /// Relative step of [`central_difference`].
@@ -253,15 +258,20 @@ fn one_sided_difference<M: CreepForceModel + ?Sized>(
     // Without creepage the forces are homogeneous of degree one along the direction (the
     // creepages then come from it), so any depth does: that of a unit creepage.
     let reference = if creepages.iter().any(|c| *c != 0.0) { creepages } else { [1.0, 0.0, 0.0] };
+    // Lifted off (Q < 0), or a depth that underflows: zero force on both sides to rounding.
+    let zero = || -> Result<Option<CreepForces>, InvalidInput> {
+        let spin_moment = model.creep_forces(input)?.spin_moment.map(|_| 0.0);
+        Ok(Some(CreepForces { spin_moment, ..Default::default() }))
+    };
     let Some((friction, load)) = inside_no_force_boundary(input, reference) else {
-        // Lifted off (Q < 0): zero force on both sides of μ = 0.
-        let zero =
-            CreepForces { spin_moment: model.creep_forces(input)?.spin_moment.map(|_| 0.0), ..Default::default() };
-        return Ok(Some(zero));
+        return zero();
     };
     let (rate, target) =
         if on_friction { (direction.friction_coefficient, friction) } else { (direction.normal_force, load) };
     let step = (target / rate).abs();
+    if !(step > 0.0 && step.is_finite()) {
+        return zero();
+    }
     let sign = rate.signum();
     let x = fields(input);
     let d = fields(direction);

@@ -475,3 +475,18 @@ fn exact_theory_derivative_agrees_with_finite_differences() {
     // solver's noise at the floor); the force vectors agree to 2.4e-6.
     assert!(worst.0 < 2e-2, "worst relative difference {:.2e} at {}", worst.0, worst.1);
 }
+
+/// On the no-force boundary at extreme scales (the depth μQ of the one-sided difference can
+/// underflow) every derivative stays finite.
+#[test]
+fn at_zero_friction_extreme_scales_give_finite_derivatives() {
+    let d = ContactInput { friction_coefficient: 1.0, normal_force: 1.0, creepage_longitudinal: 1.0, ..NO_RATES };
+    for (q, xi) in [(1e300, 1e-300), (1e-300, 1e300), (0.0, 1e-300), (1e300, 0.0)] {
+        let x = ContactInput { normal_force: q, creepage_longitudinal: xi, ..default_scene(0.0) };
+        for model in common::all_models() {
+            let derivative = model.directional_derivative(&x, &d).unwrap();
+            let values = outputs(&derivative);
+            assert!(values.iter().all(|v| v.is_finite()), "{} at Q = {q}, ξ = {xi}: {derivative:?}", model.name());
+        }
+    }
+}

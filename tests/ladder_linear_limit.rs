@@ -6,7 +6,8 @@ mod common;
 use common::{fastsim, typical_contact};
 use std::f64::consts::PI;
 use wheel_rail_contact::{
-    CreepForceModel, Fastsim, Flexibility, KalkerCoefficients, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
+    ContactInput, CreepForceModel, Fastsim, Flexibility, KalkerCoefficients, KalkerLinear, Polach, ShenHedrickElkins,
+    TractionBound,
 };
 
 #[test]
@@ -154,4 +155,21 @@ fn fastsim_blend_vanishes_linearly_in_the_linear_range() {
     let (coarse, fine) = (deviation(1e-7), deviation(1e-8));
     assert!(coarse > 0.0 && (coarse / fine / 10.0 - 1.0).abs() < 0.01, "{coarse} vs {fine}");
     assert!(coarse < 1e-4, "{coarse}");
+}
+
+/// The linear theory is not friction-limited, so its products can leave f64's range: each is held
+/// at ±f64::MAX with the sign of the exact value (module documentation), never ±inf or NaN.
+/// G = 1e300 Pa on a 1 m × 1 m contact: G·ab·C11·ξ = 3.4e300·ξ overflows for ξ = ±1e10.
+#[test]
+fn kalker_linear_holds_overflowing_forces_at_the_largest_finite_value() {
+    let huge =
+        ContactInput { semi_axis_a: 1.0, semi_axis_b: 1.0, shear_modulus: 1e300, ..typical_contact(1e10, -1e10, 0.0) };
+    let forces = KalkerLinear.creep_forces(&huge).unwrap();
+    assert_eq!(forces.force_longitudinal, -f64::MAX);
+    assert_eq!(forces.force_lateral, f64::MAX);
+    // Spin alone: G c³ C23 φ overflows too, and so does the moment's G c⁴ C33 φ.
+    let spin_only = ContactInput { creepage_longitudinal: 0.0, creepage_lateral: 0.0, spin_creepage: 1e10, ..huge };
+    let spinning = KalkerLinear.creep_forces(&spin_only).unwrap();
+    assert_eq!(spinning.force_lateral, -f64::MAX);
+    assert_eq!(spinning.spin_moment, Some(-f64::MAX));
 }

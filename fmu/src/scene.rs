@@ -572,8 +572,10 @@ mod tests {
                     v.parameters.hertz_contact = on();
                     v.parameters.wheel_profile_curvature = -5.0;
                 },
-                "wheel_profile_curvature = -5 is invalid: must leave a convex gap: a concave wheel profile needs \
-                 |radius| > rail_profile_radius",
+                "wheel_profile_curvature = -5 is invalid with rail_profile_curvature = 3.3333333333333335: gives no \
+                 contact ellipse: a concave wheel profile must be flatter than the rail head \
+                 (wheel_profile_curvature + rail_profile_curvature > 0), otherwise the contact is conformal, outside \
+                 Hertz's theory",
             ),
             (
                 |v| {

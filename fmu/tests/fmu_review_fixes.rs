@@ -181,3 +181,36 @@ fn a_contact_at_rest_holds_its_force() {
     }
     assert_eq!(fmu.get_real(&[vr::FORCE_LONGITUDINAL])[0], loaded);
 }
+
+/// The message of a DoStep with Hertz on and these profile curvatures (wheel, rail) [1/m].
+fn hertz_message(wheel: f64, rail: f64) -> String {
+    use wheel_rail_contact_fmu::model_description::Switch;
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("hertz", &log);
+    assert_eq!(fmu.set_integer(&[vr::HERTZ_CONTACT], &[Switch::On as i32]), OK);
+    fmu.initialise(0.0);
+    assert_eq!(fmu.set_real(&[vr::WHEEL_PROFILE_CURVATURE, vr::RAIL_PROFILE_CURVATURE], &[wheel, rail]), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), ERROR);
+    log.texts().last().unwrap().clone()
+}
+
+/// 14.6: Hertz's errors name the FMU's variables with their values and the actual reason, never
+/// an internal quantity (the combined curvature B) nor a concave profile that is not there.
+#[test]
+fn hertz_errors_name_the_fmu_variables_and_the_cause() {
+    for (wheel, rail, named) in [
+        (0.0, 1e-20, ["rail_profile_curvature = 1e-20", "wheel_profile_curvature = 0"]),
+        (0.0, 0.0, ["rail_profile_curvature = 0", "wheel_profile_curvature = 0"]),
+        (0.0, -1.0, ["rail_profile_curvature = -1", "wheel_profile_curvature = 0"]),
+    ] {
+        let message = hertz_message(wheel, rail);
+        assert!(message.starts_with("fmi2DoStep: "), "{message}");
+        for text in named {
+            assert!(message.contains(text), "{text} not in {message}");
+        }
+        assert!(!message.contains("curvature_lateral") && !message.contains("concave wheel"), "{message}");
+    }
+    // A concave wheel flatter than nothing: that cause, named.
+    let message = hertz_message(-5.0, 3.0);
+    assert!(message.contains("wheel_profile_curvature = -5") && message.contains("concave wheel"), "{message}");
+}

@@ -110,7 +110,7 @@ impl RelativeCurvature {
                     "must leave a convex gap: a concave wheel profile needs |radius| > rail_profile_radius",
                 )
             } else {
-                // Neither profile is a concave wheel more curved than the rail: the rail is
+                // Not a concave wheel more curved than the rail: the rail is
                 // straight or concave and the wheel does not make up for it.
                 InvalidInput::new(
                     "rail_profile_radius",
@@ -137,17 +137,20 @@ impl RelativeCurvature {
         let radius = ("wheel_rolling_radius", wheel_rolling_radius);
         let wheel = ("wheel_profile_curvature", wheel_profile_curvature);
         let rail = ("rail_profile_curvature", rail_profile_curvature);
+        if !(wheel_rolling_radius > 0.0 && wheel_rolling_radius.is_finite()) {
+            return Err(InvalidInput::new(radius.0, radius.1, "must be finite and > 0"));
+        }
         let rolling = 0.5 / wheel_rolling_radius;
-        if !(wheel_rolling_radius > 0.0 && rolling.is_finite()) {
+        if !rolling.is_finite() {
             return Err(InvalidInput::new(
                 radius.0,
                 radius.1,
-                "must be finite and > 0 (with a finite rolling curvature 1/(2·wheel_rolling_radius))",
+                "must be large enough for a finite rolling curvature 1/(2·wheel_rolling_radius)",
             ));
         }
         for (variable, value) in [wheel, rail] {
             if !value.is_finite() {
-                return Err(InvalidInput::new(variable, value, "must be finite (0 for a straight profile)"));
+                return Err(InvalidInput::new(variable, value, "must be finite"));
             }
         }
         // Halves first: no overflow for any finite curvatures.
@@ -462,18 +465,19 @@ mod tests {
              1/(2·wheel_rolling_radius) must be at least 1e-12 times the combined lateral curvature \
              (wheel_profile_curvature + rail_profile_curvature)/2"
         );
-        for r in [0.0, -0.46, f64::NAN, 1e-320] {
-            let text = message(r, 0.0, 3.0);
-            assert!(text.starts_with("wheel_rolling_radius = ") && text.contains("must be finite and > 0"), "{text}");
+        for (r, text) in [(0.0, "0"), (-0.46, "-0.46"), (f64::NAN, "NaN")] {
+            assert_eq!(
+                message(r, 0.0, 3.0),
+                format!("wheel_rolling_radius = {text} is invalid: must be finite and > 0")
+            );
         }
         assert_eq!(
-            message(0.46, f64::INFINITY, 3.0),
-            "wheel_profile_curvature = inf is invalid: must be finite (0 for a straight profile)"
+            message(1e-320, 0.0, 3.0),
+            "wheel_rolling_radius = 1e-320 is invalid: must be large enough for a finite rolling curvature \
+             1/(2·wheel_rolling_radius)"
         );
-        assert_eq!(
-            message(0.46, 0.0, f64::NAN),
-            "rail_profile_curvature = NaN is invalid: must be finite (0 for a straight profile)"
-        );
+        assert_eq!(message(0.46, f64::INFINITY, 3.0), "wheel_profile_curvature = inf is invalid: must be finite");
+        assert_eq!(message(0.46, 0.0, f64::NAN), "rail_profile_curvature = NaN is invalid: must be finite");
         // The valid neighbours: the same A and B as from the radii.
         let hollow = RelativeCurvature::from_profile_curvatures(0.46, -2.0, 1.0 / 0.3).unwrap();
         assert_eq!(hollow, RelativeCurvature::from_radii(0.46, -0.5, 0.3).unwrap());

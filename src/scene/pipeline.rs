@@ -259,8 +259,11 @@ impl Scene {
                 HertzContact { semi_axis_a: 0.0, semi_axis_b: 0.0, max_pressure: 0.0, approach: 0.0 }
             }
             EllipseSource::Hertz { wheel_profile_curvature, rail_profile_curvature } => {
-                let curvature =
-                    relative_curvature(input.wheel_rolling_radius, wheel_profile_curvature, rail_profile_curvature)?;
+                let curvature = RelativeCurvature::from_profile_curvatures(
+                    input.wheel_rolling_radius,
+                    wheel_profile_curvature,
+                    rail_profile_curvature,
+                )?;
                 let modulus = contact_modulus(self.shear_modulus, self.poisson_ratio)?;
                 HertzContact::solve(input.normal_force, &curvature, modulus)?
             }
@@ -434,29 +437,6 @@ impl Scene {
             },
         })
     }
-}
-
-/// The relative curvatures from the signed profile curvatures (0 = straight), with errors named
-/// after the scene's variables.
-fn relative_curvature(
-    wheel_rolling_radius: f64,
-    wheel_profile_curvature: f64,
-    rail_profile_curvature: f64,
-) -> Result<RelativeCurvature, InvalidInput> {
-    let curvatures =
-        [("wheel_profile_curvature", wheel_profile_curvature), ("rail_profile_curvature", rail_profile_curvature)];
-    for (variable, value) in curvatures {
-        if !value.is_finite() {
-            return Err(InvalidInput::new(variable, value, "must be finite"));
-        }
-    }
-    // 1/0 = ∞: a straight profile, as `from_radii` takes it.
-    let (wheel, rail) = (wheel_profile_curvature, rail_profile_curvature);
-    RelativeCurvature::from_radii(wheel_rolling_radius, 1.0 / wheel, 1.0 / rail).map_err(|e| match e.variable {
-        "wheel_profile_radius" => InvalidInput { variable: "wheel_profile_curvature", value: wheel, ..e },
-        "rail_profile_radius" => InvalidInput { variable: "rail_profile_curvature", value: rail, ..e },
-        _ => e,
-    })
 }
 
 /// The relaxation lengths: `length` > 0, or (0) the module's default from the contact.

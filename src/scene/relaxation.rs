@@ -315,6 +315,7 @@ mod tests {
     fn bad_values_are_named() {
         assert_eq!(RelaxationLengths::uniform(0.0).unwrap_err().variable, "relaxation_length");
         assert_eq!(RelaxationLengths::from_contact(1e-3, -1.0, 0.3).unwrap_err().variable, "semi_axis_b");
+        assert_eq!(RelaxationLengths::from_contact(0.0, 1e-3, 0.3).unwrap_err().variable, "semi_axis_a");
         assert_eq!(RelaxationLengths::from_contact(1e-3, 1e-3, 0.7).unwrap_err().variable, "poisson_ratio");
         assert_eq!(lengths().advance([0.0; 2], [0.0; 2], 1.0, -1.0).unwrap_err().variable, "step");
         assert_eq!(
