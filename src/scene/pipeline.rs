@@ -13,6 +13,34 @@
 //!    exactly over the step from the steady-state forces of step 3, at the speed that renews
 //!    the contact (|V|, or (|V| + |ωr|)/2 with the kinematics: a wheel spinning at standstill
 //!    builds up its force, a contact at rest holds it).
+//!
+//! ```
+//! use wheel_rail_contact::scene::{CreepageSource, Evaluation, Relaxation, Scene, SceneInput, SceneState};
+//! use wheel_rail_contact::{ModelChoice, Polach};
+//! // Polach's model, creepages from the wheel's velocities, creep relaxation over 10 mm.
+//! let scene = Scene {
+//!     creepages: CreepageSource::Kinematics { regularisation_speed: 0.01 },
+//!     relaxation: Relaxation::On { length: 0.01 },
+//!     ..Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28)
+//! };
+//! let rolling = SceneInput {
+//!     normal_force: 100e3, semi_axis_a: 7.2e-3, semi_axis_b: 5.4e-3, friction_coefficient: 0.3,
+//!     rolling_speed: 20.0, wheel_angular_speed: 20.0 / 0.46, wheel_rolling_radius: 0.46,
+//!     ..SceneInput::default()
+//! };
+//! let mut state = SceneState::default();
+//! let start = scene.evaluate(&rolling, &mut state, Evaluation::Initialise).unwrap();
+//! assert!(start.force_longitudinal.abs() < 1e-6, "free rolling: no creep force");
+//! // Braking: the wheel turns 0.2 % slower; the force builds up over the relaxation length.
+//! let braking = SceneInput { wheel_angular_speed: 0.998 * 20.0 / 0.46, ..rolling };
+//! let after_1_ms = scene.evaluate(&braking, &mut state, Evaluation::Step(1e-3)).unwrap();
+//! let steady = Scene { relaxation: Relaxation::Off, ..scene }
+//!     .evaluate(&braking, &mut SceneState::default(), Evaluation::Initialise)
+//!     .unwrap();
+//! // 20 mm travelled over L = 10 mm: 1 − e⁻² of the way to the steady force (which opposes the creepage).
+//! let expected = steady.force_longitudinal * -(-2.0_f64).exp_m1();
+//! assert!((after_1_ms.force_longitudinal / expected - 1.0).abs() < 1e-3);
+//! ```
 
 use std::fmt;
 
