@@ -100,6 +100,7 @@ pub fn generate(xml_path: &str, out_path: &Path) {
     write_value_references(&mut source, &variables);
     write_structs(&mut source, &variables);
     write_accessors(&mut source, &variables);
+    write_scene_conversions(&mut source, &variables);
     write_table(&mut source, &variables, &output_dependencies);
     std::fs::write(out_path, source).unwrap_or_else(|e| panic!("cannot write {}: {e}", out_path.display()));
 }
@@ -503,6 +504,36 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
         }
     }
     writeln!(source, "}}\n").unwrap();
+}
+
+/// The inputs as the core's `SceneInput` and the core's `SceneOutput` as the outputs, field by
+/// field: both are struct literals without `..`, so an input or output added to the XML without
+/// its field in the core's scene (or the other way round) stops the build. Every output is
+/// written `x + 0.0`, which turns −0 into +0 and changes nothing else (masters print −0 as `-0`).
+fn write_scene_conversions(source: &mut String, variables: &[Variable]) {
+    let fields = |causality: Causality, value: &dyn Fn(&str) -> String| -> String {
+        variables
+            .iter()
+            .filter(|v| v.causality == causality)
+            .map(|v| format!("        {}: {},\n", v.name, value(&v.name)))
+            .collect()
+    };
+    writeln!(
+        source,
+        "impl Inputs {{\n    /// The inputs as the core's scene input.\n    #[inline]\n    \
+         pub fn scene_input(&self) -> wheel_rail_contact::scene::SceneInput {{\n        \
+         wheel_rail_contact::scene::SceneInput {{\n{}        }}\n    }}\n}}\n",
+        fields(Causality::Input, &|name| format!("self.{name}")).replace("\n        ", "\n            ")
+    )
+    .unwrap();
+    writeln!(
+        source,
+        "impl Outputs {{\n    /// The core's scene output as the outputs, every zero written as +0.\n    #[inline]\n    \
+         pub fn from_scene(output: &wheel_rail_contact::scene::SceneOutput) -> Self {{\n        \
+         Self {{\n{}        }}\n    }}\n}}\n",
+        fields(Causality::Output, &|name| format!("output.{name} + 0.0")).replace("\n        ", "\n            ")
+    )
+    .unwrap();
 }
 
 fn write_table(source: &mut String, variables: &[Variable], output_dependencies: &[Vec<usize>]) {

@@ -1,19 +1,19 @@
 //! The FMU's values ↔ the core's [`Scene`]: decodes the parameters into a typed scene (model
 //! choice and options, validated once when a parameter changes, errors naming the FMU's
-//! variables and values), the inputs into a [`SceneInput`], and the core's [`SceneOutput`] into
+//! variables and values), the inputs into a `SceneInput`, and the core's `SceneOutput` into
 //! the outputs. The evaluation itself is the core's ([`Scene::evaluate`]).
 //!
-//! Inputs and parameters are destructured without `..` (unused fields bound to `_` explicitly)
-//! and the outputs are built with a struct literal, so a variable added to or removed from
-//! `modelDescription.xml` stops the build here until it is mapped.
+//! The parameters are destructured without `..` (unused fields bound to `_` explicitly), and the
+//! inputs and outputs are converted by struct literals that the build script generates from
+//! `modelDescription.xml` ([`Inputs::scene_input`], [`Outputs::from_scene`]), so a variable added
+//! to or removed from the interface stops the build until the core's scene or this decoder maps it.
 
 use super::model_description::{
     Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters, StiffnessSource as StiffnessChoice, Switch,
     TractionBound as TractionBoundChoice, TractionLaw as TractionLawChoice, Values,
 };
 use wheel_rail_contact::scene::{
-    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneInput, SceneOutput, SceneState,
-    TractionLaw,
+    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneState, TractionLaw,
 };
 use wheel_rail_contact::{
     ContactInput, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve, ModelChoice, Polach,
@@ -239,9 +239,9 @@ pub(crate) fn compute_outputs(
 ) -> Result<Outputs, String> {
     let (scene, state) = cache.plan(&values.parameters)?;
     state.relaxed_forces = *relaxed_forces;
-    let output = scene.evaluate(&scene_input(&values.inputs), state, evaluation).map_err(|e| e.to_string())?;
+    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
     *relaxed_forces = state.relaxed_forces;
-    Ok(outputs(&output))
+    Ok(Outputs::from_scene(&output))
 }
 
 /// d(outputs) along `direction` (one rate per continuous input) at the current `values` — of
@@ -255,92 +255,9 @@ pub(crate) fn directional_derivative(
 ) -> Result<Outputs, String> {
     let (scene, _) = cache.plan(&values.parameters)?;
     let rates = scene
-        .directional_derivative(&scene_input(&values.inputs), &scene_input(direction))
+        .directional_derivative(&values.inputs.scene_input(), &direction.scene_input())
         .map_err(|e: SceneError| e.to_string())?;
-    Ok(outputs(&rates))
-}
-
-/// The FMU's inputs as the core's scene input.
-pub fn scene_input(inputs: &Inputs) -> SceneInput {
-    let Inputs {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
-        normal_force,
-        semi_axis_a,
-        semi_axis_b,
-        friction_coefficient,
-        rolling_speed,
-        wheel_angular_speed,
-        wheel_rolling_radius,
-        lateral_slip_velocity,
-        spin_angular_velocity,
-    } = *inputs;
-    SceneInput {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
-        normal_force,
-        semi_axis_a,
-        semi_axis_b,
-        friction_coefficient,
-        rolling_speed,
-        wheel_angular_speed,
-        wheel_rolling_radius,
-        lateral_slip_velocity,
-        spin_angular_velocity,
-    }
-}
-
-/// The core's scene output as the FMU's outputs, every zero written as +0 (`x + 0.0` turns −0
-/// into +0 and changes nothing else): masters print −0 as `-0` in their result files, which
-/// shows in every diff.
-pub fn outputs(output: &SceneOutput) -> Outputs {
-    let output = &SceneOutput {
-        force_longitudinal: output.force_longitudinal + 0.0,
-        force_lateral: output.force_lateral + 0.0,
-        adhesion_utilisation: output.adhesion_utilisation + 0.0,
-        spin_moment: output.spin_moment + 0.0,
-        current_friction_coefficient: output.current_friction_coefficient + 0.0,
-        slip_velocity: output.slip_velocity + 0.0,
-        effective_creepage_longitudinal: output.effective_creepage_longitudinal + 0.0,
-        effective_creepage_lateral: output.effective_creepage_lateral + 0.0,
-        effective_spin_creepage: output.effective_spin_creepage + 0.0,
-        contact_semi_axis_a: output.contact_semi_axis_a + 0.0,
-        contact_semi_axis_b: output.contact_semi_axis_b + 0.0,
-        max_pressure: output.max_pressure + 0.0,
-        approach: output.approach + 0.0,
-    };
-    let SceneOutput {
-        force_longitudinal,
-        force_lateral,
-        adhesion_utilisation,
-        spin_moment,
-        current_friction_coefficient,
-        slip_velocity,
-        effective_creepage_longitudinal,
-        effective_creepage_lateral,
-        effective_spin_creepage,
-        contact_semi_axis_a,
-        contact_semi_axis_b,
-        max_pressure,
-        approach,
-    } = *output;
-    Outputs {
-        force_longitudinal,
-        force_lateral,
-        adhesion_utilisation,
-        spin_moment,
-        current_friction_coefficient,
-        slip_velocity,
-        effective_creepage_longitudinal,
-        effective_creepage_lateral,
-        effective_spin_creepage,
-        contact_semi_axis_a,
-        contact_semi_axis_b,
-        max_pressure,
-        approach,
-    }
+    Ok(Outputs::from_scene(&rates))
 }
 
 /// The core's input for the instance's values with every option off (the creepage and ellipse
@@ -348,7 +265,7 @@ pub fn outputs(output: &SceneOutput) -> Outputs {
 pub fn contact_input(values: &Values) -> ContactInput {
     let parameters = &values.parameters;
     Scene::of_model(ModelChoice::Polach(Polach::default()), parameters.shear_modulus, parameters.poisson_ratio)
-        .contact_input(&scene_input(&values.inputs))
+        .contact_input(&values.inputs.scene_input())
 }
 
 #[cfg(test)]

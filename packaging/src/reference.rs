@@ -9,8 +9,9 @@
 use std::io::{BufRead, Write};
 
 use wheel_rail_contact::scene::{Evaluation, Scene, SceneState};
+use wheel_rail_contact_fmu::model_description::Outputs;
 use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, VARIABLES};
-use wheel_rail_contact_fmu::scene::{outputs, scene_input, scene_of};
+use wheel_rail_contact_fmu::scene::scene_of;
 
 /// The columns written, in this order (the FMU's output names).
 pub fn output_columns() -> Vec<&'static str> {
@@ -45,8 +46,8 @@ fn values_of(columns: &[String], row: &[f64]) -> Result<Values, String> {
 fn outputs_of(values: &Values, step_size: f64, state: &mut SceneState) -> Result<Vec<f64>, String> {
     let scene: Scene = scene_of(&values.parameters)?;
     let evaluation = if step_size > 0.0 { Evaluation::Step(step_size) } else { Evaluation::Initialise };
-    let output = scene.evaluate(&scene_input(&values.inputs), state, evaluation).map_err(|e| e.to_string())?;
-    let outputs = outputs(&output);
+    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
+    let outputs = Outputs::from_scene(&output);
     Ok(VARIABLES
         .iter()
         .filter(|v| v.causality == Causality::Output)
@@ -145,17 +146,7 @@ mod tests {
     fn a_missing_column_keeps_its_start_value_and_an_unknown_one_is_an_error() {
         // The default scene at ξ = 0.2 %: the core's Polach with the FMU's start values.
         let row = &rows("creepage_longitudinal\n0.002\n")[0];
-        let input = ContactInput {
-            creepage_longitudinal: 2e-3,
-            creepage_lateral: 0.0,
-            spin_creepage: 0.0,
-            normal_force: 100e3,
-            semi_axis_a: 7.2e-3,
-            semi_axis_b: 5.4e-3,
-            friction_coefficient: 0.3,
-            shear_modulus: 82e9,
-            poisson_ratio: 0.28,
-        };
+        let input = ContactInput { creepage_longitudinal: 2e-3, ..crate::documentation::default_contact_input() };
         assert_eq!(row[0], Polach::default().creep_forces(&input).unwrap().force_longitudinal);
         let error = outputs_csv("creepage\n0.001\n".as_bytes(), Vec::new()).unwrap_err();
         assert_eq!(error, "`creepage` is not an input or parameter of the FMU");
