@@ -9,4 +9,19 @@ mod kalker_table;
 fn main() {
     let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     kalker_table::generate(&out_dir.join("kalker_table.rs"));
+    embed_exact_table(&out_dir);
+}
+
+/// Copies `data/exact_table.bin` (the `exact_table` model's table, made by
+/// `cargo fmu exact-table`) where `src/models/exact_table` includes it. Without the file (before
+/// the first generation: the generator needs this crate) an empty table is embedded, which the
+/// model refuses with a message naming the missing file; a warning says so at build time.
+fn embed_exact_table(out_dir: &std::path::Path) {
+    let source = std::path::Path::new("data/exact_table.bin");
+    println!("cargo:rerun-if-changed={}", source.display());
+    let bytes = std::fs::read(source).unwrap_or_else(|_| {
+        println!("cargo:warning={} is missing: the exact_table model is unavailable", source.display());
+        Vec::new()
+    });
+    std::fs::write(out_dir.join("exact_table.bin"), bytes).expect("OUT_DIR is writable");
 }

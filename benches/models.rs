@@ -1,11 +1,13 @@
 //! One evaluation of every model of the ladder (with spin, in partial slip, including validation
-//! and the Kalker coefficient lookup); FASTSIM at several grids (ns per element = time / n²).
+//! and the Kalker coefficient lookup); FASTSIM at several grids (ns per element = time / n²);
+//! `exact_table` against Polach on the same 64 contacts (`cases/…`: time per evaluation is the
+//! reported time / 64).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, Discretisation, Fastsim, Flexibility, KalkerLinear, Polach, ShenHedrickElkins,
-    TractionBound,
+    ContactInput, CreepForceModel, Discretisation, ExactTable, Fastsim, Flexibility, KalkerLinear, Polach,
+    ShenHedrickElkins, TractionBound,
 };
 
 /// A worn-wheel tread contact in partial slip with all three creepages (utilisation ≈ 0.6).
@@ -28,8 +30,47 @@ fn bench_model(c: &mut Criterion, name: &str, model: &dyn CreepForceModel) {
     c.bench_function(name, |bencher| bencher.iter(|| model.creep_forces(black_box(&input))));
 }
 
+/// 64 contacts: a/b from 0.2 to 5, every creepage direction, from the linear range to full slip.
+fn cases() -> Vec<ContactInput> {
+    let mut cases = Vec::new();
+    for (i, a_over_b) in [0.2, 0.6, 1.5, 5.0].into_iter().enumerate() {
+        for (j, level) in [0.05, 0.5, 1.5, 6.0].into_iter().enumerate() {
+            for (k, (xi, eta, phi)) in
+                [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.6, -0.8, 0.0), (0.3, 0.5, -150.0)].into_iter().enumerate()
+            {
+                let c = 4.5e-3;
+                cases.push(ContactInput {
+                    creepage_longitudinal: level * xi * 1e-3,
+                    creepage_lateral: level * eta * 1e-3,
+                    spin_creepage: level * phi * 1e-3,
+                    semi_axis_a: c * f64::sqrt(a_over_b),
+                    semi_axis_b: c / f64::sqrt(a_over_b),
+                    poisson_ratio: 0.25 + 0.01 * (i + j + k) as f64,
+                    ..input()
+                });
+            }
+        }
+    }
+    cases
+}
+
+fn bench_cases(c: &mut Criterion, name: &str, model: &dyn CreepForceModel, cases: &[ContactInput]) {
+    c.bench_function(name, |bencher| {
+        bencher.iter(|| {
+            for case in cases {
+                black_box(model.creep_forces(black_box(case)).ok());
+            }
+        })
+    });
+}
+
 fn models(c: &mut Criterion) {
     bench_model(c, "polach", &Polach::default());
+    let table = ExactTable::new().expect("the compiled-in table is valid");
+    bench_model(c, "exact_table", &table);
+    let cases = cases();
+    bench_cases(c, "cases/polach", &Polach::default(), &cases);
+    bench_cases(c, "cases/exact_table", &table, &cases);
     bench_model(c, "kalker_linear", &KalkerLinear);
     bench_model(c, "shen_hedrick_elkins", &ShenHedrickElkins);
     // CONTACT's blended flexibilities (the default); the unblended 5 × 5 shows the blend's cost.

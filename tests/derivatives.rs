@@ -2,39 +2,11 @@
 
 mod common;
 
-use common::{all_models, contact, contact_case, fastsim, relative_difference};
+use common::{all_models, contact, contact_case, fastsim, moved, relative_difference, NO_RATES};
 use wheel_rail_contact::{
     ContactInput, CreepForceModel, CreepForces, ExactTheory, InvalidInput, KalkerCoefficients, KalkerLinear,
     LargeCreepage, MeasuredCurve, ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
-
-/// A direction with no rate at all; tests set the rates they need.
-const NO_RATES: ContactInput = ContactInput {
-    creepage_longitudinal: 0.0,
-    creepage_lateral: 0.0,
-    spin_creepage: 0.0,
-    normal_force: 0.0,
-    semi_axis_a: 0.0,
-    semi_axis_b: 0.0,
-    friction_coefficient: 0.0,
-    shear_modulus: 0.0,
-    poisson_ratio: 0.0,
-};
-
-/// The input moved by `t` along `direction`.
-fn moved(x: &ContactInput, d: &ContactInput, t: f64) -> ContactInput {
-    ContactInput {
-        creepage_longitudinal: x.creepage_longitudinal + t * d.creepage_longitudinal,
-        creepage_lateral: x.creepage_lateral + t * d.creepage_lateral,
-        spin_creepage: x.spin_creepage + t * d.spin_creepage,
-        normal_force: x.normal_force + t * d.normal_force,
-        semi_axis_a: x.semi_axis_a + t * d.semi_axis_a,
-        semi_axis_b: x.semi_axis_b + t * d.semi_axis_b,
-        friction_coefficient: x.friction_coefficient + t * d.friction_coefficient,
-        shear_modulus: x.shear_modulus + t * d.shear_modulus,
-        poisson_ratio: x.poisson_ratio,
-    }
-}
 
 /// F_x, F_y, |F|/μQ and M_z (0 for models without one).
 fn outputs(f: &CreepForces) -> [f64; 4] {
@@ -232,6 +204,7 @@ fn model_choice_gives_the_chosen_models_own_derivative_bit_for_bit() {
             ModelChoice::ShenHedrickElkins(model) => model,
             ModelChoice::Fastsim(model) => model,
             ModelChoice::Exact(model) => model,
+            ModelChoice::ExactTable(model) => model,
         };
         let through_choice = choice.directional_derivative(&x, &d).unwrap();
         assert_eq!(through_choice, inner.directional_derivative(&x, &d).unwrap(), "{}", choice.name());

@@ -49,7 +49,7 @@ fn co_simulation_step(instance: &mut Instance, inputs: &[(&[u32], &[f64])], time
 
 fn options(c: &mut Criterion) {
     let on = Switch::On as i32;
-    let scenes: [(&str, Vec<(u32, i32)>); 7] = [
+    let scenes: [(&str, Vec<(u32, i32)>); 8] = [
         ("all_off", vec![]),
         ("polach2005_dry", vec![(vr::TRACTION_LAW, TractionLaw::Polach2005Dry as i32)]),
         ("hertz_contact", vec![(vr::HERTZ_CONTACT, on)]),
@@ -65,6 +65,8 @@ fn options(c: &mut Criterion) {
             ],
         ),
         ("fastsim_20x20", vec![(vr::CREEP_FORCE_MODEL, Model::Fastsim as i32)]),
+        // issue 11's target: ≤ 1.5 × the Polach step (`all_off`).
+        ("exact_table", vec![(vr::CREEP_FORCE_MODEL, Model::ExactTable as i32)]),
     ];
     let inputs = [vr::CREEPAGE_LONGITUDINAL, vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE];
     let values = [1.5e-3, -0.8e-3, 0.4, 80e3];

@@ -69,6 +69,13 @@ pub const OPTION_USES: &[OptionUse] = &[
         outputs: &["spin_moment"],
     },
     OptionUse {
+        option: "creep_force_model = exact_table",
+        inputs: &[],
+        replaces: &[],
+        parameters: &[],
+        outputs: &["spin_moment"],
+    },
+    OptionUse {
         option: "traction_law = polach2005_*",
         inputs: &["rolling_speed"],
         replaces: &[],

@@ -16,8 +16,8 @@ use wheel_rail_contact::scene::{
     CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneState, TractionLaw,
 };
 use wheel_rail_contact::{
-    ContactInput, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve, ModelChoice, Polach,
-    Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
+    ContactInput, ExactTable, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve,
+    ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
 /// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`): the scene's state
@@ -205,6 +205,9 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
             exact.validate().map_err(|e| reported(e, &counts))?;
             ModelChoice::Exact(exact)
         }
+        Model::ExactTable => ModelChoice::ExactTable(
+            ExactTable::new().map_err(|e| format!("creep_force_model = {creep_force_model} (exact_table): {e}"))?,
+        ),
     };
     Ok(Scene {
         model,
@@ -388,6 +391,7 @@ mod tests {
                 ModelChoice::Fastsim(Fastsim::new(7, 9, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap()),
             ),
             (Model::Exact, ModelChoice::Exact(ExactTheory::new(12, 10))),
+            (Model::ExactTable, ModelChoice::ExactTable(ExactTable::new().unwrap())),
         ];
         assert_eq!(models.len(), Model::ITEMS.len());
         let mut spin_moments = Vec::new();
@@ -403,7 +407,7 @@ mod tests {
         }
         // Polach and SHE have none; the others do, and oppose the spin (φ > 0 → M_z < 0 here).
         assert_eq!((spin_moments[0], spin_moments[2]), (0.0, 0.0));
-        assert!([1, 3, 4].iter().all(|&i| spin_moments[i] < 0.0), "{spin_moments:?}");
+        assert!([1, 3, 4, 5].iter().all(|&i| spin_moments[i] < 0.0), "{spin_moments:?}");
     }
 
     #[test]
@@ -412,7 +416,7 @@ mod tests {
         use TractionLaw::{Coulomb, Polach2005Dry as Dry, Polach2005User as User};
         type Change = fn(&mut Parameters);
         let cases: [(Model, TractionLaw, Change, &str); 14] = [
-            (PolachModel, Coulomb, |p| p.creep_force_model = 9, "creep_force_model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact)"),
+            (PolachModel, Coulomb, |p| p.creep_force_model = 9, "creep_force_model = 9 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), 4 (fastsim), 5 (exact), 6 (exact_table)"),
             (PolachModel, Coulomb, |p| p.stiffness_source = 7, "stiffness_source = 7 is invalid: must be one of 1 (kalker), 2 (measured_curve)"),
             (PolachModel, Coulomb, |p| p.hertz_contact = 2, "hertz_contact = 2 is invalid: must be one of 0 (off), 1 (on)"),
             (PolachModel, Coulomb, |p| p.creepages_from_kinematics = -1, "creepages_from_kinematics = -1 is invalid: must be one of 0 (off), 1 (on)"),

@@ -7,12 +7,15 @@
 //! - [`default_scene`]: the creepage sweep of the README's first command, through the packaged
 //!   `.fmu`, loaded by the C-ABI master (`fmu_master`, libloading);
 //! - [`reference`](mod@reference): the core's forces for rows of inputs (CSV), the reference of the fmpy tests;
+//! - [`exact_table`](mod@exact_table): generates the `exact_table` model's table from the exact
+//!   solver (`cargo fmu exact-table`), resumable;
 //! - [`plot`]: the small SVG line plot both of the above draw.
 
 #![forbid(unsafe_code)]
 
 pub mod default_scene;
 pub mod documentation;
+pub mod exact_table;
 pub mod fmu;
 pub mod plot;
 pub mod reference;

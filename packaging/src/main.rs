@@ -1,10 +1,10 @@
-//! `cargo fmu [all|package|scene|reference]` (alias in `.cargo/config.toml`).
+//! `cargo fmu [all|package|scene|reference|exact-table]` (alias in `.cargo/config.toml`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use packaging::fmu::{package, workspace_root, Profile, Reach};
-use packaging::{default_scene, reference};
+use packaging::{default_scene, exact_table, reference};
 
 const USAGE: &str = "usage: cargo fmu [COMMAND]
   all        (default) package, then scene
@@ -13,7 +13,11 @@ const USAGE: &str = "usage: cargo fmu [COMMAND]
   scene      run the default scene (a creepage sweep) through target/fmu/wheel_rail_contact.fmu:
              prints a table, writes target/fmu/default_scene.csv and .svg
   reference  read CSV of FMU inputs and parameters (header: their names; optional step_size for
-             creep relaxation) on stdin, write the core library's outputs as CSV on stdout";
+             creep relaxation) on stdin, write the core library's outputs as CSV on stdout
+  exact-table [--counts A,N,B,AL,T] [--grid NXxNY] [--out PATH]
+             generate the exact_table model's table (default: the shipped settings, written to
+             data/exact_table.bin; about an hour on two cores). Resumable: solved slices are kept
+             in target/exact-table/";
 
 fn out_dir() -> PathBuf {
     workspace_root().join("target").join("fmu")
@@ -45,6 +49,17 @@ fn run_scene() -> Result<(), String> {
     Ok(())
 }
 
+fn run_exact_table() -> Result<(), String> {
+    let mut args: Vec<String> = std::env::args().skip(2).collect();
+    let out = match args.iter().position(|a| a == "--out") {
+        Some(i) if i + 1 < args.len() => PathBuf::from(args.drain(i..i + 2).nth(1).expect("two drained")),
+        Some(_) => return Err("--out needs a path".into()),
+        None => workspace_root().join("data").join("exact_table.bin"),
+    };
+    let settings = exact_table::Settings::from_args(&args)?;
+    exact_table::generate(&settings, &workspace_root().join("target").join("exact-table"), &out)
+}
+
 fn main() -> ExitCode {
     let command = std::env::args().nth(1).unwrap_or_else(|| "all".to_owned());
     let result = match command.as_str() {
@@ -52,6 +67,7 @@ fn main() -> ExitCode {
         "package" => run_package(),
         "scene" => run_scene(),
         "reference" => reference::outputs_csv(std::io::stdin().lock(), std::io::stdout().lock()),
+        "exact-table" => run_exact_table(),
         _ => Err(USAGE.to_owned()),
     };
     match result {

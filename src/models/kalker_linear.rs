@@ -52,7 +52,7 @@ impl CreepForceModel for KalkerLinear {
 }
 
 /// The linear forces and moment for a validated input, over any [`Scalar`].
-fn linear_forces<D: Scalar>(input: &ContactInput<D>) -> CreepForces<D> {
+pub(crate) fn linear_forces<D: Scalar>(input: &ContactInput<D>) -> CreepForces<D> {
     if input.transmits_no_force() {
         return CreepForces::zero();
     }

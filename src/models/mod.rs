@@ -2,6 +2,7 @@
 //! [`crate::CreepForceModel`].
 
 pub mod exact;
+pub mod exact_table;
 pub mod fastsim;
 pub mod kalker_linear;
 pub mod measured_curve;

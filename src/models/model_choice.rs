@@ -2,6 +2,7 @@
 //! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
 
 use crate::models::exact::ExactTheory;
+use crate::models::exact_table::ExactTable;
 use crate::models::fastsim::Fastsim;
 use crate::models::kalker_linear::KalkerLinear;
 use crate::models::shen_hedrick_elkins::ShenHedrickElkins;
@@ -20,6 +21,8 @@ pub enum ModelChoice {
     Fastsim(Fastsim),
     /// Kalker's exact theory on its grid (slow: offline or low-rate use; see [`ExactTheory`]).
     Exact(ExactTheory),
+    /// Kalker's exact theory interpolated from its table (see [`ExactTable`]).
+    ExactTable(ExactTable),
 }
 
 impl ModelChoice {
@@ -31,6 +34,7 @@ impl ModelChoice {
             Self::ShenHedrickElkins(_) => "shen_hedrick_elkins",
             Self::Fastsim(_) => "fastsim",
             Self::Exact(_) => "exact",
+            Self::ExactTable(_) => "exact_table",
         }
     }
 }
@@ -44,11 +48,12 @@ impl CreepForceModel for ModelChoice {
             Self::ShenHedrickElkins(model) => model.creep_forces(input),
             Self::Fastsim(model) => model.creep_forces(input),
             Self::Exact(model) => model.creep_forces(input),
+            Self::ExactTable(model) => model.creep_forces(input),
         }
     }
 
     /// The chosen model's own derivative: exact (dual numbers) for Polach, Kalker's linear
-    /// theory and Shen–Hedrick–Elkins, FASTSIM's central difference. Without this the trait's
+    /// theory, Shen–Hedrick–Elkins and the exact theory's table, FASTSIM's central difference. Without this the trait's
     /// default (a central difference) would replace the exact ones.
     #[inline]
     fn directional_derivative(
@@ -62,6 +67,7 @@ impl CreepForceModel for ModelChoice {
             Self::ShenHedrickElkins(model) => model.directional_derivative(input, direction),
             Self::Fastsim(model) => model.directional_derivative(input, direction),
             Self::Exact(model) => model.directional_derivative(input, direction),
+            Self::ExactTable(model) => model.directional_derivative(input, direction),
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Shared fixtures for the integration tests.
 #![allow(dead_code)] // each test crate uses its own subset
 
-use wheel_rail_contact::{ContactInput, Fastsim, Flexibility, ModelChoice, Polach, TractionBound};
+use wheel_rail_contact::{ContactInput, ExactTable, Fastsim, Flexibility, ModelChoice, Polach, TractionBound};
 use wheel_rail_contact::{KalkerLinear, ShenHedrickElkins};
 
 #[path = "../data/contact_published_cases.rs"]
@@ -68,6 +68,7 @@ pub fn saturating_models() -> Vec<ModelChoice> {
         ModelChoice::Fastsim(fastsim(20, TractionBound::Elliptic)),
         ModelChoice::Fastsim(Fastsim::new(20, 20, TractionBound::Parabolic, Flexibility::Three).unwrap()),
         ModelChoice::Fastsim(Fastsim::new(15, 25, TractionBound::Parabolic, Flexibility::SingleWeighted).unwrap()),
+        ModelChoice::ExactTable(ExactTable::new().expect("the compiled-in table is valid")),
     ]
 }
 
@@ -76,4 +77,32 @@ pub fn all_models() -> Vec<ModelChoice> {
     let mut models = saturating_models();
     models.push(ModelChoice::KalkerLinear(KalkerLinear));
     models
+}
+
+/// A direction with no rate at all; tests set the rates they need.
+pub const NO_RATES: ContactInput = ContactInput {
+    creepage_longitudinal: 0.0,
+    creepage_lateral: 0.0,
+    spin_creepage: 0.0,
+    normal_force: 0.0,
+    semi_axis_a: 0.0,
+    semi_axis_b: 0.0,
+    friction_coefficient: 0.0,
+    shear_modulus: 0.0,
+    poisson_ratio: 0.0,
+};
+
+/// The input moved by `t` along `direction`.
+pub fn moved(x: &ContactInput, d: &ContactInput, t: f64) -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: x.creepage_longitudinal + t * d.creepage_longitudinal,
+        creepage_lateral: x.creepage_lateral + t * d.creepage_lateral,
+        spin_creepage: x.spin_creepage + t * d.spin_creepage,
+        normal_force: x.normal_force + t * d.normal_force,
+        semi_axis_a: x.semi_axis_a + t * d.semi_axis_a,
+        semi_axis_b: x.semi_axis_b + t * d.semi_axis_b,
+        friction_coefficient: x.friction_coefficient + t * d.friction_coefficient,
+        shear_modulus: x.shear_modulus + t * d.shear_modulus,
+        poisson_ratio: x.poisson_ratio,
+    }
 }

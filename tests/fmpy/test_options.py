@@ -80,6 +80,7 @@ CREEPAGE_ROWS = [
     (4, {"fastsim_strips": 9, "fastsim_elements": 13, "fastsim_traction_bound": 2, "fastsim_flexibility": 3}),
     (4, {"fastsim_strips": 6, "fastsim_elements": 30, "fastsim_flexibility": 2}),
     (5, {"exact_elements_longitudinal": 14, "exact_elements_lateral": 12}),
+    (6, {}),
 ])
 def test_every_model_equals_the_core(new_slave, model_description, model, options):
     results, rows = run(new_slave, model_description, {"creep_force_model": model, **options}, CREEPAGE_ROWS, [1e-3] * 4)
@@ -211,8 +212,8 @@ def test_reset_clears_the_relaxed_force(new_slave, model_description):
 @pytest.mark.parametrize("parameters, message", [
     ({"creep_force_model": 4, "fastsim_strips": 0}, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
     ({"creep_force_model": 5, "exact_elements_lateral": -2}, "exact_elements_lateral = -2 is invalid: must lie in [1, 200]"),
-    ({"creep_force_model": 6}, "creep_force_model = 6 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), "
-                   "4 (fastsim), 5 (exact)"),
+    ({"creep_force_model": 7}, "creep_force_model = 7 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), "
+                   "4 (fastsim), 5 (exact), 6 (exact_table)"),
     ({"traction_law": 4, "adhesion_reduction_factor": 0.0},
      "adhesion_reduction_factor = 0 is invalid: k_A must lie in (0, 1]"),
     ({"creepages_from_kinematics": ON, "regularisation_speed": -1.0},

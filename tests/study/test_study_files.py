@@ -18,7 +18,7 @@ def document(top="", grid="", tables=""):
 @pytest.mark.parametrize("text, message", [
     (document(top='chunksize = 5'), "chunksize: unknown key (did you mean chunk_size?)"),
     (document(top='models = ["polach", "exakt"]'), "models[1]: 'exakt' is not a creep_force_model (polach, kalker_linear, "
-                                     "shen_hedrick_elkins, fastsim, exact)"),
+                                     "shen_hedrick_elkins, fastsim, exact, exact_table)"),
     (document(top='models = []'), "models: must be a non-empty list"),
     (document(top='outputs = ["force_longitudinal", "force_lateal"]'), "outputs[1]: unknown output 'force_lateal' "
                                                          "(did you mean force_lateral?)"),

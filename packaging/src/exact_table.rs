@@ -1,0 +1,175 @@
+//! `cargo fmu exact-table`: generates `data/exact_table.bin`, the `exact_table` model's table,
+//! from the exact solver. Slices of the table (one a/b, one ν) are solved in parallel (rayon,
+//! every core) and saved as they finish under `target/exact-table/<settings>/`, so an
+//! interrupted run resumes where it stopped; the table is assembled when all are present.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use wheel_rail_contact::models::exact_table::generation::{assemble, refresh_full_slip, slice_values, SliceStatistics};
+use wheel_rail_contact::models::exact_table::TableAxes;
+use wheel_rail_contact::ExactTheory;
+
+/// Version of the generator (bump when the values it makes change for the same settings).
+pub const GENERATOR_VERSION: u32 = 1;
+
+/// What a generation makes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// The table's axes.
+    pub axes: TableAxes,
+    /// The exact solver's grid (longitudinal × lateral elements over 2.2 a × 2.2 b).
+    pub grid: (usize, usize),
+}
+
+impl Settings {
+    /// The shipped table: a/b ∈ [0.1, 10] (13 nodes, uniform in ln a/b), ν ∈ [0, 0.5] (3),
+    /// β (25), α (13), t (33), solved on 80 × 20 elements (docs/exact_table.md: the grid's error
+    /// is small against the interpolation's).
+    pub fn shipped() -> Self {
+        Self {
+            axes: TableAxes { counts: [13, 3, 25, 13, 33], a_over_b: (0.1, 10.0), poisson_ratio: (0.0, 0.5) },
+            grid: (80, 20),
+        }
+    }
+
+    /// Parses `--counts A,N,B,AL,T` and `--grid NXxNY` over the shipped settings.
+    pub fn from_args(args: &[String]) -> Result<Self, String> {
+        let mut settings = Self::shipped();
+        let mut args = args.iter();
+        while let Some(flag) = args.next() {
+            let value = args.next().ok_or_else(|| format!("{flag} needs a value"))?;
+            let numbers = |separator: char| -> Result<Vec<usize>, String> {
+                value.split(separator).map(|n| n.parse().map_err(|_| format!("{flag} {value}: not a count"))).collect()
+            };
+            match flag.as_str() {
+                "--counts" => {
+                    settings.axes.counts = numbers(',')?
+                        .try_into()
+                        .map_err(|_| format!("--counts {value}: five counts (a/b, ν, β, α, t)"))?
+                }
+                "--grid" => match numbers('x')?.as_slice() {
+                    &[nx, ny] => settings.grid = (nx, ny),
+                    _ => return Err(format!("--grid {value}: NXxNY")),
+                },
+                _ => return Err(format!("unknown option {flag}")),
+            }
+        }
+        let counts = settings.axes.counts;
+        if counts.iter().any(|&n| n < 2) || counts[2].is_multiple_of(2) {
+            return Err(format!("--counts {counts:?}: at least 2 nodes per axis, an odd count along β (β = 0 a node)"));
+        }
+        Ok(settings)
+    }
+
+    fn key(&self) -> String {
+        let c = self.axes.counts;
+        format!("v{GENERATOR_VERSION}-{}x{}-{}-{}-{}-{}-{}", self.grid.0, self.grid.1, c[0], c[1], c[2], c[3], c[4])
+    }
+}
+
+/// Generates (or resumes) the table and writes it to `out`.
+pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), String> {
+    let parts = work_dir.join(settings.key());
+    std::fs::create_dir_all(&parts).map_err(|e| format!("{}: {e}", parts.display()))?;
+    let solver = ExactTheory::new(settings.grid.0, settings.grid.1);
+    let [n_ab, n_nu, ..] = settings.axes.counts;
+    let started = Instant::now();
+    let mut totals = SliceStatistics::default();
+    let mut slices = Vec::new();
+    for i_ab in 0..n_ab {
+        for i_nu in 0..n_nu {
+            let path = parts.join(format!("slice-{i_ab:03}-{i_nu:03}.f32"));
+            let slice_length = 3 * settings.axes.counts[2..].iter().product::<usize>();
+            let values = match read_slice(&path, slice_length) {
+                Some(values) => refresh_full_slip(&settings.axes, i_ab, i_nu, &values),
+                None => {
+                    let slice_started = Instant::now();
+                    let (values, stats) = slice_values(&settings.axes, i_ab, i_nu, &solver)
+                        .map_err(|e| format!("slice a/b node {i_ab}, ν node {i_nu}: {e}"))?;
+                    write_slice(&path, &values)?;
+                    add(&mut totals, stats);
+                    println!(
+                        "slice {:>3}/{}: a/b = {:.4}, ν = {:.3}: {} solves ({} unconverged), {:.1} Newton steps and {:.0} products per solve, {:.1} s",
+                        i_ab * n_nu + i_nu + 1,
+                        n_ab * n_nu,
+                        settings.axes.a_over_b_node(i_ab),
+                        settings.axes.poisson_node(i_nu),
+                        stats.solves,
+                        stats.unconverged,
+                        stats.iterations as f64 / stats.solves.max(1) as f64,
+                        stats.operator_products as f64 / stats.solves.max(1) as f64,
+                        slice_started.elapsed().as_secs_f64()
+                    );
+                    values
+                }
+            };
+            slices.push(values);
+        }
+    }
+    let provenance = format!(
+        "wheel-rail-contact {} exact_table generator v{GENERATOR_VERSION}: `cargo fmu exact-table{}`; \
+         ExactTheory (FFT Newton-GMRES) on {} x {} elements over 2.2a x 2.2b; nodes a/b {} (ln-uniform \
+         over {:?}), nu {} over {:?}, beta {}, alpha {}, t {}; t = 1 by full-sliding quadrature",
+        env!("CARGO_PKG_VERSION"),
+        args_text(settings),
+        settings.grid.0,
+        settings.grid.1,
+        settings.axes.counts[0],
+        settings.axes.a_over_b,
+        settings.axes.counts[1],
+        settings.axes.poisson_ratio,
+        settings.axes.counts[2],
+        settings.axes.counts[3],
+        settings.axes.counts[4],
+    );
+    let table = assemble(provenance, settings.axes.clone(), slices).map_err(|e| e.to_string())?;
+    let bytes = table.to_bytes();
+    if let Some(dir) = out.parent() {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    std::fs::write(out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
+    println!(
+        "wrote {} ({} nodes, {:.1} MB) in {:.0} s; this run solved {} cases ({} unconverged)",
+        out.display(),
+        settings.axes.len(),
+        bytes.len() as f64 / 1e6,
+        started.elapsed().as_secs_f64(),
+        totals.solves,
+        totals.unconverged
+    );
+    Ok(())
+}
+
+fn args_text(settings: &Settings) -> String {
+    if *settings == Settings::shipped() {
+        return String::new();
+    }
+    let c = settings.axes.counts;
+    format!(" --counts {},{},{},{},{} --grid {}x{}", c[0], c[1], c[2], c[3], c[4], settings.grid.0, settings.grid.1)
+}
+
+fn add(totals: &mut SliceStatistics, stats: SliceStatistics) {
+    totals.solves += stats.solves;
+    totals.unconverged += stats.unconverged;
+    totals.iterations += stats.iterations;
+    totals.operator_products += stats.operator_products;
+}
+
+/// A saved slice of `length` values, or `None` when it is missing or unreadable (then it is
+/// solved again).
+fn read_slice(path: &Path, length: usize) -> Option<Vec<f32>> {
+    let bytes = std::fs::read(path).ok()?;
+    (bytes.len() == 4 * length)
+        .then(|| bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect())
+}
+
+/// Writes a slice atomically (a temporary file renamed), so an interrupted write is not a slice.
+fn write_slice(path: &Path, values: &[f32]) -> Result<(), String> {
+    let temporary: PathBuf = path.with_extension("partial");
+    let mut file = std::fs::File::create(&temporary).map_err(|e| format!("{}: {e}", temporary.display()))?;
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    file.write_all(&bytes).and_then(|()| file.sync_all()).map_err(|e| format!("{}: {e}", temporary.display()))?;
+    std::fs::rename(&temporary, path).map_err(|e| format!("{}: {e}", path.display()))
+}

@@ -1,0 +1,199 @@
+//! Making the table: every node's forces from the exact solver (t < 1) or the full-sliding
+//! quadrature (t = 1), one (a/b, ν) slice at a time so that a generator can save slices as
+//! they finish and resume after an interruption (`cargo fmu exact-table` does).
+
+use rayon::prelude::*;
+
+use super::coordinates::{scale_factors, unfold};
+use super::full_slip::full_slip_forces;
+use super::table::{Table, TableAxes, TableError};
+use crate::{ContactInput, ExactTheory, WarmStart};
+
+/// A representative contact for the solves: by similarity only a/b, ν and u matter.
+const NORMAL_FORCE: f64 = 80e3;
+const FRICTION: f64 = 0.3;
+const SHEAR_MODULUS: f64 = 82e9;
+const MEAN_SEMI_AXIS: f64 = 5e-3;
+
+/// The scale factors of every (a/b, ν) node, in the table's order.
+pub fn scales(axes: &TableAxes) -> Vec<[f64; 3]> {
+    let mut scales = Vec::with_capacity(axes.counts[0] * axes.counts[1]);
+    for i in 0..axes.counts[0] {
+        for j in 0..axes.counts[1] {
+            scales.push(scale_factors(axes.a_over_b_node(i), axes.poisson_node(j)));
+        }
+    }
+    scales
+}
+
+/// What one slice cost.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SliceStatistics {
+    /// Exact-theory solves.
+    pub solves: usize,
+    /// Solves that stopped at the solver's iteration limits instead of its tolerance.
+    pub unconverged: usize,
+    /// Newton steps and operator products over all solves.
+    pub iterations: usize,
+    pub operator_products: usize,
+}
+
+/// The values of slice (`i_ab`, `i_nu`) in the table's layout (3 per node over β, α, t), solved
+/// by `solver` on rayon's thread pool, one ray (fixed β, α; t rising, each solve warm-started
+/// from the previous) per task; the t = 1 nodes by the full-sliding quadrature.
+pub fn slice_values(
+    axes: &TableAxes,
+    i_ab: usize,
+    i_nu: usize,
+    solver: &ExactTheory,
+) -> Result<(Vec<f32>, SliceStatistics), crate::InvalidInput> {
+    let a_over_b = axes.a_over_b_node(i_ab);
+    let poisson_ratio = axes.poisson_node(i_nu);
+    let scale = scale_factors(a_over_b, poisson_ratio);
+    let solved = solved_rays(axes);
+    let rays: Vec<(Vec<[f64; 3]>, SliceStatistics)> = solved
+        .par_iter()
+        .map(|&(k, l)| ray(axes, k, l, a_over_b, poisson_ratio, scale, solver))
+        .collect::<Result<_, _>>()?;
+    let mut statistics = SliceStatistics::default();
+    let mut values = Vec::with_capacity(rays.len());
+    for (ray_values, stats) in rays {
+        statistics.solves += stats.solves;
+        statistics.unconverged += stats.unconverged;
+        statistics.iterations += stats.iterations;
+        statistics.operator_products += stats.operator_products;
+        values.push(ray_values);
+    }
+    Ok((fill_slice(axes, i_ab, i_nu, &solved, values), statistics))
+}
+
+/// A saved slice (as [`slice_values`] made it) with its t = 1 nodes made again by the current
+/// quadrature: the solver's nodes are the expensive part, and only they are kept.
+pub fn refresh_full_slip(axes: &TableAxes, i_ab: usize, i_nu: usize, saved: &[f32]) -> Vec<f32> {
+    let [_, _, _, n_alpha, n_t] = axes.counts;
+    let solved = solved_rays(axes);
+    let rays = solved
+        .iter()
+        .map(|&(k, l)| {
+            let start = 3 * n_t * (k * n_alpha + l);
+            saved[start..start + 3 * n_t].chunks_exact(3).map(|v| [v[0], v[1], v[2]].map(f64::from)).collect()
+        })
+        .collect();
+    fill_slice(axes, i_ab, i_nu, &solved, rays)
+}
+
+/// The rays that are solved: all but the mirror images (β < 0 at α = 0) and one ray per pole.
+fn solved_rays(axes: &TableAxes) -> Vec<(usize, usize)> {
+    let [_, _, n_beta, n_alpha, _] = axes.counts;
+    (0..n_beta)
+        .flat_map(|k| (0..n_alpha).map(move |l| (k, l)))
+        .filter(|&(k, l)| {
+            let (beta, alpha, _) = axes.direction_node(k, l, 0);
+            let pole = beta.abs() == 1.0;
+            !(pole && (l > 0 || beta < 0.0)) && !(alpha == 0.0 && beta < 0.0)
+        })
+        .collect()
+}
+
+/// The slice from its solved rays, with each t = 1 node replaced by full sliding and the fold
+/// edges tabulated with the symmetries they must have (`coordinates.rs`): the rays at β = ±1
+/// (pure spin) are one ray for every α with F_x = 0; at α = 0 the ray at −β is the mirror
+/// (F_y, M_z reversed) of the ray at β; at α = 1 (no ξ) F_x = 0.
+fn fill_slice(
+    axes: &TableAxes,
+    i_ab: usize,
+    i_nu: usize,
+    solved: &[(usize, usize)],
+    rays: Vec<Vec<[f64; 3]>>,
+) -> Vec<f32> {
+    let [_, _, n_beta, n_alpha, n_t] = axes.counts;
+    let a_over_b = axes.a_over_b_node(i_ab);
+    let scale = scale_factors(a_over_b, axes.poisson_node(i_nu));
+    let mut by_direction = vec![None; n_beta * n_alpha];
+    for (&(k, l), mut values) in solved.iter().zip(rays) {
+        let (beta, alpha, _) = axes.direction_node(k, l, n_t - 1);
+        values[n_t - 1] = full_slip_forces(unfold(alpha, beta, 0.5), a_over_b, scale);
+        by_direction[k * n_alpha + l] = Some(values);
+    }
+    let mirrored = |values: &Vec<[f64; 3]>| values.iter().map(|v| [v[0], -v[1], -v[2]]).collect::<Vec<_>>();
+    let mut out = Vec::with_capacity(3 * n_beta * n_alpha * n_t);
+    for k in 0..n_beta {
+        for l in 0..n_alpha {
+            let (beta, alpha, _) = axes.direction_node(k, l, 0);
+            let values = if beta.abs() == 1.0 {
+                let plus = by_direction[(n_beta - 1) * n_alpha].as_ref().expect("pole ray solved");
+                let pure_spin: Vec<[f64; 3]> = plus.iter().map(|v| [0.0, v[1], v[2]]).collect();
+                if beta > 0.0 {
+                    pure_spin
+                } else {
+                    mirrored(&pure_spin)
+                }
+            } else if alpha == 0.0 && beta < 0.0 {
+                mirrored(by_direction[(n_beta - 1 - k) * n_alpha].as_ref().expect("mirror ray solved"))
+            } else {
+                by_direction[k * n_alpha + l].clone().expect("ray solved")
+            };
+            for v in values {
+                let x = if alpha == 1.0 { 0.0 } else { v[0] };
+                out.extend([x, v[1], v[2]].map(|x| x as f32));
+            }
+        }
+    }
+    out
+}
+
+/// One ray: t = 0 (no force), the solver at 0 < t < 1; t = 1 is left at zero for
+/// [`fill_slice`].
+fn ray(
+    axes: &TableAxes,
+    k: usize,
+    l: usize,
+    a_over_b: f64,
+    poisson_ratio: f64,
+    scale: [f64; 3],
+    solver: &ExactTheory,
+) -> Result<(Vec<[f64; 3]>, SliceStatistics), crate::InvalidInput> {
+    let n_t = axes.counts[4];
+    let (a, b) = (MEAN_SEMI_AXIS * a_over_b.sqrt(), MEAN_SEMI_AXIS / a_over_b.sqrt());
+    let max_pressure = 3.0 * NORMAL_FORCE / (2.0 * std::f64::consts::PI * a * b);
+    let creepage_unit = FRICTION * max_pressure / SHEAR_MODULUS;
+    let limit = FRICTION * NORMAL_FORCE;
+    let mut values = vec![[0.0; 3]];
+    let mut statistics = SliceStatistics::default();
+    let mut start: Option<WarmStart> = None;
+    for m in 1..n_t - 1 {
+        let (beta, alpha, t) = axes.direction_node(k, l, m);
+        let u = unfold(alpha, beta, t);
+        let input = ContactInput {
+            creepage_longitudinal: u[0] * creepage_unit / scale[0],
+            creepage_lateral: u[1] * creepage_unit / scale[1],
+            spin_creepage: u[2] * creepage_unit / (scale[2] * MEAN_SEMI_AXIS),
+            normal_force: NORMAL_FORCE,
+            semi_axis_a: a,
+            semi_axis_b: b,
+            friction_coefficient: FRICTION,
+            shear_modulus: SHEAR_MODULUS,
+            poisson_ratio,
+        };
+        let solution = solver.solve_from(&input, start.as_ref())?;
+        statistics.solves += 1;
+        statistics.unconverged += usize::from(!solution.converged);
+        statistics.iterations += solution.iterations;
+        statistics.operator_products += solution.operator_products;
+        let f = solution.forces;
+        values.push([
+            f.force_longitudinal / limit,
+            f.force_lateral / limit,
+            f.spin_moment.unwrap_or(0.0) / (limit * MEAN_SEMI_AXIS),
+        ]);
+        start = Some(solution.warm_start());
+    }
+    values.push([0.0; 3]);
+    Ok((values, statistics))
+}
+
+/// The table from its slices (in the order i_ab, then i_ν), with its provenance text.
+pub fn assemble(provenance: String, axes: TableAxes, slices: Vec<Vec<f32>>) -> Result<Table, TableError> {
+    let scales = scales(&axes);
+    Table::new(provenance, axes, scales, slices.concat())
+}

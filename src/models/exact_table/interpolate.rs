@@ -1,0 +1,185 @@
+//! Evaluation: from a contact to the table's cell, and the multilinear blend of its 32 nodes.
+
+use super::coordinates::fold;
+use super::table::{AxisMap, Table};
+use super::zero_forces;
+use crate::models::kalker_linear::linear_forces;
+use crate::numerics::{magnitude, value, Scalar};
+use crate::{ContactInput, CreepForces, InvalidInput};
+
+/// Exact power of two the direction is scaled by before it is formed, so that creepages up to
+/// f64::MAX times the scale factors (≤ 5) stay finite; undone in the size.
+const DIRECTION_SCALE: f64 = 1.0 / 1024.0;
+/// Relative rounding of a/b accepted at the ends of the table's range.
+const RANGE_ROUNDING: f64 = 1e-12;
+
+/// The forces for a validated input.
+pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Result<CreepForces<D>, InvalidInput> {
+    if input.transmits_no_force() {
+        return Ok(zero_forces());
+    }
+    let a_over_b = input.semi_axis_a / input.semi_axis_b;
+    let (low, high) = table.axes.a_over_b;
+    // The range's ends are accepted up to the rounding of a/b (a = c√10, b = c/√10 gives
+    // 10.000000000000002); `cell` keeps such values in the end cell.
+    if !(low * (1.0 - RANGE_ROUNDING)..=high * (1.0 + RANGE_ROUNDING)).contains(&value(a_over_b)) {
+        return Err(InvalidInput::new(
+            "semi_axis_a",
+            value(input.semi_axis_a),
+            "over semi_axis_b must lie in the exact_table's a/b range [0.1, 10]",
+        )
+        .involving([Some(("semi_axis_b", value(input.semi_axis_b))), None]));
+    }
+    let [ab_map, nu_map, beta_map, alpha_map, t_map] = table.maps;
+    let (i_ab, w_ab) = cell(a_over_b.ln(), ab_map);
+    let (i_nu, w_nu) = cell(D::from(value(input.poisson_ratio)), nu_map);
+
+    // Scale factors k, bilinear over the (a/b, ν) cell like the values.
+    let n_nu = nu_map.nodes;
+    let scale_at = |i: usize, j: usize| table.scales[i * n_nu + j];
+    let blend2 = |low: f64, high: f64, w: D| w * (high - low) + low;
+    let mut k = [D::from(0.0); 3];
+    for (c, k_c) in k.iter_mut().enumerate() {
+        let lower = blend2(scale_at(i_ab, i_nu)[c], scale_at(i_ab, i_nu + 1)[c], w_nu);
+        let upper = blend2(scale_at(i_ab + 1, i_nu)[c], scale_at(i_ab + 1, i_nu + 1)[c], w_nu);
+        *k_c = (upper - lower) * w_ab + lower;
+    }
+    let c = (input.semi_axis_a * input.semi_axis_b).sqrt();
+    let bounded = |x: D| if value(x).abs() <= 1e300 { x } else { D::from(1e300_f64.copysign(value(x))) };
+    let direction = [
+        bounded(input.creepage_longitudinal * DIRECTION_SCALE * k[0]),
+        bounded(input.creepage_lateral * DIRECTION_SCALE * k[1]),
+        bounded(input.spin_creepage * DIRECTION_SCALE * k[2] * c),
+    ];
+    // G/(μp₀) = 2πabG/(3μQ), the similarity scale of the creepages, over DIRECTION_SCALE.
+    let size_factor = input.shear_modulus * (input.semi_axis_a * input.semi_axis_b)
+        / (input.friction_coefficient * input.normal_force)
+        * (2.0 * std::f64::consts::PI / 3.0 / DIRECTION_SCALE);
+    let folded = fold(direction, size_factor);
+
+    let (i_beta, w_beta) = cell(folded.beta, beta_map);
+    let (i_alpha, w_alpha) = cell(folded.alpha, alpha_map);
+    let (i_t, w_t) = cell(folded.t, t_map);
+    // The first t cell blends into the linear theory instead (see `linear_cell`): it needs the
+    // node t₁ alone.
+    let w_t = if i_t == 0 { D::from(1.0) } else { w_t };
+
+    let [stride_ab, stride_nu, stride_beta, stride_alpha] = table.strides;
+    let base = table.axes.index([i_ab, i_nu, i_beta, i_alpha, i_t]);
+    let one = D::from(1.0);
+    let mut corners = [(0, one, one); 16];
+    let mut next = corners.iter_mut();
+    for (o_ab, f_ab) in [(0, one - w_ab), (stride_ab, w_ab)] {
+        for (o_nu, f_nu) in [(0, one - w_nu), (stride_nu, w_nu)] {
+            let f_shape = f_ab * f_nu;
+            for (o_beta, f_beta) in [(0, one - w_beta), (stride_beta, w_beta)] {
+                let f_spin = f_shape * f_beta;
+                for (o_alpha, f_alpha) in [(0, one - w_alpha), (stride_alpha, w_alpha)] {
+                    let f_corner = f_spin * f_alpha;
+                    let corner = next.next().expect("16 corners");
+                    *corner = (base + o_ab + o_nu + o_beta + o_alpha, f_corner * (one - w_t), f_corner * w_t);
+                }
+            }
+        }
+    }
+    let sum = blend(&table.nodes, &corners);
+    let (resize, utilisation) = chord_correction(sum[0], sum[1], sum[3]);
+    let limit = input.friction_limit() * folded.sign_all;
+    let lateral_limit = limit * folded.sign_lateral;
+    let forces = [sum[0] * resize * limit, sum[1] * resize * lateral_limit, sum[2] * lateral_limit * c];
+    if i_t == 0 {
+        let forces = linear_cell(input, forces, folded.t, t_map.nodes);
+        return Ok(CreepForces::new(forces[0], forces[1], Some(forces[2]), input.friction_limit()));
+    }
+    // |F|/(μQ) is known: the corrected length.
+    Ok(CreepForces {
+        force_longitudinal: forces[0],
+        force_lateral: forces[1],
+        spin_moment: Some(forces[2]),
+        adhesion_utilisation: utilisation,
+    })
+}
+
+/// Interpolating the components of forces of different direction shortens the result (the
+/// chord of an arc): in full slip without spin, where |F| = μQ exactly, by 0.3 % of μQ between α
+/// nodes. Where the 32 interpolated nodes' forces are nearly parallel — the interpolated force
+/// at least 99 % as long as the interpolated lengths (`size`) — its length is taken from the
+/// interpolated lengths instead; below 95 % (forces of opposing directions, where the force
+/// passes through zero between nodes) the components are left alone; between, the two blend
+/// linearly, so the result is continuous. Returns the factor for both components and the
+/// corrected length. The length never exceeds `size`, a convex combination of node lengths ≤ 1,
+/// so |F| ≤ μQ still holds.
+fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
+    let length = magnitude(x, y);
+    let (l, s) = (value(length), value(size));
+    if !(l > CHORD_BLEND_START * s && s > l) {
+        return (D::from(1.0), length);
+    }
+    if l >= CHORD_BLEND_END * s {
+        return (size / length, size);
+    }
+    let weight = (length / size - CHORD_BLEND_START) / (CHORD_BLEND_END - CHORD_BLEND_START);
+    let corrected = length + (size - length) * weight;
+    (corrected / length, corrected)
+}
+
+/// The ratio |Σ w F_i| / Σ w |F_i| from which [`chord_correction`] starts, and where it is full.
+const CHORD_BLEND_START: f64 = 0.95;
+const CHORD_BLEND_END: f64 = 0.99;
+
+/// The first t cell, 0 < s < s₁ (s₁ ≈ 1e-3: creepages below 0.1 % of saturation), where the
+/// forces are linear in the creepages to within 1e-3 of themselves. Multilinear in t it would
+/// be √s-shaped (s ∝ t² near 0); instead it is
+///
+/// ```text
+/// F = (s/s₁)² F(t₁) + (1 − s/s₁) F_Kalker(ξ, η, φ),
+/// ```
+///
+/// continuous at s₁ and with Kalker's linear theory ([`crate::KalkerLinear`]) as its slope at
+/// zero, the exact theory's own small-creepage limit: our solver's grid is within 0.2–1.5 % of
+/// Kalker's C11, C22 and C23 (docs/exact_table.md), a difference of < 2e-5 μQ at s₁.
+fn linear_cell<D: Scalar>(input: &ContactInput<D>, at_node: [D; 3], t: D, t_nodes: usize) -> [D; 3] {
+    let t1 = 1.0 / (t_nodes - 1) as f64;
+    // s/s₁ with s = (t/(1 − t))².
+    let ratio = t * (1.0 - t1) / ((-t + 1.0) * t1);
+    let ratio = ratio * ratio;
+    let linear = linear_forces(input);
+    let moment = linear.spin_moment.unwrap_or(D::from(0.0));
+    let node_weight = ratio * ratio;
+    let linear_weight = -ratio + 1.0;
+    [
+        at_node[0] * node_weight + linear.force_longitudinal * linear_weight,
+        at_node[1] * node_weight + linear.force_lateral * linear_weight,
+        at_node[2] * node_weight + moment * linear_weight,
+    ]
+}
+
+/// The weighted sum of the 32 nodes of a cell: 16 corners, each (index of its node below in t,
+/// weight of that node, weight of the node above).
+fn blend<D: Scalar>(nodes: &[[f32; 4]], corners: &[(usize, D, D); 16]) -> [D; 4] {
+    let mut sum = [D::from(0.0); 4];
+    for &(index, w_below, w_above) in corners {
+        let (below, above) = (nodes[index], nodes[index + 1]);
+        for k in 0..4 {
+            sum[k] += w_below * f64::from(below[k]) + w_above * f64::from(above[k]);
+        }
+    }
+    sum
+}
+
+/// The cell of `x` along `axis` and the fraction across it, both kept in the cell (rounding
+/// only: callers bring x into the axis's range).
+fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
+    let position = (x - axis.origin) * axis.inverse_step;
+    // Truncation is the floor here (≥ 0), without a libm call; NaN cannot occur (finite inputs).
+    let index = (value(position).max(0.0) as usize).min(axis.nodes - 2);
+    let fraction = position - index as f64;
+    let fraction = if value(fraction) < 0.0 {
+        D::from(0.0)
+    } else if value(fraction) > 1.0 {
+        D::from(1.0)
+    } else {
+        fraction
+    };
+    (index, fraction)
+}

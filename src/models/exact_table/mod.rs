@@ -1,0 +1,109 @@
+//! Kalker's exact theory, tabulated: the rung as fast as Polach's method and as accurate as the
+//! exact theory ([`ExactTable`]).
+//!
+//! Kalker tabulated his own exact theory for the same purpose (USETAB, 1996: 25 a/b × 16 ξ ×
+//! 16 η × 32 φ cases on 12 × 12 grids). This table is made by our exact solver
+//! ([`crate::ExactTheory`], on a grid within ≈ 0.002 μQ of its converged solution) and differs in
+//! its coordinates (`coordinates.rs`): Kalker's similarity law removes Q, μ, G and the size of
+//! the ellipse, the problem's symmetries fold the creepages onto one octant, and the creepages
+//! become a direction (α, β) and a size t ∈ [0, 1] whose end t = 1 is full sliding, tabulated by
+//! quadrature (`full_slip.rs`), so every creepage up to ±∞ is inside the table.
+//!
+//! Interpolation is multilinear in (ln a/b, ν, β, α, t) (`interpolate.rs`). It is the
+//! natural choice here because it keeps what the physics requires by construction: every
+//! interpolated force is a convex combination of tabulated forces inside the Coulomb disc, so
+//! |F| ≤ μQ holds exactly; values are continuous everywhere; the symmetries hold exactly (they
+//! are applied by folding, and the table's fold edges are tabulated symmetric); and the
+//! derivative is exact for the interpolant, one-sided (from the cell above) on cell edges.
+//!
+//! Domain: a/b within the table's range ([0.1, 10]); outside it the model returns an error
+//! naming the semi-axes (no silent extrapolation). ν ∈ [0, 0.5], any creepage.
+//!
+//! The table is compiled into the library (`data/exact_table.bin`, read and checked once at
+//! first use): a co-simulation cannot lose it or read a stale copy, the core needs no file I/O,
+//! and Rust users get it with the crate. A missing or corrupted file is refused with
+//! [`TableError`] when the model is created ([`ExactTable::new`]), so the FMU's instantiation
+//! fails with that message instead of computing a wrong force.
+
+mod coordinates;
+mod full_slip;
+pub mod generation;
+mod interpolate;
+mod table;
+
+use std::sync::OnceLock;
+
+use crate::creep_force_model::{dual_derivative, NoForceBoundary};
+use crate::numerics::Scalar;
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+pub use table::{Table, TableAxes, TableError, FORMAT_VERSION};
+
+/// The table compiled into this library (empty when `data/exact_table.bin` was missing when it
+/// was built).
+const COMPILED_IN: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/exact_table.bin"));
+
+/// Kalker's exact theory interpolated from a precomputed table.
+#[derive(Clone, Copy)]
+pub struct ExactTable {
+    table: &'static Table,
+}
+
+impl ExactTable {
+    /// The model with the table compiled into this library, read and checked on the first call.
+    pub fn new() -> Result<Self, TableError> {
+        static TABLE: OnceLock<Result<Table, TableError>> = OnceLock::new();
+        match TABLE.get_or_init(|| Table::from_bytes(COMPILED_IN)) {
+            Ok(table) => Ok(Self { table }),
+            Err(error) => Err(error.clone()),
+        }
+    }
+
+    /// The model with another table (e.g. one just generated, or a test's).
+    pub fn with_table(table: &'static Table) -> Self {
+        Self { table }
+    }
+
+    /// The table this model interpolates.
+    pub fn table(&self) -> &'static Table {
+        self.table
+    }
+}
+
+impl PartialEq for ExactTable {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self.table, other.table)
+    }
+}
+
+impl std::fmt::Debug for ExactTable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "ExactTable({:?}, {})", self.table.axes.counts, self.table.provenance)
+    }
+}
+
+impl CreepForceModel for ExactTable {
+    fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
+        input.validate()?;
+        interpolate::forces(self.table, input)
+    }
+
+    /// Exact for the interpolant (dual numbers through the interpolation weights), one-sided
+    /// on cell edges. The force is μQ times a bounded function of u ∝ 1/(μQ), so it vanishes
+    /// continuously at μ → 0 and Q → 0: the one-sided derivative is given there.
+    fn directional_derivative(
+        &self,
+        input: &ContactInput,
+        direction: &ContactInput,
+    ) -> Result<CreepForces, InvalidInput> {
+        self.creep_forces(input)?;
+        dual_derivative(input, direction, NoForceBoundary::Continuous, |seeded| {
+            interpolate::forces(self.table, seeded).unwrap_or_else(|_| zero_forces())
+        })
+    }
+}
+
+/// Zero forces with a zero moment (unreachable after the value's own evaluation succeeded).
+fn zero_forces<D: Scalar>() -> CreepForces<D> {
+    let zero = D::from(0.0);
+    CreepForces { force_longitudinal: zero, force_lateral: zero, spin_moment: Some(zero), adhesion_utilisation: zero }
+}
