@@ -534,7 +534,7 @@ fn tractcurv_error(model: &dyn CreepForceModel) -> f64 {
         .fold(0.0, f64::max)
 }
 
-const PALETTE: [RGBColor; 8] = [
+const PALETTE: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -543,6 +543,8 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(140, 86, 75),
     RGBColor(227, 119, 194),
     RGBColor(23, 190, 207),
+    RGBColor(188, 189, 34),
+    RGBColor(127, 127, 127),
 ];
 
 /// A row's model family and grid: "fastsim_elliptic_20x20" → ("fastsim_elliptic", "20x20").
