@@ -211,7 +211,10 @@ fn degenerate_and_invalid_inputs() {
     assert_eq!((frictionless.forces.force_longitudinal, frictionless.adhesion_area), (0.0, 0.0));
     assert!(frictionless.slip_area > 0.0);
     let error = ExactTheory::new(0, 10).creep_forces(&base).unwrap_err();
-    assert_eq!(error.to_string(), "grid_elements_longitudinal = 0 is invalid: must lie in [1, 200]");
+    assert_eq!(error.to_string(), "grid_elements_longitudinal = 0 is invalid: must lie in [1, 400]");
+    assert!(ExactTheory::new(400, 400).validate().is_ok());
+    let error = ExactTheory::new(400, 401).validate().unwrap_err();
+    assert_eq!(error.to_string(), "grid_elements_lateral = 401 is invalid: must lie in [1, 400]");
     let error = model.creep_forces(&ContactInput { poisson_ratio: 0.7, ..base }).unwrap_err();
     assert_eq!(error.variable, "poisson_ratio");
     // One element, and absurd magnitudes: finite results on the Coulomb bound.

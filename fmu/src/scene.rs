@@ -428,8 +428,8 @@ mod tests {
             (FastsimModel, Coulomb, |p| p.fastsim_strips = 0, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
             (FastsimModel, Coulomb, |p| p.fastsim_elements = -3, "fastsim_elements = -3 is invalid: must be an integer in 1..=10000"),
             (FastsimModel, Coulomb, |p| p.fastsim_flexibility = 0, "fastsim_flexibility = 0 is invalid: must be one of 1 (three_blended), 2 (three), 3 (single_weighted)"),
-            (Exact, Coulomb, |p| p.exact_elements_longitudinal = 0, "exact_elements_longitudinal = 0 is invalid: must lie in [1, 200]"),
-            (Exact, Coulomb, |p| p.exact_elements_lateral = 201, "exact_elements_lateral = 201 is invalid: must lie in [1, 200]"),
+            (Exact, Coulomb, |p| p.exact_elements_longitudinal = 0, "exact_elements_longitudinal = 0 is invalid: must lie in [1, 400]"),
+            (Exact, Coulomb, |p| p.exact_elements_lateral = 401, "exact_elements_lateral = 401 is invalid: must lie in [1, 400]"),
         ];
         for (model, law, change, expected) in cases {
             let mut values = Values::default();

@@ -211,7 +211,7 @@ def test_reset_clears_the_relaxed_force(new_slave, model_description):
 
 @pytest.mark.parametrize("parameters, message", [
     ({"creep_force_model": 4, "fastsim_strips": 0}, "fastsim_strips = 0 is invalid: must be an integer in 1..=10000"),
-    ({"creep_force_model": 5, "exact_elements_lateral": -2}, "exact_elements_lateral = -2 is invalid: must lie in [1, 200]"),
+    ({"creep_force_model": 5, "exact_elements_lateral": -2}, "exact_elements_lateral = -2 is invalid: must lie in [1, 400]"),
     ({"creep_force_model": 7}, "creep_force_model = 7 is invalid: must be one of 1 (polach), 2 (kalker_linear), 3 (shen_hedrick_elkins), "
                    "4 (fastsim), 5 (exact), 6 (exact_table)"),
     ({"traction_law": 4, "adhesion_reduction_factor": 0.0},
