@@ -5,7 +5,7 @@
 mod common;
 
 use common::{contact, moved, NO_RATES};
-use wheel_rail_contact::models::exact_table::Table;
+use wheel_rail_contact::models::exact_table::{Table, TableAxes};
 use wheel_rail_contact::{
     ContactInput, CreepForceModel, CreepForces, ExactTable, ExactTheory, KalkerCoefficients, KalkerLinear,
 };
@@ -309,6 +309,21 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
     let checksum = crc32(&values_outside[..body]);
     values_outside[body..].copy_from_slice(&checksum.to_le_bytes());
     assert!(refused(&values_outside).contains("|F| > μQ"), "{}", refused(&values_outside));
+}
+
+/// A table must span a/b ∈ [0.1, 10] (the range the model's error names) and all of ν ∈ [0, 0.5]
+/// (otherwise valid inputs would be clamped silently).
+#[test]
+fn tables_over_other_ranges_are_refused() {
+    let table = |a_over_b: (f64, f64), poisson_ratio: (f64, f64)| {
+        let axes = TableAxes { counts: [2, 2, 3, 2, 2], a_over_b, poisson_ratio };
+        Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.0; 3 * 48])
+    };
+    assert!(table((0.1, 10.0), (0.0, 0.5)).is_ok());
+    let error = table((0.1, 10.0), (0.0, 0.4)).unwrap_err().to_string();
+    assert!(error.contains("ν range (0.0, 0.4)"), "{error}");
+    let error = table((0.2, 10.0), (0.0, 0.5)).unwrap_err().to_string();
+    assert!(error.contains("a/b range (0.2, 10.0)"), "{error}");
 }
 
 /// CRC-32 (IEEE), bit by bit: the test's own, independent of the library's crate.

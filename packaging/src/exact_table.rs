@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use wheel_rail_contact::models::exact_table::generation::{assemble, refresh_full_slip, slice_values, SliceStatistics};
-use wheel_rail_contact::models::exact_table::TableAxes;
+use wheel_rail_contact::models::exact_table::{TableAxes, A_OVER_B_RANGE};
 use wheel_rail_contact::ExactTheory;
 
 /// Version of the generator (bump when the values it makes change for the same settings).
@@ -29,7 +29,7 @@ impl Settings {
     /// is small against the interpolation's).
     pub fn shipped() -> Self {
         Self {
-            axes: TableAxes { counts: [13, 3, 25, 13, 33], a_over_b: (0.1, 10.0), poisson_ratio: (0.0, 0.5) },
+            axes: TableAxes { counts: [13, 3, 25, 13, 33], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) },
             grid: (80, 20),
         }
     }

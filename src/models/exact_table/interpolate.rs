@@ -26,6 +26,7 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
         return Err(InvalidInput::new(
             "semi_axis_a",
             value(input.semi_axis_a),
+            // The range is `table::A_OVER_B_RANGE`, which every table is checked to have.
             "over semi_axis_b must lie in the exact_table's a/b range [0.1, 10]",
         )
         .involving([Some(("semi_axis_b", value(input.semi_axis_b))), None]));

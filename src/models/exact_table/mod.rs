@@ -36,7 +36,7 @@ use std::sync::OnceLock;
 use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::numerics::Scalar;
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
-pub use table::{Table, TableAxes, TableError, FORMAT_VERSION};
+pub use table::{Table, TableAxes, TableError, A_OVER_B_RANGE, FORMAT_VERSION};
 
 /// The table compiled into this library (empty when `data/exact_table.bin` was missing when it
 /// was built).

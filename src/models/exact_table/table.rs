@@ -15,6 +15,8 @@ use std::fmt;
 const MAGIC: &[u8; 16] = b"WRC-EXACT-TABLE\0";
 /// Version of this file format (not of the values: the provenance text says how they were made).
 pub const FORMAT_VERSION: u32 = 1;
+/// The a/b range of every table (the error for contacts outside it names this range).
+pub const A_OVER_B_RANGE: (f64, f64) = (0.1, 10.0);
 /// Values this far outside the Coulomb disc are refused (float rounding of stored values).
 const BOUND_TOLERANCE: f32 = 1e-5;
 
@@ -226,11 +228,12 @@ impl Table {
     fn check(&self) -> Result<(), TableError> {
         let axes = &self.axes;
         let (ab, nu) = (axes.a_over_b, axes.poisson_ratio);
-        if !(ab.0 > 0.0 && ab.0 < ab.1 && ab.1.is_finite()) {
-            return Err(TableError(format!("a/b range {ab:?} is not an interval of positive numbers")));
-        }
-        if !(0.0 <= nu.0 && nu.0 < nu.1 && nu.1 <= 0.5) {
-            return Err(TableError(format!("ν range {nu:?} is not an interval in [0, 0.5]")));
+        // The model's messages name this a/b range, and every valid ν must be inside the table
+        // (outside, the interpolation would clamp silently).
+        if ab != A_OVER_B_RANGE || nu != (0.0, 0.5) {
+            return Err(TableError(format!(
+                "a/b range {ab:?} and ν range {nu:?}: this build reads tables over a/b {A_OVER_B_RANGE:?}, ν (0, 0.5)"
+            )));
         }
         if self.scales.len() != axes.counts[0] * axes.counts[1]
             || self.scales.iter().flatten().any(|k| !(k.is_finite() && *k > 0.0))
