@@ -89,7 +89,7 @@ pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), 
                     let (values, stats) = slice_values(&settings.axes, i_ab, i_nu, &solver)
                         .map_err(|e| format!("slice a/b node {i_ab}, ν node {i_nu}: {e}"))?;
                     write_slice(&path, &values)?;
-                    add(&mut totals, stats);
+                    totals += stats;
                     println!(
                         "slice {:>3}/{}: a/b = {:.4}, ν = {:.3}: {} solves ({} unconverged), {:.1} Newton steps and {:.0} products per solve, {:.1} s",
                         i_ab * n_nu + i_nu + 1,
@@ -148,13 +148,6 @@ fn args_text(settings: &Settings) -> String {
     }
     let c = settings.axes.counts;
     format!(" --counts {},{},{},{},{} --grid {}x{}", c[0], c[1], c[2], c[3], c[4], settings.grid.0, settings.grid.1)
-}
-
-fn add(totals: &mut SliceStatistics, stats: SliceStatistics) {
-    totals.solves += stats.solves;
-    totals.unconverged += stats.unconverged;
-    totals.iterations += stats.iterations;
-    totals.operator_products += stats.operator_products;
 }
 
 /// A saved slice of `length` values, or `None` when it is missing or unreadable (then it is

@@ -38,6 +38,15 @@ pub struct SliceStatistics {
     pub operator_products: usize,
 }
 
+impl std::ops::AddAssign for SliceStatistics {
+    fn add_assign(&mut self, other: Self) {
+        self.solves += other.solves;
+        self.unconverged += other.unconverged;
+        self.iterations += other.iterations;
+        self.operator_products += other.operator_products;
+    }
+}
+
 /// The values of slice (`i_ab`, `i_nu`) in the table's layout (3 per node over β, α, t), solved
 /// by `solver` on rayon's thread pool, one ray (fixed β, α; t rising, each solve warm-started
 /// from the previous) per task; the t = 1 nodes by the full-sliding quadrature.
@@ -58,10 +67,7 @@ pub fn slice_values(
     let mut statistics = SliceStatistics::default();
     let mut values = Vec::with_capacity(rays.len());
     for (ray_values, stats) in rays {
-        statistics.solves += stats.solves;
-        statistics.unconverged += stats.unconverged;
-        statistics.iterations += stats.iterations;
-        statistics.operator_products += stats.operator_products;
+        statistics += stats;
         values.push(ray_values);
     }
     Ok((fill_slice(axes, i_ab, i_nu, &solved, values), statistics))
