@@ -143,27 +143,23 @@ fn the_symmetries_hold_exactly() {
         for _ in 0..20 {
             let input = points.contact(level);
             let f = model.creep_forces(&input).unwrap();
-            let reversed = ContactInput {
-                creepage_longitudinal: -input.creepage_longitudinal,
-                creepage_lateral: -input.creepage_lateral,
-                spin_creepage: -input.spin_creepage,
-                ..input
-            };
-            let r = model.creep_forces(&reversed).unwrap();
-            assert_eq!(
-                (r.force_longitudinal, r.force_lateral, r.spin_moment),
-                (-f.force_longitudinal, -f.force_lateral, f.spin_moment.map(|m| -m))
-            );
-            let mirrored = ContactInput {
-                creepage_lateral: -input.creepage_lateral,
-                spin_creepage: -input.spin_creepage,
-                ..input
-            };
-            let m = model.creep_forces(&mirrored).unwrap();
-            assert_eq!(
-                (m.force_longitudinal, m.force_lateral, m.spin_moment),
-                (f.force_longitudinal, -f.force_lateral, f.spin_moment.map(|m| -m))
-            );
+            // S1 reverses every creepage and every output; S2 (the mirror y → −y) reverses η, φ
+            // and F_y, M_z.
+            for (creepage_signs, [sx, sy]) in [([-1.0, -1.0, -1.0], [-1.0, -1.0]), ([1.0, -1.0, -1.0], [1.0, -1.0])] {
+                let [cx, cy, cphi] = creepage_signs;
+                let image = ContactInput {
+                    creepage_longitudinal: cx * input.creepage_longitudinal,
+                    creepage_lateral: cy * input.creepage_lateral,
+                    spin_creepage: cphi * input.spin_creepage,
+                    ..input
+                };
+                let g = model.creep_forces(&image).unwrap();
+                assert_eq!(
+                    (g.force_longitudinal, g.force_lateral, g.spin_moment),
+                    (sx * f.force_longitudinal, sy * f.force_lateral, f.spin_moment.map(|m| sy * m)),
+                    "{creepage_signs:?} at {input:?}"
+                );
+            }
         }
     }
 }
