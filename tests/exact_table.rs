@@ -52,6 +52,16 @@ fn c(input: &ContactInput) -> f64 {
     (input.semi_axis_a * input.semi_axis_b).sqrt()
 }
 
+/// The contact with all three creepages times `factor`.
+fn scaled(input: &ContactInput, factor: f64) -> ContactInput {
+    ContactInput {
+        creepage_longitudinal: input.creepage_longitudinal * factor,
+        creepage_lateral: input.creepage_lateral * factor,
+        spin_creepage: input.spin_creepage * factor,
+        ..*input
+    }
+}
+
 /// max(|ΔF_x|, |ΔF_y|)/(μQ) and |ΔM_z|/(μQc).
 fn deviation(input: &ContactInput, a: &CreepForces, b: &CreepForces) -> (f64, f64) {
     let force = (a.force_longitudinal - b.force_longitudinal).abs().max((a.force_lateral - b.force_lateral).abs());
@@ -73,7 +83,7 @@ fn the_compiled_in_table_says_how_it_was_made_and_fits_in_20_mb() {
 
 /// Random held-out points (never nodes) from the linear range to full sliding, spin included,
 /// against the exact solver on 120 × 30 elements (within 0.002 μQ of its converged solution;
-/// docs/exact_table.md). The full set (2000 points, against the converged reference) is in
+/// docs/exact_table.md). The full set (1000 points, against the same solver) is in
 /// the trade report.
 #[test]
 fn held_out_points_match_the_exact_theory() {
@@ -94,8 +104,9 @@ fn held_out_points_match_the_exact_theory() {
     forces.sort_by(f64::total_cmp);
     moments.sort_by(f64::total_cmp);
     let (median, max) = (forces[forces.len() / 2], forces[forces.len() - 1]);
-    assert!(median <= 0.004 && max <= 0.05, "F: median {median}, max {max}");
-    assert!(moments[moments.len() - 1] <= 0.05, "M_z: max {}", moments[moments.len() - 1]);
+    // Issue 11's goals (measured on this sample: median 0.0026, max 0.0085, M_z max 0.0092).
+    assert!(median <= 0.003 && max <= 0.02, "F: median {median}, max {max}");
+    assert!(moments[moments.len() - 1] <= 0.02, "M_z: max {}", moments[moments.len() - 1]);
 }
 
 /// Dense sweeps through every coordinate of the table (and across its fold edges ξ = 0, η = 0,
@@ -116,23 +127,47 @@ fn continuous_across_every_cell_edge() {
             previous = Some(f);
         }
     };
-    let scale = |input: &ContactInput, s: f64| ContactInput {
-        creepage_longitudinal: input.creepage_longitudinal * s,
-        creepage_lateral: input.creepage_lateral * s,
-        spin_creepage: input.spin_creepage * s,
-        ..*input
-    };
     let (xi, eta, phi) = (base.creepage_longitudinal, base.creepage_lateral, base.spin_creepage);
     sweep("xi", 20_000, &|s| ContactInput { creepage_longitudinal: xi * (6.0 * s - 3.0), ..base });
     sweep("eta", 20_000, &|s| ContactInput { creepage_lateral: eta * (6.0 * s - 3.0), ..base });
     sweep("phi", 20_000, &|s| ContactInput { spin_creepage: phi * (6.0 * s - 3.0), ..base });
-    sweep("size", 20_000, &|s| scale(&base, 10f64.powf(12.0 * s - 6.0)));
+    sweep("size", 20_000, &|s| scaled(&base, 10f64.powf(12.0 * s - 6.0)));
     sweep("nu", 5_000, &|s| ContactInput { poisson_ratio: 0.5 * s, ..base });
     let area = base.semi_axis_a * base.semi_axis_b;
     sweep("a/b", 20_000, &|s| {
         let a_over_b = 10f64.powf(2.0 * s - 1.0);
         ContactInput { semi_axis_a: (area * a_over_b).sqrt(), semi_axis_b: (area / a_over_b).sqrt(), ..base }
     });
+}
+
+/// Near zero the forces are tiny, so the sweeps above, in units of μQ, cannot see a jump there.
+/// Through the first t cell and the blend into Kalker's linear theory (creepages from 1e-5 to
+/// 1e-1 of the characteristic ones), a step of 0.1 % in the creepages changes the forces by
+/// about 0.1 % of themselves, never by a jump (the solver's and Kalker's coefficients differ by
+/// up to 1.2 %).
+#[test]
+fn continuous_through_the_small_creepages() {
+    let model = model();
+    let mut points = Points(31);
+    for _ in 0..8 {
+        let base = points.contact(1.0);
+        let mut previous: Option<CreepForces> = None;
+        // 1.001^9212 ≈ 1e4.
+        for i in 0..=9212 {
+            let input = scaled(&base, 1e-5 * 1.001f64.powi(i));
+            let f = model.creep_forces(&input).unwrap();
+            if let Some(p) = previous {
+                let size = p.force_longitudinal.hypot(p.force_lateral);
+                let change = (f.force_longitudinal - p.force_longitudinal).hypot(f.force_lateral - p.force_lateral);
+                let (moment, moment_change) = (p.spin_moment.unwrap(), f.spin_moment.unwrap() - p.spin_moment.unwrap());
+                assert!(
+                    change <= 0.003 * size && moment_change.abs() <= 0.003 * moment.abs().max(0.01 * size * c(&input)),
+                    "step {i} at {input:?}: {p:?} → {f:?}"
+                );
+            }
+            previous = Some(f);
+        }
+    }
 }
 
 #[test]

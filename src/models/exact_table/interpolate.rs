@@ -61,8 +61,8 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
     let (i_beta, w_beta) = cell(folded.beta, beta_map);
     let (i_alpha, w_alpha) = cell(folded.alpha, alpha_map);
     let (i_t, w_t) = cell(folded.t, t_map);
-    // The first t cell blends into the linear theory instead (see `linear_cell`): it needs the
-    // node t₁ alone.
+    // In the first t cell the forces are linear in s (see `small_creepage`): it needs the node
+    // t₁ alone.
     let w_t = if i_t == 0 { D::from(1.0) } else { w_t };
 
     let [stride_ab, stride_nu, stride_beta, stride_alpha] = table.strides;
@@ -88,8 +88,7 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
     let limit = input.friction_limit() * folded.sign_all;
     let lateral_limit = limit * folded.sign_lateral;
     let forces = [sum[0] * resize * limit, sum[1] * resize * lateral_limit, sum[2] * lateral_limit * c];
-    if i_t == 0 {
-        let forces = linear_cell(input, forces, folded.t, t_map.nodes);
+    if let Some(forces) = small_creepage(input, forces, folded.t, i_t == 0, t_map.nodes) {
         return Ok(CreepForces::new(forces[0], forces[1], Some(forces[2]), input.friction_limit()));
     }
     // |F|/(μQ) is known: the corrected length.
@@ -128,31 +127,46 @@ fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
 const CHORD_BLEND_START: f64 = 0.95;
 const CHORD_BLEND_END: f64 = 0.99;
 
-/// The first t cell, 0 < s < s₁ (s₁ ≈ 1e-3: creepages below 0.1 % of saturation), where the
-/// forces are linear in the creepages to within 1e-3 of themselves. Multilinear in t it would
-/// be √s-shaped (s ∝ t² near 0); instead it is
+/// The end of the blend into Kalker's linear theory, in t: s_lin = (1/31)² ≈ 1.04e-3, about
+/// 0.1 % of saturation. Fixed, so that the small-creepage behaviour does not depend on the t
+/// grid; compared in t, so that larger creepages pay no division for it.
+const LINEAR_BLEND_END: f64 = 1.0 / 32.0;
+
+/// The small creepages, where the forces are linear in the creepages to within 1e-3 of
+/// themselves: `None` above both the first t cell (0 < s < s₁) and s_lin. Multilinear in t the
+/// first cell would be √s-shaped (s ∝ t² near 0); it is linear instead, F_table = (s/s₁) F(t₁).
+/// Below s_lin the table blends into Kalker's linear theory ([`crate::KalkerLinear`]), the exact
+/// theory's own small-creepage limit:
 ///
 /// ```text
-/// F = (s/s₁)² F(t₁) + (1 − s/s₁) F_Kalker(ξ, η, φ),
+/// F = (s/s_lin) F_table + (1 − s/s_lin) F_Kalker(ξ, η, φ),
 /// ```
 ///
-/// continuous at s₁ and with Kalker's linear theory ([`crate::KalkerLinear`]) as its slope at
-/// zero, the exact theory's own small-creepage limit: our solver's grid is within 0.2–1.5 % of
-/// Kalker's C11, C22 and C23 (docs/exact_table.md), a difference of < 2e-5 μQ at s₁.
-fn linear_cell<D: Scalar>(input: &ContactInput<D>, at_node: [D; 3], t: D, t_nodes: usize) -> [D; 3] {
-    let t1 = 1.0 / (t_nodes - 1) as f64;
-    // s/s₁ with s = (t/(1 − t))².
-    let ratio = t * (1.0 - t1) / ((-t + 1.0) * t1);
-    let ratio = ratio * ratio;
+/// continuous at s_lin and with Kalker's slope at zero. Our solver's nodes are within 0.2–1.5 %
+/// of Kalker's C11, C22 and C23 (docs/exact_table.md), a difference of < 2e-5 μQ at s_lin.
+fn small_creepage<D: Scalar>(
+    input: &ContactInput<D>,
+    interpolated: [D; 3],
+    t: D,
+    first_cell: bool,
+    t_nodes: usize,
+) -> Option<[D; 3]> {
+    if !first_cell && value(t) >= LINEAR_BLEND_END {
+        return None;
+    }
+    // s = (t/(1 − t))², the L1 size of the scaled creepages.
+    let size = |t: f64| (t / (1.0 - t)).powi(2);
+    let root = t / (-t + 1.0);
+    let s = root * root;
+    let table =
+        if first_cell { interpolated.map(|f| f * (s / size(1.0 / (t_nodes - 1) as f64))) } else { interpolated };
+    if value(t) >= LINEAR_BLEND_END {
+        return Some(table);
+    }
     let linear = linear_forces(input);
-    let moment = linear.spin_moment.unwrap_or(D::from(0.0));
-    let node_weight = ratio * ratio;
-    let linear_weight = -ratio + 1.0;
-    [
-        at_node[0] * node_weight + linear.force_longitudinal * linear_weight,
-        at_node[1] * node_weight + linear.force_lateral * linear_weight,
-        at_node[2] * node_weight + moment * linear_weight,
-    ]
+    let linear = [linear.force_longitudinal, linear.force_lateral, linear.spin_moment.unwrap_or(D::from(0.0))];
+    let weight = s / size(LINEAR_BLEND_END);
+    Some(std::array::from_fn(|k| table[k] * weight + linear[k] * (-weight + 1.0)))
 }
 
 /// The weighted sum of the 32 nodes of a cell: 16 corners, each (index of its node below in t,
