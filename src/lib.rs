@@ -44,7 +44,7 @@ pub use creep_force_model::{central_difference, CreepForceModel};
 pub use creep_forces::CreepForces;
 pub use invalid_input::InvalidInput;
 pub use kalker_coefficients::KalkerCoefficients;
-pub use models::exact::{ElementState, ExactSolution, ExactTheory, GridSize, WarmStart};
+pub use models::exact::{ElementState, ExactSolution, ExactTheory, GridSize, LinearCoefficients, WarmStart};
 pub use models::exact_table::{ExactTable, TableError};
 pub use models::fastsim::{Discretisation, Fastsim, FastsimResult, Flexibility, TractionBound};
 pub use models::kalker_linear::KalkerLinear;

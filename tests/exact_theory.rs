@@ -1,6 +1,7 @@
 //! Kalker's exact theory (`ExactTheory`) against Kalker's linear coefficients, CONTACT's
 //! published cases, and the invariants of the contact problem.
 
+use rayon::prelude::*;
 use wheel_rail_contact::{ContactInput, CreepForceModel, ElementState, ExactTheory, KalkerCoefficients, WarmStart};
 
 const SHEAR_MODULUS: f64 = 82e9;
@@ -69,6 +70,73 @@ fn full_adhesion_reproduces_kalkers_coefficients() {
                     "a/b {a_over_b}, ν {nu}: {name} = {value:.4}, Kalker {reference:.4}"
                 );
             }
+        }
+    }
+}
+
+/// On fine grids the solver reproduces Kalker's table (Kalker 1990, table E.3) at the table's
+/// own rows (no interpolation between rows, which alone is worth 2 % in C23 at a/b = 3) within
+/// 0.5 % over a/b = 0.1 … 2 and ν = 0, 0.25, 0.5, with two exceptions; at a/b = 5 and 10 it is
+/// within 0.5 % for C23 and above the table for C11 and C22. Every entry beyond 0.5 % is held to
+/// its measured deviation (± 0.2 %). All rows: docs/reference/kalker-table-check.txt
+/// (`cargo run --release --example kalker_table_check`).
+/// - C11 at a/b = 0.5, ν = 0.5, +1.0 %: a table outlier. The solver is 0.4 % above the table at
+///   a/b = 0.3, 0.4, 0.6 and 0.7; its values 4.819, 4.839, 4.877, 4.929, 4.991 run smoothly
+///   where the table's 4.80, 4.82, 4.83, 4.91, 4.97 do not.
+/// - C23 at a/b = 0.1, ν = 0.5, −0.9 % (−0.85 % on 200 × 400; refining either axis moves it
+///   towards the table by ≈ 0.1 %).
+/// - a > b: C11 and C22 above the table by an amount growing with a/b (C22 at ν = 0.25: +0.3 %
+///   at 2, +0.6 % at 5, +1.2 % at 10). Refining along y raises them (a/b = 10, C22 on 400 × 40,
+///   80, 160, 320: +0.94, +1.22, +1.32, +1.39 %), along x lowers them (−0.3 % from 200 to 400
+///   elements), so the converged solver stays ≈ 0.6 % (C11) and ≈ 1.1 % (C22) above the
+///   table's three digits at a/b = 10. Whether the table (computed in 1967 with a truncated
+///   polynomial method, least accurate for slender ellipses) or the solver is off there is open:
+///   no independent converged value is at hand.
+#[test]
+fn fine_grids_reproduce_kalkers_table_at_its_rows() {
+    // a/b, and the grid: 300 elements along the longer semi-axis, at least 120 across.
+    let rows: [(f64, usize, usize); 7] = [
+        (0.1, 150, 300),
+        (0.2, 150, 300),
+        (0.5, 150, 300),
+        (1.0, 300, 300),
+        (2.0, 300, 150),
+        (5.0, 300, 120),
+        (10.0, 300, 120),
+    ];
+    // (a/b, ν, coefficient, measured deviation from the table).
+    let known = [
+        (0.1, 0.5, "C23", -0.0089),
+        (0.5, 0.5, "C11", 0.0100),
+        (5.0, 0.0, "C11", 0.0053),
+        (5.0, 0.0, "C22", 0.0053),
+        (5.0, 0.25, "C22", 0.0061),
+        (5.0, 0.5, "C22", 0.0081),
+        (10.0, 0.0, "C11", 0.0092),
+        (10.0, 0.0, "C22", 0.0092),
+        (10.0, 0.25, "C11", 0.0073),
+        (10.0, 0.25, "C22", 0.0118),
+        (10.0, 0.5, "C11", 0.0054),
+        (10.0, 0.5, "C22", 0.0109),
+    ];
+    let cases: Vec<(f64, usize, usize, f64)> =
+        rows.iter().flat_map(|&(r, nx, ny)| [0.0, 0.25, 0.5].map(|nu| (r, nx, ny, nu))).collect();
+    let solved: Vec<_> = cases
+        .par_iter()
+        .map(|&(a_over_b, nx, ny, nu)| ExactTheory::new(nx, ny).linear_coefficients(a_over_b, nu).unwrap())
+        .collect();
+    for (&(a_over_b, _, _, nu), solver) in cases.iter().zip(&solved) {
+        let table = KalkerCoefficients::new(a_over_b, nu);
+        for (name, value, reference) in
+            [("C11", solver.c11, table.c11), ("C22", solver.c22, table.c22), ("C23", solver.c23, table.c23)]
+        {
+            let deviation = value / reference - 1.0;
+            let expected = known.iter().find(|k| (k.0, k.1, k.2) == (a_over_b, nu, name)).map(|k| k.3);
+            let within = match expected {
+                Some(measured) => (deviation - measured).abs() <= 0.002,
+                None => deviation.abs() <= 0.005,
+            };
+            assert!(within, "a/b {a_over_b}, ν {nu}: {name} = {value:.4}, Kalker {reference:.4} ({deviation:+.4})");
         }
     }
 }

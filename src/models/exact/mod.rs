@@ -42,6 +42,7 @@
 //! ellipse; a poor start costs iterations, never accuracy (the solution is the same to the
 //! solver's tolerance).
 
+mod coefficients;
 mod convolution;
 mod element;
 mod gauss_seidel;
@@ -54,6 +55,7 @@ use std::f64::consts::PI;
 use rayon::prelude::*;
 
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+pub use coefficients::LinearCoefficients;
 use convolution::SlipConvolution;
 use grid::ContactGrid;
 pub use grid::GridSize;
