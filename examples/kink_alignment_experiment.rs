@@ -142,7 +142,8 @@ fn errors(point: Point) -> (f64, f64) {
     }
     let exact = solve(point).0;
     let error = |v: [f64; 2]| (v[0] - exact[0]).abs().max((v[1] - exact[1]).abs());
-    let spread = collapses.iter().copied().fold(f64::MIN, f64::max) - collapses.iter().copied().fold(f64::MAX, f64::min);
+    let spread =
+        collapses.iter().copied().fold(f64::MIN, f64::max) - collapses.iter().copied().fold(f64::MAX, f64::min);
     println!(
         "a/b {:.3} ν {:.2} α {:.3} β {:+.3} t {:.3}: t_c {query_collapse:.3} (spread over corners {spread:.3}); \
          uniform t {:.4}, kink-fitted {:.4}",
