@@ -330,16 +330,32 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
     let mut magic = bytes.clone();
     magic[0] = b'X';
     assert!(refused(&magic).contains("magic"));
-    // A well-formed file whose values break the Coulomb bound (checksum recomputed).
+    // Well-formed files (checksum recomputed) whose values break the Coulomb bound, or whose
+    // ray has its collapse outside the range the kink-fitted size is built for.
     let table = model().table();
-    let mut values_outside = table.to_bytes();
-    let value_start = values_outside.len() - 4 - 4 * 3 * table.axes.len();
-    let node = value_start + 4 * 3 * 5;
-    values_outside[node..node + 4].copy_from_slice(&2.0f32.to_le_bytes());
-    let body = values_outside.len() - 4;
-    let checksum = crc32(&values_outside[..body]);
-    values_outside[body..].copy_from_slice(&checksum.to_le_bytes());
-    assert!(refused(&values_outside).contains("|F| > μQ"), "{}", refused(&values_outside));
+    let rewritten = |offset_from_values: isize, replacement: &[u8]| {
+        let mut bytes = table.to_bytes();
+        let value_start = bytes.len() - 4 - 2 * 3 * table.axes.len();
+        let at = (value_start as isize + offset_from_values) as usize;
+        bytes[at..at + replacement.len()].copy_from_slice(replacement);
+        let body = bytes.len() - 4;
+        let checksum = crc32(&bytes[..body]);
+        bytes[body..].copy_from_slice(&checksum.to_le_bytes());
+        refused(&bytes)
+    };
+    // Node 5's F_x and F_y at full scale: |F| = √2 μQ.
+    let full_scale = [i16::MAX.to_le_bytes(), i16::MAX.to_le_bytes()].concat();
+    let outside = rewritten(2 * 3 * 5, &full_scale);
+    assert!(outside.contains("node 5") && outside.contains("|F| > μQ"), "{outside}");
+    // The last ray's collapse (just before the three value units) at t = 0.1.
+    let collapse = rewritten(-24 - 4, &0.1f32.to_le_bytes());
+    assert!(collapse.contains("collapse at t = 0.1"), "{collapse}");
+    // A table made with a node outside the disc.
+    let axes = TableAxes { counts: [2, 2, 3, 2, 2], a_over_b: (0.1, 10.0), poisson_ratio: (0.0, 0.5) };
+    let mut values = vec![0.0; 3 * 48];
+    values[3 * 7] = 1.001;
+    let error = Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.6; 24], values).unwrap_err().to_string();
+    assert!(error.contains("node 7") && error.contains("|F| > μQ"), "{error}");
 }
 
 /// A table must span a/b ∈ [0.1, 10] (the range the model's error names) and all of ν ∈ [0, 0.5]
@@ -348,7 +364,7 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
 fn tables_over_other_ranges_are_refused() {
     let table = |a_over_b: (f64, f64), poisson_ratio: (f64, f64)| {
         let axes = TableAxes { counts: [2, 2, 3, 2, 2], a_over_b, poisson_ratio };
-        Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.0; 3 * 48])
+        Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.6; 24], vec![0.0; 3 * 48])
     };
     assert!(table((0.1, 10.0), (0.0, 0.5)).is_ok());
     let error = table((0.1, 10.0), (0.0, 0.4)).unwrap_err().to_string();
