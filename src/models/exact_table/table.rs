@@ -20,7 +20,7 @@
 
 use std::fmt;
 
-use super::coordinates::COLLAPSE_RANGE;
+use super::coordinates::{COLLAPSE_RANGE, IDENTITY_END};
 
 const MAGIC: &[u8; 16] = b"WRC-EXACT-TABLE\0";
 /// Version of this file format (not of the values: the provenance text says how they were made).
@@ -322,10 +322,13 @@ impl Table {
         {
             return Err(TableError("scale factors missing, not finite or not positive".into()));
         }
-        let (low, high) = COLLAPSE_RANGE;
-        if let Some((ray, t_c)) =
-            self.collapse.iter().enumerate().find(|(_, t_c)| !(low..=high).contains(&f64::from(**t_c)))
-        {
+        // The first τ cell must lie in the identity piece of the size map (see `interpolate.rs`).
+        if (axes.counts[4] - 1) as f64 * IDENTITY_END < 1.0 {
+            return Err(TableError(format!("{} τ nodes: at least 5 are needed", axes.counts[4])));
+        }
+        // In f32, as stored (the range's ends are t_c values too).
+        let range = COLLAPSE_RANGE.0 as f32..=COLLAPSE_RANGE.1 as f32;
+        if let Some((ray, t_c)) = self.collapse.iter().enumerate().find(|(_, t_c)| !range.contains(t_c)) {
             return Err(TableError(format!("ray {ray}: collapse at t = {t_c}, outside {COLLAPSE_RANGE:?}")));
         }
         Ok(())
@@ -364,13 +367,13 @@ mod tests {
     /// disc, full sliding along an axis exactly μQ, and the derived |F| the stored length.
     #[test]
     fn values_are_stored_to_the_nearest_count_inside_the_disc() {
-        let axes = TableAxes { counts: [2, 2, 3, 2, 2], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
-        let mut values = vec![0.0f32; 3 * 48];
+        let axes = TableAxes { counts: [2, 2, 3, 2, 5], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
+        let mut values = vec![0.0f32; 3 * 120];
         let nodes: [[f32; 3]; 3] = [[0.6, 0.8, 2.5], [-0.3, 0.123_456, -0.5], [1.000_005, 0.0, 0.0]];
         for (i, node) in nodes.iter().enumerate() {
             values[3 * i..3 * i + 3].copy_from_slice(node);
         }
-        let table = Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.6; 24], values).unwrap();
+        let table = Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.35, 0.9].repeat(12), values).unwrap();
         assert_eq!(table.units, [1.0 / FULL_SCALE, 1.0 / FULL_SCALE, 2.5 / FULL_SCALE]);
         for (i, node) in nodes.iter().enumerate() {
             let stored = table.nodes[i].map(f64::from);
