@@ -4,12 +4,17 @@
 //! the provenance text (u32 length + UTF-8: generator version, solver grid, command), the node
 //! counts along a/b, ν, β, α, τ (5 × u32), the a/b and ν ranges (4 × f64), the scale factors k
 //! at every (a/b, ν) node (3 × f64 each), the collapse t_c of every ray (a/b, ν, β, α) (f32,
-//! see `coordinates.rs`), the unit of the stored values (3 × f64), the values (3 × i16 per node,
-//! in those units: F_x/(μQ), F_y/(μQ), M_z/(μQc)), and a CRC-32 of all the bytes before it.
+//! see `coordinates.rs`), the units of the stored values at every τ node (the force's and the
+//! moment's, 2 × f64 each), the values (3 × i16 per node, in the units of its τ node: F_x/(μQ),
+//! F_y/(μQ), M_z/(μQc)), and a CRC-32 of all the bytes before it.
 //!
-//! The values are 16-bit: the force unit is 1/32767 μQ (3e-5 μQ, against the 0.003 μQ median
-//! the table is held to), rounded to the nearest count but never outside the Coulomb disc; this
-//! is what lets 29 a/b nodes fit in the 20 MB the table may take.
+//! The values are 16-bit, which is what lets 29 a/b nodes fit in the 20 MB the table may take.
+//! Each τ node has its own units, its largest |F| and |M_z| over the table divided by 32767:
+//! near t = 0 the forces are O(s), and one unit for all nodes (1/32767 μQ) made the first τ
+//! node's spin-driven F_y (≈ 2e-5 μQ at a/b = 0.1) wrong by up to 80 %, and the linear limit by
+//! 1.4 % (tests/exact_table.rs). Above the knee the force unit is 1/32767 μQ (3e-5 μQ, against
+//! the 0.003 μQ median the table is held to). Values are rounded to the nearest count but never
+//! outside the Coulomb disc.
 //!
 //! Layout: node (i_ab, i_ν, i_β, i_α, i_τ) at ((((i_ab·n_ν + i_ν)·n_β + i_β)·n_α + i_α)·n_τ + i_τ),
 //! so the two τ nodes of every corner of an interpolation cell are adjacent in memory; ray
@@ -29,7 +34,7 @@ pub const FORMAT_VERSION: u32 = 2;
 pub const A_OVER_B_RANGE: (f64, f64) = (0.1, 10.0);
 /// Values this far outside the Coulomb disc are refused (float rounding of the solver's values).
 const BOUND_TOLERANCE: f32 = 1e-5;
-/// The largest stored value: the force unit is 1/FULL_SCALE μQ.
+/// The largest stored count: a unit is the largest |value| of its τ node over FULL_SCALE.
 const FULL_SCALE: f64 = 32767.0;
 
 /// Node counts and ranges of the table's five axes: ln(a/b) and ν uniform over their ranges,
@@ -112,8 +117,8 @@ pub struct Table {
     pub(crate) collapse: Vec<f32>,
     /// F_x/(μQ), F_y/(μQ), M_z/(μQc) and |F|/(μQ) at each node.
     pub(crate) nodes: Vec<[f32; 4]>,
-    /// The value of one count of the stored F_x, F_y and M_z.
-    units: [f64; 3],
+    /// The value of one count of the stored forces F_x, F_y and of M_z, at each τ node.
+    units: Vec<[f64; 2]>,
     /// The axes as [`AxisMap`]s: ln(a/b), ν, β, α, τ.
     pub(crate) maps: [AxisMap; 5],
     /// Distances between neighbouring rays along a/b, ν, β and α ([`TableAxes::ray_strides`]),
@@ -135,7 +140,7 @@ impl std::error::Error for TableError {}
 
 impl Table {
     /// Assembles a table from its parts (the generator's last step): `values` are the nodes'
-    /// F_x/(μQ), F_y/(μQ), M_z/(μQc), stored in 16 bits (rounded towards zero).
+    /// F_x/(μQ), F_y/(μQ), M_z/(μQc), stored in 16 bits in the units of their τ node.
     pub fn new(
         provenance: String,
         axes: TableAxes,
@@ -151,26 +156,42 @@ impl Table {
                 return Err(TableError(format!("node {node} holds {v:?}: not finite or |F| > μQ")));
             }
         }
-        let moment_range = values.iter().skip(2).step_by(3).fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
-        let units = [1.0 / FULL_SCALE, 1.0 / FULL_SCALE, moment_range.max(1.0) / FULL_SCALE];
-        let quantize = |x: f64, unit: f64| (x / unit).round().clamp(-FULL_SCALE, FULL_SCALE) as i16;
-        let stored = values
+        // Onto the disc first (the solver's rounding), then the largest |F| and |M_z| per τ node.
+        let n_t = axes.counts[4];
+        let values: Vec<[f64; 3]> = values
             .chunks_exact(3)
-            .flat_map(|v| {
-                // Onto the disc first (the solver's rounding), then to the nearest count; a node on
-                // the rim that rounding put outside moves one count towards zero along its larger
-                // component (full sliding keeps |F| = μQ exactly along the axes).
+            .map(|v| {
                 let [x, y, m] = [v[0], v[1], v[2]].map(f64::from);
                 let shrink = 1.0 / x.hypot(y).max(1.0);
-                let [mut qx, mut qy] = [quantize(x * shrink, units[0]), quantize(y * shrink, units[1])];
+                [x * shrink, y * shrink, m]
+            })
+            .collect();
+        let mut ranges = vec![[0.0f64; 2]; n_t];
+        for (node, [x, y, m]) in values.iter().enumerate() {
+            let range = &mut ranges[node % n_t];
+            *range = [range[0].max(x.hypot(*y)), range[1].max(m.abs())];
+        }
+        // (|F| ≤ 1 up to the last bit of the shrink above.)
+        let unit = |range: f64| if range > 0.0 { range / FULL_SCALE } else { 1.0 / FULL_SCALE };
+        let units: Vec<[f64; 2]> = ranges.iter().map(|&[force, moment]| [unit(force.min(1.0)), unit(moment)]).collect();
+        let quantize = |x: f64, unit: f64| (x / unit).round().clamp(-FULL_SCALE, FULL_SCALE) as i16;
+        let stored = values
+            .iter()
+            .enumerate()
+            .flat_map(|(node, &[x, y, m])| {
+                // To the nearest count; a node on the rim that rounding put outside moves one count
+                // towards zero along its larger component (full sliding keeps |F| = μQ exactly
+                // along the axes).
+                let [force_unit, moment_unit] = units[node % n_t];
+                let [mut qx, mut qy] = [quantize(x, force_unit), quantize(y, force_unit)];
                 while f64::from(qx).hypot(f64::from(qy)) > FULL_SCALE {
                     let larger = if qx.abs() >= qy.abs() { &mut qx } else { &mut qy };
                     *larger -= larger.signum();
                 }
-                [qx, qy, quantize(m, units[2])]
+                [qx, qy, quantize(m, moment_unit)]
             })
             .collect();
-        Self::from_parts(provenance, axes, scales, collapse, [units[0], units[1], units[2]], stored)
+        Self::from_parts(provenance, axes, scales, collapse, units, stored)
     }
 
     fn from_parts(
@@ -178,7 +199,7 @@ impl Table {
         axes: TableAxes,
         scales: Vec<[f64; 3]>,
         collapse: Vec<f32>,
-        units: [f64; 3],
+        units: Vec<[f64; 2]>,
         stored: Vec<i16>,
     ) -> Result<Self, TableError> {
         let [n_ab, n_nu, n_beta, n_alpha, n_t] = axes.counts;
@@ -198,19 +219,28 @@ impl Table {
                 axes.len()
             )));
         }
-        if !(units.iter().all(|u| u.is_finite() && *u > 0.0) && units[0] == units[1]) {
-            return Err(TableError(format!("value units {units:?}")));
+        if units.len() != n_t {
+            return Err(TableError(format!("{} value units for {n_t} τ nodes", units.len())));
+        }
+        // A force unit above 1/FULL_SCALE would let FULL_SCALE counts exceed μQ.
+        if let Some((m, unit)) = units.iter().enumerate().find(|(_, [force, moment])| {
+            !(force.is_finite() && *force > 0.0 && *force <= 1.0 / FULL_SCALE && moment.is_finite() && *moment > 0.0)
+        }) {
+            return Err(TableError(format!("τ node {m}: value units {unit:?}")));
         }
         if let Some((node, v)) =
             stored.chunks_exact(3).enumerate().find(|(_, v)| f64::from(v[0]).hypot(f64::from(v[1])) > FULL_SCALE)
         {
-            let forces = [v[0], v[1]].map(|x| f64::from(x) * units[0]);
+            let forces = [v[0], v[1]].map(|x| f64::from(x) * units[node % n_t][0]);
             return Err(TableError(format!("node {node} holds F/(μQ) = {forces:?}: |F| > μQ")));
         }
         let nodes = stored
             .chunks_exact(3)
-            .map(|v| {
-                let [x, y, m] = [0, 1, 2].map(|k| f64::from(v[k]) * units[k]);
+            .enumerate()
+            .map(|(node, v)| {
+                let [force_unit, moment_unit] = units[node % n_t];
+                let [x, y, m] = [(v[0], force_unit), (v[1], force_unit), (v[2], moment_unit)]
+                    .map(|(count, unit)| f64::from(count) * unit);
                 [x, y, m, x.hypot(y).min(1.0)].map(|value| value as f32)
             })
             .collect();
@@ -236,11 +266,13 @@ impl Table {
         for t_c in &self.collapse {
             bytes.extend_from_slice(&t_c.to_le_bytes());
         }
-        for unit in &self.units {
+        for unit in self.units.iter().flatten() {
             bytes.extend_from_slice(&unit.to_le_bytes());
         }
-        for node in &self.nodes {
-            for (value, unit) in node.iter().zip(self.units) {
+        let n_t = self.axes.counts[4];
+        for (i, node) in self.nodes.iter().enumerate() {
+            let [force_unit, moment_unit] = self.units[i % n_t];
+            for (value, unit) in node.iter().zip([force_unit, force_unit, moment_unit]) {
                 // Exactly the stored count: the f32 is within 2e-3 counts of it.
                 bytes.extend_from_slice(&((f64::from(*value) / unit).round() as i16).to_le_bytes());
             }
@@ -297,7 +329,7 @@ impl Table {
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .collect();
-        let units = [reader.f64()?, reader.f64()?, reader.f64()?];
+        let units: Vec<[f64; 2]> = (0..counts[4]).map(|_| Ok([reader.f64()?, reader.f64()?])).collect::<Result<_, _>>()?;
         let stored: Vec<i16> =
             reader.take(2 * 3 * axes.len())?.chunks_exact(2).map(|b| i16::from_le_bytes([b[0], b[1]])).collect();
         if !reader.bytes.is_empty() {
@@ -363,30 +395,49 @@ impl<'a> Reader<'a> {
 mod tests {
     use super::*;
 
-    /// 16-bit storage: within one unit (1/32767 μQ) of the value, never outside the Coulomb
-    /// disc, full sliding along an axis exactly μQ, and the derived |F| the stored length.
+    /// 16-bit storage: within one unit of the value, the unit of each τ node its largest
+    /// value / 32767 (small near t = 0), never outside the Coulomb disc, full sliding along an
+    /// axis exactly μQ, and the derived |F| the stored length.
     #[test]
-    fn values_are_stored_to_the_nearest_count_inside_the_disc() {
+    fn values_are_stored_to_the_nearest_count_of_their_tau_node_inside_the_disc() {
         let axes = TableAxes { counts: [2, 2, 3, 2, 5], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
         let mut values = vec![0.0f32; 3 * 120];
-        let nodes: [[f32; 3]; 3] = [[0.6, 0.8, 2.5], [-0.3, 0.123_456, -0.5], [1.000_005, 0.0, 0.0]];
-        for (i, node) in nodes.iter().enumerate() {
-            values[3 * i..3 * i + 3].copy_from_slice(node);
+        // Nodes 1, 2 and 4 of the first ray (τ = 0.25, 0.5, 1), node 1 of the second ray.
+        let nodes: [(usize, [f32; 3]); 4] = [
+            (1, [1.0e-4, -2.0e-5, 3.0e-6]),
+            (6, [-4.0e-4, 0.000_123_456, -7.0e-6]),
+            (2, [0.6, 0.8, 2.5]),
+            (4, [1.000_005, 0.0, 0.0]),
+        ];
+        for (i, node) in nodes {
+            values[3 * i..3 * i + 3].copy_from_slice(&node);
         }
         let table = Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.35, 0.9].repeat(12), values).unwrap();
-        assert_eq!(table.units, [1.0 / FULL_SCALE, 1.0 / FULL_SCALE, 2.5 / FULL_SCALE]);
-        for (i, node) in nodes.iter().enumerate() {
+        let expected_units = [
+            [1.0 / FULL_SCALE; 2],
+            [f64::from(-4.0e-4f32).hypot(f64::from(0.000_123_456f32)) / FULL_SCALE, f64::from(7.0e-6f32) / FULL_SCALE],
+            [1.0 / FULL_SCALE, 2.5 / FULL_SCALE],
+            [1.0 / FULL_SCALE; 2],
+            [1.0 / FULL_SCALE; 2],
+        ];
+        for (m, (unit, expected)) in table.units.iter().zip(expected_units).enumerate() {
+            for k in 0..2 {
+                assert!((unit[k] - expected[k]).abs() <= 1e-9 * expected[k], "τ node {m}: {unit:?} vs {expected:?}");
+            }
+        }
+        for (i, node) in nodes {
             let stored = table.nodes[i].map(f64::from);
-            for k in 0..3 {
+            let [force_unit, moment_unit] = table.units[i % 5];
+            for (k, unit) in [force_unit, force_unit, moment_unit].into_iter().enumerate() {
                 let value = f64::from(node[k]).clamp(-1.0, 2.5);
-                let count = stored[k] / table.units[k];
+                let count = stored[k] / unit;
                 assert!((count - count.round()).abs() < 3e-3, "node {i}, value {k}: {count} counts");
-                assert!((stored[k] - value).abs() <= table.units[k] + 1e-7, "node {i}, value {k}: {stored:?}");
+                assert!((stored[k] - value).abs() <= unit + 1e-7 * unit * FULL_SCALE, "node {i}, value {k}: {stored:?}");
             }
             assert!(stored[0].hypot(stored[1]) <= 1.0 + 1e-7 && stored[3] <= 1.0, "node {i}: {stored:?}");
             assert!((stored[3] - stored[0].hypot(stored[1])).abs() <= 1e-7, "node {i}: {stored:?}");
         }
-        assert_eq!(table.nodes[2], [1.0, 0.0, 0.0, 1.0], "full sliding along ξ is μQ exactly");
+        assert_eq!(table.nodes[4], [1.0, 0.0, 0.0, 1.0], "full sliding along ξ is μQ exactly");
         assert_eq!(Table::from_bytes(&table.to_bytes()), Ok(table));
     }
 }
