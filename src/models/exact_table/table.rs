@@ -329,7 +329,8 @@ impl Table {
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .collect();
-        let units: Vec<[f64; 2]> = (0..counts[4]).map(|_| Ok([reader.f64()?, reader.f64()?])).collect::<Result<_, _>>()?;
+        let units: Vec<[f64; 2]> =
+            (0..counts[4]).map(|_| Ok([reader.f64()?, reader.f64()?])).collect::<Result<_, _>>()?;
         let stored: Vec<i16> =
             reader.take(2 * 3 * axes.len())?.chunks_exact(2).map(|b| i16::from_le_bytes([b[0], b[1]])).collect();
         if !reader.bytes.is_empty() {
@@ -432,7 +433,10 @@ mod tests {
                 let value = f64::from(node[k]).clamp(-1.0, 2.5);
                 let count = stored[k] / unit;
                 assert!((count - count.round()).abs() < 3e-3, "node {i}, value {k}: {count} counts");
-                assert!((stored[k] - value).abs() <= unit + 1e-7 * unit * FULL_SCALE, "node {i}, value {k}: {stored:?}");
+                assert!(
+                    (stored[k] - value).abs() <= unit + 1e-7 * unit * FULL_SCALE,
+                    "node {i}, value {k}: {stored:?}"
+                );
             }
             assert!(stored[0].hypot(stored[1]) <= 1.0 + 1e-7 && stored[3] <= 1.0, "node {i}: {stored:?}");
             assert!((stored[3] - stored[0].hypot(stored[1])).abs() <= 1e-7, "node {i}: {stored:?}");
