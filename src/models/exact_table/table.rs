@@ -413,7 +413,7 @@ mod tests {
         for (i, node) in nodes {
             values[3 * i..3 * i + 3].copy_from_slice(&node);
         }
-        let table = Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.35, 0.9].repeat(12), values).unwrap();
+        let table = Table::new("test".into(), axes, vec![[1.0; 3]; 4], [0.35, 0.9].repeat(12), values).unwrap();
         let expected_units = [
             [1.0 / FULL_SCALE; 2],
             [f64::from(-4.0e-4f32).hypot(f64::from(0.000_123_456f32)) / FULL_SCALE, f64::from(7.0e-6f32) / FULL_SCALE],
