@@ -8,18 +8,21 @@
 //! node τ_c = 27/48; evaluate a query at τ(t; t_c interpolated from its 16 corner rays), where
 //! every corner's kink sits on the same node.
 //!
-//! For each query point this solves the 16 corner rays of the shipped table's (a/b, ν, β, α)
+//! For each query point this solves the 16 corner rays of the second table's (a/b, ν, β, α)
 //! cell directly (80 × 20 elements, the table's grid; 49 nodes in t or τ) and prints the error
 //! of both interpolants against the solver at the point itself, in μQ (max of F_x, F_y):
 //! `cargo run --release --example kink_alignment_experiment -- 60` (random points, ≈ 80 s), or
-//! `-- 0 worst` (the nine largest errors of the shipped table on 1000 held-out points).
+//! `-- 0 worst` (the nine largest errors of the second table on 1000 held-out points); with
+//! `--a-over-b-nodes 29` on the third table's a/b nodes (`-- 300 worst --a-over-b-nodes 29`,
+//! ≈ 10 min). The third table is built on this experiment (docs/exact_table.md).
 
 use rayon::prelude::*;
 use wheel_rail_contact::{ContactInput, ExactTheory, KalkerCoefficients};
 
 const NORMAL_FORCE: f64 = 80e3;
 const FRICTION: f64 = 0.3;
-/// The shipped table's node counts along ln(a/b), ν, β, α, and t.
+/// The second table's node counts along ln(a/b), ν, β, α, and t (the a/b count can be changed:
+/// `--a-over-b-nodes 29` is the third table's).
 const COUNTS: [usize; 5] = [15, 4, 41, 13, 49];
 /// Adhesion fraction below which a ray counts as past its collapse.
 const COLLAPSED: f64 = 0.15;
@@ -96,15 +99,16 @@ fn t_of(tau: f64, t_c: f64) -> f64 {
 }
 
 /// The 16 corner rays (a/b, ν, α, β) of the point's cell and their multilinear weights.
-fn corners([a_over_b, nu, alpha, beta, _]: Point) -> Vec<(f64, [f64; 4])> {
+fn corners([a_over_b, nu, alpha, beta, _]: Point, a_over_b_nodes: usize) -> Vec<(f64, [f64; 4])> {
+    let counts = [a_over_b_nodes, COUNTS[1], COUNTS[2], COUNTS[3]];
     let low = [0.1f64.ln(), 0.0, -1.0, 0.0];
     let high = [10f64.ln(), 0.5, 1.0, 1.0];
     let coordinates = [a_over_b.ln(), nu, beta, alpha];
-    let node = |d: usize, i: usize| low[d] + i as f64 * (high[d] - low[d]) / (COUNTS[d] - 1) as f64;
+    let node = |d: usize, i: usize| low[d] + i as f64 * (high[d] - low[d]) / (counts[d] - 1) as f64;
     let cell: Vec<(usize, f64)> = (0..4)
         .map(|d| {
-            let position = (coordinates[d] - low[d]) / (high[d] - low[d]) * (COUNTS[d] - 1) as f64;
-            let index = (position.floor() as usize).min(COUNTS[d] - 2);
+            let position = (coordinates[d] - low[d]) / (high[d] - low[d]) * (counts[d] - 1) as f64;
+            let index = (position.floor() as usize).min(counts[d] - 2);
             (index, position - index as f64)
         })
         .collect();
@@ -123,8 +127,8 @@ fn corners([a_over_b, nu, alpha, beta, _]: Point) -> Vec<(f64, [f64; 4])> {
 }
 
 /// Errors of the uniform-t and the kink-fitted interpolants at one point.
-fn errors(point: Point) -> (f64, f64) {
-    let rays = corners(point);
+fn errors(point: Point, a_over_b_nodes: usize) -> (f64, f64) {
+    let rays = corners(point, a_over_b_nodes);
     let collapses: Vec<f64> = rays.iter().map(|&(_, ray)| collapse(ray)).collect();
     let query_collapse: f64 = rays.iter().zip(&collapses).map(|((w, _), t_c)| w * t_c).sum();
     let step = 1.0 / (COUNTS[4] - 1) as f64;
@@ -161,6 +165,10 @@ fn errors(point: Point) -> (f64, f64) {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let random: usize = args.first().map_or(60, |n| n.parse().expect("number of random points"));
+    let a_over_b_nodes = args
+        .iter()
+        .position(|a| a == "--a-over-b-nodes")
+        .map_or(COUNTS[0], |i| args[i + 1].parse().expect("--a-over-b-nodes N"));
     let mut points: Vec<Point> = if args.get(1).map(String::as_str) == Some("worst") {
         vec![
             [2.007, 0.43, 0.527, -0.564, 0.617],
@@ -184,7 +192,7 @@ fn main() {
     for _ in 0..random {
         points.push([10f64.powf(2.0 * next() - 1.0), 0.5 * next(), next(), 2.0 * next() - 1.0, 0.3 + 0.6 * next()]);
     }
-    let results: Vec<(f64, f64)> = points.par_iter().map(|&point| errors(point)).collect();
+    let results: Vec<(f64, f64)> = points.par_iter().map(|&point| errors(point, a_over_b_nodes)).collect();
     let summary = |mut e: Vec<f64>| {
         e.sort_by(f64::total_cmp);
         format!("median {:.4}, max {:.4}", e[e.len() / 2], e[e.len() - 1])

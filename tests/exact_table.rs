@@ -82,9 +82,10 @@ fn the_compiled_in_table_says_how_it_was_made_and_fits_in_20_mb() {
 }
 
 /// Random held-out points (never nodes) from the linear range to full sliding, spin included,
-/// against the exact solver on 120 × 30 elements (within 0.002 μQ of its converged solution;
-/// docs/exact_table.md). The full set (1000 points, against the same solver) is in
-/// the trade report.
+/// against the exact solver on 120 × 30 elements (its grid error, against the converged theory,
+/// reaches 0.009 μQ at the worst of the trade report's points; docs/exact_table.md). The full
+/// set (1000 points, against the same solver, its worst re-checked against the converged
+/// theory) is in the trade report.
 #[test]
 fn held_out_points_match_the_exact_theory() {
     let mut points = Points(20261122);
@@ -104,9 +105,50 @@ fn held_out_points_match_the_exact_theory() {
     forces.sort_by(f64::total_cmp);
     moments.sort_by(f64::total_cmp);
     let (median, max) = (forces[forces.len() / 2], forces[forces.len() - 1]);
-    // Issue 11's goals (measured on this sample: median 0.0026, max 0.0085, M_z max 0.0092).
+    // Issue 11's goals (measured on this sample: median 0.0017, max 0.0055, M_z max 0.0058;
+    // with the second table, uniform in t: 0.0026, 0.0085, 0.0092).
     assert!(median <= 0.003 && max <= 0.02, "F: median {median}, max {max}");
     assert!(moments[moments.len() - 1] <= 0.02, "M_z: max {}", moments[moments.len() - 1]);
+}
+
+/// The contact at a point of the table's coordinates (a/b, ν, α, β, t) (docs/exact_table.md):
+/// u = k · (ξ, η, cφ) · G/(μp₀) with k from Kalker's coefficients, s = (t/(1 − t))².
+fn at_table_point([a_over_b, nu, alpha, beta, t]: [f64; 5]) -> ContactInput {
+    let base = contact(a_over_b, nu, 0.0, 0.0, 0.0);
+    let (a, b) = (base.semi_axis_a, base.semi_axis_b);
+    let size = (t / (1.0 - t)).powi(2);
+    let u = [(1.0 - alpha) * (1.0 - beta.abs()) * size, alpha * (1.0 - beta.abs()) * size, beta * size];
+    let max_pressure = 3.0 * base.normal_force / (2.0 * std::f64::consts::PI * a * b);
+    let unit = 2.0 * std::f64::consts::PI / 3.0 * base.friction_coefficient * max_pressure / base.shear_modulus;
+    let k = KalkerCoefficients::new(a_over_b, nu);
+    let c33 = KalkerCoefficients::spin_moment_c33(a_over_b, nu);
+    ContactInput {
+        creepage_longitudinal: u[0] * unit / k.c11,
+        creepage_lateral: u[1] * unit / k.c22,
+        spin_creepage: u[2] * unit / ((k.c23 + c33) * (a * b).sqrt()),
+        ..base
+    }
+}
+
+/// Where the adhesion zone collapses along a ray (a kink of the forces), the table with uniform
+/// t nodes was off by up to 0.029 μQ: the six worst points of its held-out sets. The kink-fitted
+/// size puts every ray's collapse on one node (docs/exact_table.md).
+#[test]
+fn the_adhesion_collapse_kink_is_resolved() {
+    let points = [
+        [2.007, 0.43, 0.527, -0.564, 0.617],
+        [2.018, 0.16, 0.502, -0.661, 0.589],
+        [0.670, 0.13, 0.793, -0.816, 0.633],
+        [4.993, 0.27, 0.047, -0.722, 0.550],
+        [5.869, 0.12, 0.021, 0.922, 0.509],
+        [6.166, 0.12, 0.347, -0.378, 0.597],
+    ];
+    let cases: Vec<ContactInput> = points.iter().map(|&point| at_table_point(point)).collect();
+    let exact = ExactTheory::new(120, 30).creep_forces_many(&cases);
+    for ((input, reference), point) in cases.iter().zip(exact).zip(points) {
+        let (force, moment) = deviation(input, &model().creep_forces(input).unwrap(), &reference.unwrap());
+        assert!(force <= 0.015 && moment <= 0.015, "{point:?}: F off by {force} μQ, M_z by {moment} μQc");
+    }
 }
 
 /// Dense sweeps through every coordinate of the table (and across its fold edges ξ = 0, η = 0,
@@ -330,16 +372,37 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
     let mut magic = bytes.clone();
     magic[0] = b'X';
     assert!(refused(&magic).contains("magic"));
-    // A well-formed file whose values break the Coulomb bound (checksum recomputed).
+    // Well-formed files (checksum recomputed) whose values break the Coulomb bound, or whose
+    // ray has its collapse outside the range the kink-fitted size is built for.
     let table = model().table();
-    let mut values_outside = table.to_bytes();
-    let value_start = values_outside.len() - 4 - 4 * 3 * table.axes.len();
-    let node = value_start + 4 * 3 * 5;
-    values_outside[node..node + 4].copy_from_slice(&2.0f32.to_le_bytes());
-    let body = values_outside.len() - 4;
-    let checksum = crc32(&values_outside[..body]);
-    values_outside[body..].copy_from_slice(&checksum.to_le_bytes());
-    assert!(refused(&values_outside).contains("|F| > μQ"), "{}", refused(&values_outside));
+    let rewritten = |offset_from_values: isize, replacement: &[u8]| {
+        let mut bytes = table.to_bytes();
+        let value_start = bytes.len() - 4 - 2 * 3 * table.axes.len();
+        let at = (value_start as isize + offset_from_values) as usize;
+        bytes[at..at + replacement.len()].copy_from_slice(replacement);
+        let body = bytes.len() - 4;
+        let checksum = crc32(&bytes[..body]);
+        bytes[body..].copy_from_slice(&checksum.to_le_bytes());
+        refused(&bytes)
+    };
+    // Node 5's F_x and F_y at full scale: |F| = √2 μQ.
+    let full_scale = [i16::MAX.to_le_bytes(), i16::MAX.to_le_bytes()].concat();
+    let outside = rewritten(2 * 3 * 5, &full_scale);
+    assert!(outside.contains("node 5") && outside.contains("|F| > μQ"), "{outside}");
+    // The last τ node's force unit (just before the values, then its moment unit) at 2/32767:
+    // 32767 counts would be 2 μQ.
+    let n_t = table.axes.counts[4];
+    let unit = rewritten(-16, &(2.0f64 / 32767.0).to_le_bytes());
+    assert!(unit.contains(&format!("τ node {}: value units", n_t - 1)), "{unit}");
+    // The last ray's collapse (just before the value units, 2 per τ node) at t = 0.1.
+    let collapse = rewritten(-16 * n_t as isize - 4, &0.1f32.to_le_bytes());
+    assert!(collapse.contains("collapse at t = 0.1"), "{collapse}");
+    // A table made with a node outside the disc.
+    let axes = TableAxes { counts: [2, 2, 3, 2, 5], a_over_b: (0.1, 10.0), poisson_ratio: (0.0, 0.5) };
+    let mut values = vec![0.0; 3 * 120];
+    values[3 * 7] = 1.001;
+    let error = Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.6; 24], values).unwrap_err().to_string();
+    assert!(error.contains("node 7") && error.contains("|F| > μQ"), "{error}");
 }
 
 /// A table must span a/b ∈ [0.1, 10] (the range the model's error names) and all of ν ∈ [0, 0.5]
@@ -347,8 +410,8 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
 #[test]
 fn tables_over_other_ranges_are_refused() {
     let table = |a_over_b: (f64, f64), poisson_ratio: (f64, f64)| {
-        let axes = TableAxes { counts: [2, 2, 3, 2, 2], a_over_b, poisson_ratio };
-        Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.0; 3 * 48])
+        let axes = TableAxes { counts: [2, 2, 3, 2, 5], a_over_b, poisson_ratio };
+        Table::new("test".into(), axes, vec![[1.0; 3]; 4], vec![0.6; 24], vec![0.0; 3 * 120])
     };
     assert!(table((0.1, 10.0), (0.0, 0.5)).is_ok());
     let error = table((0.1, 10.0), (0.0, 0.4)).unwrap_err().to_string();

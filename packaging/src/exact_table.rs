@@ -7,12 +7,14 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use wheel_rail_contact::models::exact_table::generation::{assemble, refresh_full_slip, slice_values, SliceStatistics};
+use wheel_rail_contact::models::exact_table::generation::{
+    assemble, refresh_full_slip, slice_values, Slice, SliceStatistics,
+};
 use wheel_rail_contact::models::exact_table::{TableAxes, A_OVER_B_RANGE};
 use wheel_rail_contact::ExactTheory;
 
 /// Version of the generator (bump when the values it makes change for the same settings).
-pub const GENERATOR_VERSION: u32 = 1;
+pub const GENERATOR_VERSION: u32 = 2;
 
 /// What a generation makes.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,12 +26,13 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// The shipped table: a/b ∈ [0.1, 10] (15 nodes, uniform in ln a/b), ν ∈ [0, 0.5] (4),
-    /// β (41), α (13), t (49), solved on 80 × 20 elements (docs/exact_table.md: the grid's error
-    /// is small against the interpolation's; 18.8 MB, below the 20 MB the issue allows).
+    /// The shipped table: a/b ∈ [0.1, 10] (29 nodes, uniform in ln a/b), ν ∈ [0, 0.5] (4),
+    /// β (41), α (13), τ (49), solved on 80 × 20 elements (docs/exact_table.md: the grid's error
+    /// is small against the interpolation's; 18.4 MB in 16-bit values, below the 20 MB the issue
+    /// allows).
     pub fn shipped() -> Self {
         Self {
-            axes: TableAxes { counts: [15, 4, 41, 13, 49], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) },
+            axes: TableAxes { counts: [29, 4, 41, 13, 49], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) },
             grid: (80, 20),
         }
     }
@@ -81,14 +84,13 @@ pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), 
     for i_ab in 0..n_ab {
         for i_nu in 0..n_nu {
             let path = parts.join(format!("slice-{i_ab:03}-{i_nu:03}.f32"));
-            let slice_length = 3 * settings.axes.counts[2..].iter().product::<usize>();
-            let values = match read_slice(&path, slice_length) {
-                Some(values) => refresh_full_slip(&settings.axes, i_ab, i_nu, &values),
+            let slice = match read_slice(&path, &settings.axes) {
+                Some(saved) => refresh_full_slip(&settings.axes, i_ab, i_nu, &saved),
                 None => {
                     let slice_started = Instant::now();
-                    let (values, stats) = slice_values(&settings.axes, i_ab, i_nu, &solver)
+                    let (slice, stats) = slice_values(&settings.axes, i_ab, i_nu, &solver)
                         .map_err(|e| format!("slice a/b node {i_ab}, ν node {i_nu}: {e}"))?;
-                    write_slice(&path, &values)?;
+                    write_slice(&path, &slice)?;
                     totals += stats;
                     println!(
                         "slice {:>3}/{}: a/b = {:.4}, ν = {:.3}: {} solves ({} unconverged), {:.1} Newton steps and {:.0} products per solve, {:.1} s",
@@ -102,16 +104,17 @@ pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), 
                         stats.operator_products as f64 / stats.solves.max(1) as f64,
                         slice_started.elapsed().as_secs_f64()
                     );
-                    values
+                    slice
                 }
             };
-            slices.push(values);
+            slices.push(slice);
         }
     }
     let provenance = format!(
         "wheel-rail-contact {} exact_table generator v{GENERATOR_VERSION}: `cargo fmu exact-table{}`; \
          ExactTheory (FFT Newton-GMRES) on {} x {} elements over 2.2a x 2.2b; nodes a/b {} (ln-uniform \
-         over {:?}), nu {} over {:?}, beta {}, alpha {}, t {}; t = 1 by full-sliding quadrature",
+         over {:?}), nu {} over {:?}, beta {}, alpha {}, tau {} (kink-fitted size: each ray's adhesion collapse \
+         at tau 0.5625, found by bisection); tau = 1 by full-sliding quadrature; values 16-bit",
         env!("CARGO_PKG_VERSION"),
         args_text(settings),
         settings.grid.0,
@@ -150,19 +153,25 @@ fn args_text(settings: &Settings) -> String {
     format!(" --counts {},{},{},{},{} --grid {}x{}", c[0], c[1], c[2], c[3], c[4], settings.grid.0, settings.grid.1)
 }
 
-/// A saved slice of `length` values, or `None` when it is missing or unreadable (then it is
-/// solved again).
-fn read_slice(path: &Path, length: usize) -> Option<Vec<f32>> {
+/// A saved slice (its values, then its rays' collapse, f32), or `None` when it is missing or
+/// unreadable (then it is solved again).
+fn read_slice(path: &Path, axes: &TableAxes) -> Option<Slice> {
+    let rays = axes.counts[2] * axes.counts[3];
+    let length = 3 * rays * axes.counts[4];
     let bytes = std::fs::read(path).ok()?;
-    (bytes.len() == 4 * length)
-        .then(|| bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect())
+    if bytes.len() != 4 * (length + rays) {
+        return None;
+    }
+    let mut floats: Vec<f32> = bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
+    let collapse = floats.split_off(length);
+    Some(Slice { values: floats, collapse })
 }
 
 /// Writes a slice atomically (a temporary file renamed), so an interrupted write is not a slice.
-fn write_slice(path: &Path, values: &[f32]) -> Result<(), String> {
+fn write_slice(path: &Path, slice: &Slice) -> Result<(), String> {
     let temporary: PathBuf = path.with_extension("partial");
     let mut file = std::fs::File::create(&temporary).map_err(|e| format!("{}: {e}", temporary.display()))?;
-    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let bytes: Vec<u8> = slice.values.iter().chain(&slice.collapse).flat_map(|v| v.to_le_bytes()).collect();
     file.write_all(&bytes).and_then(|()| file.sync_all()).map_err(|e| format!("{}: {e}", temporary.display()))?;
     std::fs::rename(&temporary, path).map_err(|e| format!("{}: {e}", path.display()))
 }

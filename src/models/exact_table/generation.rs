@@ -1,19 +1,32 @@
-//! Making the table: every node's forces from the exact solver (t < 1) or the full-sliding
-//! quadrature (t = 1), one (a/b, ν) slice at a time so that a generator can save slices as
-//! they finish and resume after an interruption (`cargo fmu exact-table` does).
+//! Making the table: every ray's collapse t_c (bisection on the adhesion fraction), every
+//! node's forces from the exact solver (τ < 1) or the full-sliding quadrature (τ = 1), one
+//! (a/b, ν) slice at a time so that a generator can save slices as they finish and resume after
+//! an interruption (`cargo fmu exact-table` does).
 
 use rayon::prelude::*;
 
-use super::coordinates::{scale_factors, unfold};
+use super::coordinates::{scale_factors, size_of, unfold, COLLAPSE_RANGE, IDENTITY_END};
 use super::full_slip::full_slip_forces;
 use super::table::{Table, TableAxes, TableError};
-use crate::{ContactInput, ExactTheory, WarmStart};
+use crate::{ContactInput, ExactSolution, ExactTheory, WarmStart};
 
 /// A representative contact for the solves: by similarity only a/b, ν and u matter.
 const NORMAL_FORCE: f64 = 80e3;
 const FRICTION: f64 = 0.3;
 const SHEAR_MODULUS: f64 = 82e9;
 const MEAN_SEMI_AXIS: f64 = 5e-3;
+/// A ray's collapse t_c is where its adhesion area falls below this fraction of the contact
+/// (docs/exact_table.md: the zone collapses from ≈ 30 % to ≈ 3 % within Δt ≈ 0.003).
+const COLLAPSED: f64 = 0.15;
+/// Bisection steps for t_c: 0.55/2¹⁰ = 5e-4, a fortieth of a node spacing.
+const BISECTION_STEPS: usize = 10;
+
+/// One (a/b, ν) slice: the values (3 per node over β, α, τ) and each ray's collapse t_c (over β, α).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Slice {
+    pub values: Vec<f32>,
+    pub collapse: Vec<f32>,
+}
 
 /// The scale factors of every (a/b, ν) node, in the table's order.
 pub fn scales(axes: &TableAxes) -> Vec<[f64; 3]> {
@@ -47,20 +60,20 @@ impl std::ops::AddAssign for SliceStatistics {
     }
 }
 
-/// The values of slice (`i_ab`, `i_nu`) in the table's layout (3 per node over β, α, t), solved
-/// by `solver` on rayon's thread pool, one ray (fixed β, α; t rising, each solve warm-started
-/// from the previous) per task; the t = 1 nodes by the full-sliding quadrature.
+/// Slice (`i_ab`, `i_nu`), solved by `solver` on rayon's thread pool, one ray (fixed β, α;
+/// t rising, each solve warm-started from a previous one) per task; the τ = 1 nodes by the
+/// full-sliding quadrature.
 pub fn slice_values(
     axes: &TableAxes,
     i_ab: usize,
     i_nu: usize,
     solver: &ExactTheory,
-) -> Result<(Vec<f32>, SliceStatistics), crate::InvalidInput> {
+) -> Result<(Slice, SliceStatistics), crate::InvalidInput> {
     let a_over_b = axes.a_over_b_node(i_ab);
     let poisson_ratio = axes.poisson_node(i_nu);
     let scale = scale_factors(a_over_b, poisson_ratio);
     let solved = solved_rays(axes);
-    let rays: Vec<(Vec<[f64; 3]>, SliceStatistics)> = solved
+    let rays: Vec<(Ray, SliceStatistics)> = solved
         .par_iter()
         .map(|&(k, l)| ray(axes, k, l, a_over_b, poisson_ratio, scale, solver))
         .collect::<Result<_, _>>()?;
@@ -73,16 +86,20 @@ pub fn slice_values(
     Ok((fill_slice(axes, i_ab, i_nu, &solved, values), statistics))
 }
 
-/// A saved slice (as [`slice_values`] made it) with its t = 1 nodes made again by the current
+/// A saved slice (as [`slice_values`] made it) with its τ = 1 nodes made again by the current
 /// quadrature: the solver's nodes are the expensive part, and only they are kept.
-pub fn refresh_full_slip(axes: &TableAxes, i_ab: usize, i_nu: usize, saved: &[f32]) -> Vec<f32> {
+pub fn refresh_full_slip(axes: &TableAxes, i_ab: usize, i_nu: usize, saved: &Slice) -> Slice {
     let [_, _, _, n_alpha, n_t] = axes.counts;
     let solved = solved_rays(axes);
     let rays = solved
         .iter()
         .map(|&(k, l)| {
             let start = 3 * n_t * (k * n_alpha + l);
-            saved[start..start + 3 * n_t].chunks_exact(3).map(|v| [v[0], v[1], v[2]].map(f64::from)).collect()
+            let values = saved.values[start..start + 3 * n_t]
+                .chunks_exact(3)
+                .map(|v| [v[0], v[1], v[2]].map(f64::from))
+                .collect();
+            Ray { collapse: f64::from(saved.collapse[k * n_alpha + l]), values }
         })
         .collect();
     fill_slice(axes, i_ab, i_nu, &solved, rays)
@@ -101,34 +118,40 @@ fn solved_rays(axes: &TableAxes) -> Vec<(usize, usize)> {
         .collect()
 }
 
-/// The slice from its solved rays, with each t = 1 node replaced by full sliding and the fold
+/// A solved ray: its collapse and its nodes' values.
+#[derive(Clone)]
+struct Ray {
+    collapse: f64,
+    values: Vec<[f64; 3]>,
+}
+
+/// The slice from its solved rays, with each τ = 1 node replaced by full sliding and the fold
 /// edges tabulated with the symmetries they must have (`coordinates.rs`): the rays at β = ±1
 /// (pure spin) are one ray for every α with F_x = 0; at α = 0 the ray at −β is the mirror
-/// (F_y, M_z reversed) of the ray at β; at α = 1 (no ξ) F_x = 0.
-fn fill_slice(
-    axes: &TableAxes,
-    i_ab: usize,
-    i_nu: usize,
-    solved: &[(usize, usize)],
-    rays: Vec<Vec<[f64; 3]>>,
-) -> Vec<f32> {
+/// (F_y, M_z reversed, the same collapse) of the ray at β; at α = 1 (no ξ) F_x = 0.
+fn fill_slice(axes: &TableAxes, i_ab: usize, i_nu: usize, solved: &[(usize, usize)], rays: Vec<Ray>) -> Slice {
     let [_, _, n_beta, n_alpha, n_t] = axes.counts;
     let a_over_b = axes.a_over_b_node(i_ab);
     let scale = scale_factors(a_over_b, axes.poisson_node(i_nu));
     let mut by_direction = vec![None; n_beta * n_alpha];
-    for (&(k, l), mut values) in solved.iter().zip(rays) {
+    for (&(k, l), mut ray) in solved.iter().zip(rays) {
         let (beta, alpha, _) = axes.direction_node(k, l, n_t - 1);
-        values[n_t - 1] = full_slip_forces(unfold(alpha, beta, 0.5), a_over_b, scale);
-        by_direction[k * n_alpha + l] = Some(values);
+        ray.values[n_t - 1] = full_slip_forces(unfold(alpha, beta, 0.5), a_over_b, scale);
+        by_direction[k * n_alpha + l] = Some(ray);
     }
-    let mirrored = |values: &Vec<[f64; 3]>| values.iter().map(|v| [v[0], -v[1], -v[2]]).collect::<Vec<_>>();
-    let mut out = Vec::with_capacity(3 * n_beta * n_alpha * n_t);
+    let mirrored =
+        |ray: &Ray| Ray { collapse: ray.collapse, values: ray.values.iter().map(|v| [v[0], -v[1], -v[2]]).collect() };
+    let mut slice = Slice {
+        values: Vec::with_capacity(3 * n_beta * n_alpha * n_t),
+        collapse: Vec::with_capacity(n_beta * n_alpha),
+    };
     for k in 0..n_beta {
         for l in 0..n_alpha {
             let (beta, alpha, _) = axes.direction_node(k, l, 0);
-            let values = if beta.abs() == 1.0 {
+            let ray = if beta.abs() == 1.0 {
                 let plus = by_direction[(n_beta - 1) * n_alpha].as_ref().expect("pole ray solved");
-                let pure_spin: Vec<[f64; 3]> = plus.iter().map(|v| [0.0, v[1], v[2]]).collect();
+                let pure_spin =
+                    Ray { collapse: plus.collapse, values: plus.values.iter().map(|v| [0.0, v[1], v[2]]).collect() };
                 if beta > 0.0 {
                     pure_spin
                 } else {
@@ -139,17 +162,19 @@ fn fill_slice(
             } else {
                 by_direction[k * n_alpha + l].clone().expect("ray solved")
             };
-            for v in values {
+            slice.collapse.push(ray.collapse as f32);
+            for v in ray.values {
                 let x = if alpha == 1.0 { 0.0 } else { v[0] };
-                out.extend([x, v[1], v[2]].map(|x| x as f32));
+                slice.values.extend([x, v[1], v[2]].map(|x| x as f32));
             }
         }
     }
-    out
+    slice
 }
 
-/// One ray: t = 0 (no force), the solver at 0 < t < 1; t = 1 is left at zero for
-/// [`fill_slice`].
+/// One ray: τ = 0 (no force); the solver at the nodes 0 < τ ≤ `IDENTITY_END` (where τ = t);
+/// the collapse t_c by bisection; the solver at the nodes above, at t = size_of(τ, t_c); τ = 1
+/// is left at zero for [`fill_slice`].
 fn ray(
     axes: &TableAxes,
     k: usize,
@@ -158,17 +183,15 @@ fn ray(
     poisson_ratio: f64,
     scale: [f64; 3],
     solver: &ExactTheory,
-) -> Result<(Vec<[f64; 3]>, SliceStatistics), crate::InvalidInput> {
+) -> Result<(Ray, SliceStatistics), crate::InvalidInput> {
     let n_t = axes.counts[4];
     let (a, b) = (MEAN_SEMI_AXIS * a_over_b.sqrt(), MEAN_SEMI_AXIS / a_over_b.sqrt());
     let max_pressure = 3.0 * NORMAL_FORCE / (2.0 * std::f64::consts::PI * a * b);
     let creepage_unit = FRICTION * max_pressure / SHEAR_MODULUS;
     let limit = FRICTION * NORMAL_FORCE;
-    let mut values = vec![[0.0; 3]];
     let mut statistics = SliceStatistics::default();
-    let mut start: Option<WarmStart> = None;
-    for m in 1..n_t - 1 {
-        let (beta, alpha, t) = axes.direction_node(k, l, m);
+    let (beta, alpha, _) = axes.direction_node(k, l, 0);
+    let mut solve = |t: f64, start: Option<&WarmStart>| -> Result<ExactSolution, crate::InvalidInput> {
         let u = unfold(alpha, beta, t);
         let input = ContactInput {
             creepage_longitudinal: u[0] * creepage_unit / scale[0],
@@ -181,25 +204,64 @@ fn ray(
             shear_modulus: SHEAR_MODULUS,
             poisson_ratio,
         };
-        let solution = solver.solve_from(&input, start.as_ref())?;
+        let solution = solver.solve_from(&input, start)?;
         statistics.solves += 1;
         statistics.unconverged += usize::from(!solution.converged);
         statistics.iterations += solution.iterations;
         statistics.operator_products += solution.operator_products;
-        let f = solution.forces;
-        values.push([
-            f.force_longitudinal / limit,
-            f.force_lateral / limit,
-            f.spin_moment.unwrap_or(0.0) / (limit * MEAN_SEMI_AXIS),
-        ]);
+        Ok(solution)
+    };
+    let forces = |solution: &ExactSolution| {
+        let f = &solution.forces;
+        [f.force_longitudinal / limit, f.force_lateral / limit, f.spin_moment.unwrap_or(0.0) / (limit * MEAN_SEMI_AXIS)]
+    };
+    let collapsed =
+        |solution: &ExactSolution| solution.adhesion_area < COLLAPSED * (solution.adhesion_area + solution.slip_area);
+    let tau = |m: usize| m as f64 / (n_t - 1) as f64;
+    let mut values = vec![[0.0; 3]];
+    let mut start: Option<WarmStart> = None;
+    let mut m = 1;
+    while m < n_t - 1 && tau(m) <= IDENTITY_END {
+        let solution = solve(tau(m), start.as_ref())?;
+        values.push(forces(&solution));
         start = Some(solution.warm_start());
+        m += 1;
+    }
+    let (mut below, mut above) = COLLAPSE_RANGE;
+    let (below_start, above_start) = (start.clone(), start.clone());
+    let low = solve(below, below_start.as_ref())?;
+    let collapse = if collapsed(&low) {
+        below
+    } else if !collapsed(&solve(above, above_start.as_ref())?) {
+        above
+    } else {
+        let mut nearest = low.warm_start();
+        for _ in 0..BISECTION_STEPS {
+            let middle = 0.5 * (below + above);
+            let solution = solve(middle, Some(&nearest))?;
+            if collapsed(&solution) {
+                above = middle;
+            } else {
+                below = middle;
+                nearest = solution.warm_start();
+            }
+        }
+        0.5 * (below + above)
+    };
+    while m < n_t - 1 {
+        let solution = solve(size_of(tau(m), collapse), start.as_ref())?;
+        values.push(forces(&solution));
+        start = Some(solution.warm_start());
+        m += 1;
     }
     values.push([0.0; 3]);
-    Ok((values, statistics))
+    Ok((Ray { collapse, values }, statistics))
 }
 
 /// The table from its slices (in the order i_ab, then i_ν), with its provenance text.
-pub fn assemble(provenance: String, axes: TableAxes, slices: Vec<Vec<f32>>) -> Result<Table, TableError> {
+pub fn assemble(provenance: String, axes: TableAxes, slices: Vec<Slice>) -> Result<Table, TableError> {
     let scales = scales(&axes);
-    Table::new(provenance, axes, scales, slices.concat())
+    let collapse = slices.iter().flat_map(|slice| slice.collapse.iter().copied()).collect();
+    let values = slices.into_iter().flat_map(|slice| slice.values).collect();
+    Table::new(provenance, axes, scales, collapse, values)
 }

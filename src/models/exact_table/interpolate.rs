@@ -1,6 +1,6 @@
 //! Evaluation: from a contact to the table's cell, and the multilinear blend of its 32 nodes.
 
-use super::coordinates::fold;
+use super::coordinates::{fold, kink_fitted, IDENTITY_END};
 use super::table::{AxisMap, Table};
 use super::zero_forces;
 use crate::models::kalker_linear::linear_forces;
@@ -60,15 +60,12 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
 
     let (i_beta, w_beta) = cell(folded.beta, beta_map);
     let (i_alpha, w_alpha) = cell(folded.alpha, alpha_map);
-    let (i_t, w_t) = cell(folded.t, t_map);
-    // In the first t cell the forces are linear in s (see `small_creepage`): it needs the node
-    // t₁ alone.
-    let w_t = if i_t == 0 { D::from(1.0) } else { w_t };
 
-    let [stride_ab, stride_nu, stride_beta, stride_alpha] = table.strides;
-    let base = table.axes.index([i_ab, i_nu, i_beta, i_alpha, i_t]);
+    // The 16 corner rays of the (a/b, ν, β, α) cell and their weights.
+    let [stride_ab, stride_nu, stride_beta, stride_alpha] = table.ray_strides;
+    let base = i_ab * stride_ab + i_nu * stride_nu + i_beta * stride_beta + i_alpha;
     let one = D::from(1.0);
-    let mut corners = [(0, one, one); 16];
+    let mut corners = [(0, one); 16];
     let mut next = corners.iter_mut();
     for (o_ab, f_ab) in [(0, one - w_ab), (stride_ab, w_ab)] {
         for (o_nu, f_nu) in [(0, one - w_nu), (stride_nu, w_nu)] {
@@ -76,14 +73,31 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
             for (o_beta, f_beta) in [(0, one - w_beta), (stride_beta, w_beta)] {
                 let f_spin = f_shape * f_beta;
                 for (o_alpha, f_alpha) in [(0, one - w_alpha), (stride_alpha, w_alpha)] {
-                    let f_corner = f_spin * f_alpha;
-                    let corner = next.next().expect("16 corners");
-                    *corner = (base + o_ab + o_nu + o_beta + o_alpha, f_corner * (one - w_t), f_corner * w_t);
+                    *next.next().expect("16 corners") = (base + o_ab + o_nu + o_beta + o_alpha, f_spin * f_alpha);
                 }
             }
         }
     }
-    let sum = blend(&table.nodes, &corners);
+    // The query's collapse, interpolated like the values, and its kink-fitted size τ: every
+    // corner's collapse sits on the node τ_c, and so does the query's (`coordinates.rs`).
+    // Below IDENTITY_END τ = t whatever the collapse.
+    let tau = if value(folded.t) <= IDENTITY_END {
+        folded.t
+    } else {
+        // Four partial sums: independent chains instead of one of 16 additions.
+        let mut partial = [D::from(0.0); 4];
+        for quad in corners.chunks_exact(4) {
+            for (sum, &(ray, f)) in partial.iter_mut().zip(quad) {
+                *sum += f * f64::from(table.collapse[ray]);
+            }
+        }
+        kink_fitted(folded.t, (partial[0] + partial[1]) + (partial[2] + partial[3]))
+    };
+    let (i_t, w_t) = cell(tau, t_map);
+    // In the first cell (inside the identity piece, τ = t) the forces are linear in s (see
+    // `small_creepage`): it needs the node t₁ alone.
+    let w_t = if i_t == 0 { D::from(1.0) } else { w_t };
+    let sum = blend(table, &corners, i_t, w_t);
     let (resize, utilisation) = chord_correction(sum[0], sum[1], sum[3]);
     let limit = input.friction_limit() * folded.sign_all;
     let lateral_limit = limit * folded.sign_lateral;
@@ -169,17 +183,20 @@ fn small_creepage<D: Scalar>(
     Some(std::array::from_fn(|k| table[k] * weight + linear[k] * (-weight + 1.0)))
 }
 
-/// The weighted sum of the 32 nodes of a cell: 16 corners, each (index of its node below in t,
-/// weight of that node, weight of the node above).
-fn blend<D: Scalar>(nodes: &[[f32; 4]], corners: &[(usize, D, D); 16]) -> [D; 4] {
-    let mut sum = [D::from(0.0); 4];
-    for &(index, w_below, w_above) in corners {
-        let (below, above) = (nodes[index], nodes[index + 1]);
+/// The weighted sum of the 32 nodes of a cell: 16 corner rays (index, weight), each at its nodes
+/// `i_t` and `i_t` + 1, the upper one weighted by `w_t`.
+fn blend<D: Scalar>(table: &Table, corners: &[(usize, D); 16], i_t: usize, w_t: D) -> [D; 4] {
+    let n_t = table.maps[4].nodes;
+    let (mut below, mut above) = ([D::from(0.0); 4], [D::from(0.0); 4]);
+    for &(ray, weight) in corners {
+        let index = ray * n_t + i_t;
+        let (low, high) = (table.nodes[index], table.nodes[index + 1]);
         for k in 0..4 {
-            sum[k] += w_below * f64::from(below[k]) + w_above * f64::from(above[k]);
+            below[k] += weight * f64::from(low[k]);
+            above[k] += weight * f64::from(high[k]);
         }
     }
-    sum
+    std::array::from_fn(|k| (above[k] - below[k]) * w_t + below[k])
 }
 
 /// The cell of `x` along `axis` and the fraction across it, both kept in the cell (rounding
@@ -187,8 +204,9 @@ fn blend<D: Scalar>(nodes: &[[f32; 4]], corners: &[(usize, D, D); 16]) -> [D; 4]
 fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     let position = (x - axis.origin) * axis.inverse_step;
     // Truncation is the floor here (≥ 0), without a libm call; NaN cannot occur (finite inputs).
-    let index = (value(position).max(0.0) as usize).min(axis.nodes - 2);
-    let fraction = position - index as f64;
+    // u32: its conversion to f64 is one instruction (usize's is several on x86-64).
+    let index = (value(position).max(0.0) as u32).min(axis.nodes as u32 - 2);
+    let fraction = position - f64::from(index);
     let fraction = if value(fraction) < 0.0 {
         D::from(0.0)
     } else if value(fraction) > 1.0 {
@@ -196,5 +214,5 @@ fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     } else {
         fraction
     };
-    (index, fraction)
+    (index as usize, fraction)
 }

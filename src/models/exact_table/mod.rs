@@ -9,12 +9,16 @@
 //! become a direction (α, β) and a size t ∈ [0, 1] whose end t = 1 is full sliding, tabulated by
 //! quadrature (`full_slip.rs`), so every creepage up to ±∞ is inside the table.
 //!
-//! Interpolation is multilinear in (ln a/b, ν, β, α, t) (`interpolate.rs`). It is the
+//! Interpolation is multilinear in (ln a/b, ν, β, α, τ) (`interpolate.rs`), where τ is the
+//! size t on a kink-fitted scale: each ray's nodes are placed so that its adhesion collapse (a
+//! kink of the exact theory's forces, `coordinates.rs`) sits on one fixed node, and a query's τ
+//! uses the collapse interpolated from its cell's rays. Multilinear interpolation is the
 //! natural choice here because it keeps what the physics requires by construction: every
 //! interpolated force is a convex combination of tabulated forces inside the Coulomb disc, so
-//! |F| ≤ μQ holds exactly; values are continuous everywhere; the symmetries hold exactly (they
-//! are applied by folding, and the table's fold edges are tabulated symmetric); and the
-//! derivative is exact for the interpolant, one-sided (from the cell above) on cell edges.
+//! |F| ≤ μQ holds exactly; values are continuous everywhere (τ is continuous in t and in the
+//! interpolated collapse); the symmetries hold exactly (they are applied by folding, and the
+//! table's fold edges are tabulated symmetric); and the derivative is exact for the
+//! interpolant, one-sided (from the cell above) on cell edges.
 //!
 //! Domain: a/b within the table's range ([0.1, 10]); outside it the model returns an error
 //! naming the semi-axes (no silent extrapolation). ν ∈ [0, 0.5], any creepage.

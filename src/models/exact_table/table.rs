@@ -2,29 +2,46 @@
 //!
 //! Format (little-endian): the 16-byte magic `WRC-EXACT-TABLE\0`, the format version (u32),
 //! the provenance text (u32 length + UTF-8: generator version, solver grid, command), the node
-//! counts along a/b, ν, β, α, t (5 × u32), the a/b and ν ranges (4 × f64), the scale factors k
-//! at every (a/b, ν) node (3 × f64 each), the values (3 × f32 per node: F_x/(μQ), F_y/(μQ),
-//! M_z/(μQc)), and a CRC-32 of all the bytes before it.
+//! counts along a/b, ν, β, α, τ (5 × u32), the a/b and ν ranges (4 × f64), the scale factors k
+//! at every (a/b, ν) node (3 × f64 each), the collapse t_c of every ray (a/b, ν, β, α) (f32,
+//! see `coordinates.rs`), the units of the stored values at every τ node (the force's and the
+//! moment's, 2 × f64 each), the values (3 × i16 per node, in the units of its τ node: F_x/(μQ),
+//! F_y/(μQ), M_z/(μQc)), and a CRC-32 of all the bytes before it.
 //!
-//! Layout: node (i_ab, i_ν, i_β, i_α, i_t) at ((((i_ab·n_ν + i_ν)·n_β + i_β)·n_α + i_α)·n_t + i_t),
-//! so the two t nodes of every corner of an interpolation cell are adjacent in memory. In memory
-//! each node also holds |F|/(μQ), derived when the table is made (see `interpolate.rs`).
+//! The values are 16-bit, which is what lets 29 a/b nodes fit in the 20 MB the table may take.
+//! Each τ node has its own units, its largest |F| and |M_z| over the table divided by 32767:
+//! near t = 0 the forces are O(s), and one unit for all nodes (1/32767 μQ) made the first τ
+//! node's spin-driven F_y (≈ 2e-5 μQ at a/b = 0.1) wrong by up to 80 %, and the linear limit by
+//! 1.4 % (tests/exact_table.rs). Above the knee the force unit is 1/32767 μQ (3e-5 μQ, against
+//! the 0.003 μQ median the table is held to). Values are rounded to the nearest count but never
+//! outside the Coulomb disc.
+//!
+//! Layout: node (i_ab, i_ν, i_β, i_α, i_τ) at ((((i_ab·n_ν + i_ν)·n_β + i_β)·n_α + i_α)·n_τ + i_τ),
+//! so the two τ nodes of every corner of an interpolation cell are adjacent in memory; ray
+//! (i_ab, i_ν, i_β, i_α) is that index over n_τ. In memory each node also holds |F|/(μQ),
+//! derived when the table is made (see `interpolate.rs`), and the values are f32 (in μQ and μQc),
+//! converted once: the evaluation's blend then needs no integer conversions (16-bit values in
+//! memory measured 1.2× slower per evaluation).
 
 use std::fmt;
 
+use super::coordinates::{COLLAPSE_RANGE, IDENTITY_END};
+
 const MAGIC: &[u8; 16] = b"WRC-EXACT-TABLE\0";
 /// Version of this file format (not of the values: the provenance text says how they were made).
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 /// The a/b range of every table (the error for contacts outside it names this range).
 pub const A_OVER_B_RANGE: (f64, f64) = (0.1, 10.0);
-/// Values this far outside the Coulomb disc are refused (float rounding of stored values).
+/// Values this far outside the Coulomb disc are refused (float rounding of the solver's values).
 const BOUND_TOLERANCE: f32 = 1e-5;
+/// The largest stored count: a unit is the largest |value| of its τ node over FULL_SCALE.
+const FULL_SCALE: f64 = 32767.0;
 
 /// Node counts and ranges of the table's five axes: ln(a/b) and ν uniform over their ranges,
-/// β uniform over [−1, 1], α and t uniform over [0, 1].
+/// β uniform over [−1, 1], α and the kink-fitted size τ uniform over [0, 1].
 #[derive(Debug, Clone, PartialEq)]
 pub struct TableAxes {
-    /// Nodes along a/b (uniform in ln(a/b)), ν, β, α and t.
+    /// Nodes along a/b (uniform in ln(a/b)), ν, β, α and τ.
     pub counts: [usize; 5],
     /// Smallest and largest a/b.
     pub a_over_b: (f64, f64),
@@ -58,22 +75,16 @@ impl TableAxes {
         low + (high - low) * i as f64 / (self.counts[1] - 1) as f64
     }
 
-    /// β, α and t of nodes `(k, l, m)`.
+    /// β, α and τ of nodes `(k, l, m)`.
     pub fn direction_node(&self, k: usize, l: usize, m: usize) -> (f64, f64, f64) {
         let unit = |i: usize, n: usize| i as f64 / (n - 1) as f64;
         (2.0 * unit(k, self.counts[2]) - 1.0, unit(l, self.counts[3]), unit(m, self.counts[4]))
     }
 
-    /// Distance in nodes between neighbours along a/b, ν, β and α.
-    pub(crate) fn strides(&self) -> [usize; 4] {
-        let [_, n_nu, n_beta, n_alpha, n_t] = self.counts;
-        [n_t * n_alpha * n_beta * n_nu, n_t * n_alpha * n_beta, n_t * n_alpha, n_t]
-    }
-
-    /// Index of node (i_ab, i_ν, i_β, i_α, i_t).
-    pub(crate) fn index(&self, [i_ab, i_nu, k, l, m]: [usize; 5]) -> usize {
-        let [_, n_nu, n_beta, n_alpha, n_t] = self.counts;
-        (((i_ab * n_nu + i_nu) * n_beta + k) * n_alpha + l) * n_t + m
+    /// Distance in rays between neighbouring rays along a/b, ν, β and α.
+    pub(crate) fn ray_strides(&self) -> [usize; 4] {
+        let [_, n_nu, n_beta, n_alpha, _] = self.counts;
+        [n_alpha * n_beta * n_nu, n_alpha * n_beta, n_alpha, 1]
     }
 }
 
@@ -102,12 +113,17 @@ pub struct Table {
     pub axes: TableAxes,
     /// Scale factors k (see `coordinates.rs`) at each (a/b, ν) node, index i_ab·n_ν + i_ν.
     pub(crate) scales: Vec<[f64; 3]>,
+    /// The collapse t_c of each ray (a/b, ν, β, α), index: the node index over n_τ.
+    pub(crate) collapse: Vec<f32>,
     /// F_x/(μQ), F_y/(μQ), M_z/(μQc) and |F|/(μQ) at each node.
     pub(crate) nodes: Vec<[f32; 4]>,
-    /// The axes as [`AxisMap`]s: ln(a/b), ν, β, α, t.
+    /// The value of one count of the stored forces F_x, F_y and of M_z, at each τ node.
+    units: Vec<[f64; 2]>,
+    /// The axes as [`AxisMap`]s: ln(a/b), ν, β, α, τ.
     pub(crate) maps: [AxisMap; 5],
-    /// Neighbour distances in `values` along a/b, ν, β and α ([`TableAxes::strides`]).
-    pub(crate) strides: [usize; 4],
+    /// Distances between neighbouring rays along a/b, ν, β and α ([`TableAxes::ray_strides`]),
+    /// kept so that the evaluation pays no integer division.
+    pub(crate) ray_strides: [usize; 4],
 }
 
 /// Why a table was refused.
@@ -123,12 +139,68 @@ impl fmt::Display for TableError {
 impl std::error::Error for TableError {}
 
 impl Table {
-    /// Assembles a table from its parts (the generator's last step).
+    /// Assembles a table from its parts (the generator's last step): `values` are the nodes'
+    /// F_x/(μQ), F_y/(μQ), M_z/(μQc), stored in 16 bits in the units of their τ node.
     pub fn new(
         provenance: String,
         axes: TableAxes,
         scales: Vec<[f64; 3]>,
+        collapse: Vec<f32>,
         values: Vec<f32>,
+    ) -> Result<Self, TableError> {
+        if values.len() != 3 * axes.len() {
+            return Err(TableError(format!("{} values for {} nodes", values.len(), axes.len())));
+        }
+        for (node, v) in values.chunks_exact(3).enumerate() {
+            if !(v.iter().all(|x| x.is_finite()) && v[0].hypot(v[1]) <= 1.0 + BOUND_TOLERANCE) {
+                return Err(TableError(format!("node {node} holds {v:?}: not finite or |F| > μQ")));
+            }
+        }
+        // Onto the disc first (the solver's rounding), then the largest |F| and |M_z| per τ node.
+        let n_t = axes.counts[4];
+        let values: Vec<[f64; 3]> = values
+            .chunks_exact(3)
+            .map(|v| {
+                let [x, y, m] = [v[0], v[1], v[2]].map(f64::from);
+                let shrink = 1.0 / x.hypot(y).max(1.0);
+                [x * shrink, y * shrink, m]
+            })
+            .collect();
+        let mut ranges = vec![[0.0f64; 2]; n_t];
+        for (node, [x, y, m]) in values.iter().enumerate() {
+            let range = &mut ranges[node % n_t];
+            *range = [range[0].max(x.hypot(*y)), range[1].max(m.abs())];
+        }
+        // (|F| ≤ 1 up to the last bit of the shrink above.)
+        let unit = |range: f64| if range > 0.0 { range / FULL_SCALE } else { 1.0 / FULL_SCALE };
+        let units: Vec<[f64; 2]> = ranges.iter().map(|&[force, moment]| [unit(force.min(1.0)), unit(moment)]).collect();
+        let quantize = |x: f64, unit: f64| (x / unit).round().clamp(-FULL_SCALE, FULL_SCALE) as i16;
+        let stored = values
+            .iter()
+            .enumerate()
+            .flat_map(|(node, &[x, y, m])| {
+                // To the nearest count; a node on the rim that rounding put outside moves one count
+                // towards zero along its larger component (full sliding keeps |F| = μQ exactly
+                // along the axes).
+                let [force_unit, moment_unit] = units[node % n_t];
+                let [mut qx, mut qy] = [quantize(x, force_unit), quantize(y, force_unit)];
+                while f64::from(qx).hypot(f64::from(qy)) > FULL_SCALE {
+                    let larger = if qx.abs() >= qy.abs() { &mut qx } else { &mut qy };
+                    *larger -= larger.signum();
+                }
+                [qx, qy, quantize(m, moment_unit)]
+            })
+            .collect();
+        Self::from_parts(provenance, axes, scales, collapse, units, stored)
+    }
+
+    fn from_parts(
+        provenance: String,
+        axes: TableAxes,
+        scales: Vec<[f64; 3]>,
+        collapse: Vec<f32>,
+        units: Vec<[f64; 2]>,
+        stored: Vec<i16>,
     ) -> Result<Self, TableError> {
         let [n_ab, n_nu, n_beta, n_alpha, n_t] = axes.counts;
         let maps = [
@@ -138,19 +210,48 @@ impl Table {
             AxisMap::new(0.0, 1.0, n_alpha),
             AxisMap::new(0.0, 1.0, n_t),
         ];
-        let strides = axes.strides();
-        if values.len() != 3 * axes.len() {
-            return Err(TableError(format!("{} values for {} nodes", values.len(), axes.len())));
+        let ray_strides = axes.ray_strides();
+        if stored.len() != 3 * axes.len() || collapse.len() != axes.len() / n_t {
+            return Err(TableError(format!(
+                "{} values and {} rays for {} nodes",
+                stored.len(),
+                collapse.len(),
+                axes.len()
+            )));
         }
-        let nodes = values.chunks_exact(3).map(|v| [v[0], v[1], v[2], v[0].hypot(v[1])]).collect();
-        let table = Self { provenance, axes, scales, nodes, maps, strides };
+        if units.len() != n_t {
+            return Err(TableError(format!("{} value units for {n_t} τ nodes", units.len())));
+        }
+        // A force unit above 1/FULL_SCALE would let FULL_SCALE counts exceed μQ.
+        if let Some((m, unit)) = units.iter().enumerate().find(|(_, [force, moment])| {
+            !(force.is_finite() && *force > 0.0 && *force <= 1.0 / FULL_SCALE && moment.is_finite() && *moment > 0.0)
+        }) {
+            return Err(TableError(format!("τ node {m}: value units {unit:?}")));
+        }
+        if let Some((node, v)) =
+            stored.chunks_exact(3).enumerate().find(|(_, v)| f64::from(v[0]).hypot(f64::from(v[1])) > FULL_SCALE)
+        {
+            let forces = [v[0], v[1]].map(|x| f64::from(x) * units[node % n_t][0]);
+            return Err(TableError(format!("node {node} holds F/(μQ) = {forces:?}: |F| > μQ")));
+        }
+        let nodes = stored
+            .chunks_exact(3)
+            .enumerate()
+            .map(|(node, v)| {
+                let [force_unit, moment_unit] = units[node % n_t];
+                let [x, y, m] = [(v[0], force_unit), (v[1], force_unit), (v[2], moment_unit)]
+                    .map(|(count, unit)| f64::from(count) * unit);
+                [x, y, m, x.hypot(y).min(1.0)].map(|value| value as f32)
+            })
+            .collect();
+        let table = Self { provenance, axes, scales, collapse, nodes, units, maps, ray_strides };
         table.check()?;
         Ok(table)
     }
 
     /// The file's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut bytes = Vec::with_capacity(12 * self.nodes.len() + 1024);
+        let mut bytes = Vec::with_capacity(6 * self.nodes.len() + 4 * self.collapse.len() + 1024);
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
         bytes.extend_from_slice(&(self.provenance.len() as u32).to_le_bytes());
@@ -162,8 +263,19 @@ impl Table {
         for x in [ab.0, ab.1, nu.0, nu.1].into_iter().chain(self.scales.iter().flatten().copied()) {
             bytes.extend_from_slice(&x.to_le_bytes());
         }
-        for v in self.nodes.iter().flat_map(|node| &node[..3]) {
-            bytes.extend_from_slice(&v.to_le_bytes());
+        for t_c in &self.collapse {
+            bytes.extend_from_slice(&t_c.to_le_bytes());
+        }
+        for unit in self.units.iter().flatten() {
+            bytes.extend_from_slice(&unit.to_le_bytes());
+        }
+        let n_t = self.axes.counts[4];
+        for (i, node) in self.nodes.iter().enumerate() {
+            let [force_unit, moment_unit] = self.units[i % n_t];
+            for (value, unit) in node.iter().zip([force_unit, force_unit, moment_unit]) {
+                // Exactly the stored count: the f32 is within 2e-3 counts of it.
+                bytes.extend_from_slice(&((f64::from(*value) / unit).round() as i16).to_le_bytes());
+            }
         }
         let checksum = crc32fast::hash(&bytes);
         bytes.extend_from_slice(&checksum.to_le_bytes());
@@ -212,16 +324,19 @@ impl Table {
         let scales: Vec<[f64; 3]> =
             f64s(3 * counts[0] * counts[1])?.chunks_exact(3).map(|k| [k[0], k[1], k[2]]).collect();
         let axes = TableAxes { counts, a_over_b: (ranges[0], ranges[1]), poisson_ratio: (ranges[2], ranges[3]) };
-        let value_count = 3 * axes.len();
-        let values: Vec<f32> = reader
-            .take(4 * value_count)?
+        let collapse: Vec<f32> = reader
+            .take(4 * (axes.len() / counts[4]))?
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .collect();
+        let units: Vec<[f64; 2]> =
+            (0..counts[4]).map(|_| Ok([reader.f64()?, reader.f64()?])).collect::<Result<_, _>>()?;
+        let stored: Vec<i16> =
+            reader.take(2 * 3 * axes.len())?.chunks_exact(2).map(|b| i16::from_le_bytes([b[0], b[1]])).collect();
         if !reader.bytes.is_empty() {
             return Err(TableError(format!("{} bytes after the values", reader.bytes.len())));
         }
-        Self::new(provenance, axes, scales, values)
+        Self::from_parts(provenance, axes, scales, collapse, units, stored)
     }
 
     /// The invariants the interpolation relies on.
@@ -240,11 +355,14 @@ impl Table {
         {
             return Err(TableError("scale factors missing, not finite or not positive".into()));
         }
-        for (node, v) in self.nodes.iter().enumerate() {
-            let inside = v.iter().all(|x| x.is_finite()) && v[3] <= 1.0 + BOUND_TOLERANCE;
-            if !inside {
-                return Err(TableError(format!("node {node} holds {:?}: not finite or |F| > μQ", &v[..3])));
-            }
+        // The first τ cell must lie in the identity piece of the size map (see `interpolate.rs`).
+        if (axes.counts[4] - 1) as f64 * IDENTITY_END < 1.0 {
+            return Err(TableError(format!("{} τ nodes: at least 5 are needed", axes.counts[4])));
+        }
+        // In f32, as stored (the range's ends are t_c values too).
+        let range = COLLAPSE_RANGE.0 as f32..=COLLAPSE_RANGE.1 as f32;
+        if let Some((ray, t_c)) = self.collapse.iter().enumerate().find(|(_, t_c)| !range.contains(t_c)) {
+            return Err(TableError(format!("ray {ray}: collapse at t = {t_c}, outside {COLLAPSE_RANGE:?}")));
         }
         Ok(())
     }
@@ -271,5 +389,59 @@ impl<'a> Reader<'a> {
 
     fn f64(&mut self) -> Result<f64, TableError> {
         Ok(f64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 16-bit storage: within one unit of the value, the unit of each τ node its largest
+    /// value / 32767 (small near t = 0), never outside the Coulomb disc, full sliding along an
+    /// axis exactly μQ, and the derived |F| the stored length.
+    #[test]
+    fn values_are_stored_to_the_nearest_count_of_their_tau_node_inside_the_disc() {
+        let axes = TableAxes { counts: [2, 2, 3, 2, 5], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
+        let mut values = vec![0.0f32; 3 * 120];
+        // Nodes 1, 2 and 4 of the first ray (τ = 0.25, 0.5, 1), node 1 of the second ray.
+        let nodes: [(usize, [f32; 3]); 4] = [
+            (1, [1.0e-4, -2.0e-5, 3.0e-6]),
+            (6, [-4.0e-4, 0.000_123_456, -7.0e-6]),
+            (2, [0.6, 0.8, 2.5]),
+            (4, [1.000_005, 0.0, 0.0]),
+        ];
+        for (i, node) in nodes {
+            values[3 * i..3 * i + 3].copy_from_slice(&node);
+        }
+        let table = Table::new("test".into(), axes, vec![[1.0; 3]; 4], [0.35, 0.9].repeat(12), values).unwrap();
+        let expected_units = [
+            [1.0 / FULL_SCALE; 2],
+            [f64::from(-4.0e-4f32).hypot(f64::from(0.000_123_456f32)) / FULL_SCALE, f64::from(7.0e-6f32) / FULL_SCALE],
+            [1.0 / FULL_SCALE, 2.5 / FULL_SCALE],
+            [1.0 / FULL_SCALE; 2],
+            [1.0 / FULL_SCALE; 2],
+        ];
+        for (m, (unit, expected)) in table.units.iter().zip(expected_units).enumerate() {
+            for k in 0..2 {
+                assert!((unit[k] - expected[k]).abs() <= 1e-9 * expected[k], "τ node {m}: {unit:?} vs {expected:?}");
+            }
+        }
+        for (i, node) in nodes {
+            let stored = table.nodes[i].map(f64::from);
+            let [force_unit, moment_unit] = table.units[i % 5];
+            for (k, unit) in [force_unit, force_unit, moment_unit].into_iter().enumerate() {
+                let value = f64::from(node[k]).clamp(-1.0, 2.5);
+                let count = stored[k] / unit;
+                assert!((count - count.round()).abs() < 3e-3, "node {i}, value {k}: {count} counts");
+                assert!(
+                    (stored[k] - value).abs() <= unit + 1e-7 * unit * FULL_SCALE,
+                    "node {i}, value {k}: {stored:?}"
+                );
+            }
+            assert!(stored[0].hypot(stored[1]) <= 1.0 + 1e-7 && stored[3] <= 1.0, "node {i}: {stored:?}");
+            assert!((stored[3] - stored[0].hypot(stored[1])).abs() <= 1e-7, "node {i}: {stored:?}");
+        }
+        assert_eq!(table.nodes[4], [1.0, 0.0, 0.0, 1.0], "full sliding along ξ is μQ exactly");
+        assert_eq!(Table::from_bytes(&table.to_bytes()), Ok(table));
     }
 }
