@@ -13,8 +13,9 @@
 //! near t = 0 the forces are O(s), and one unit for all nodes (1/32767 μQ) made the first τ
 //! node's spin-driven F_y (≈ 2e-5 μQ at a/b = 0.1) wrong by up to 80 %, and the linear limit by
 //! 1.4 % (tests/exact_table.rs). Above the knee the force unit is 1/32767 μQ (3e-5 μQ, against
-//! the 0.003 μQ median the table is held to). Values are rounded to the nearest count but never
-//! outside the Coulomb disc.
+//! the 0.003 μQ median the table is held to). M_z is rounded to the nearest count; a force is
+//! stored as the counts nearest to it whose length is its length rounded to the nearest count
+//! (`quantize_force`), inside the Coulomb disc.
 //!
 //! Layout: node (i_ab, i_ν, i_β, i_α, i_τ) at ((((i_ab·n_ν + i_ν)·n_β + i_β)·n_α + i_α)·n_τ + i_τ),
 //! so the two τ nodes of every corner of an interpolation cell are adjacent in memory; ray
@@ -179,15 +180,8 @@ impl Table {
             .iter()
             .enumerate()
             .flat_map(|(node, &[x, y, m])| {
-                // To the nearest count; a node on the rim that rounding put outside moves one count
-                // towards zero along its larger component (full sliding keeps |F| = μQ exactly
-                // along the axes).
                 let [force_unit, moment_unit] = units[node % n_t];
-                let [mut qx, mut qy] = [quantize(x, force_unit), quantize(y, force_unit)];
-                while f64::from(qx).hypot(f64::from(qy)) > FULL_SCALE {
-                    let larger = if qx.abs() >= qy.abs() { &mut qx } else { &mut qy };
-                    *larger -= larger.signum();
-                }
+                let [qx, qy] = quantize_force(x / force_unit, y / force_unit);
                 [qx, qy, quantize(m, moment_unit)]
             })
             .collect();
@@ -241,7 +235,8 @@ impl Table {
                 let [force_unit, moment_unit] = units[node % n_t];
                 let [x, y, m] = [(v[0], force_unit), (v[1], force_unit), (v[2], moment_unit)]
                     .map(|(count, unit)| f64::from(count) * unit);
-                [x, y, m, x.hypot(y).min(1.0)].map(|value| value as f32)
+                let length = (stored_length(v[0], v[1]) * force_unit).min(1.0);
+                [x, y, m, length].map(|value| value as f32)
             })
             .collect();
         let table = Self { provenance, axes, scales, collapse, nodes, units, maps, ray_strides };
@@ -368,6 +363,53 @@ impl Table {
     }
 }
 
+/// The force (F_x, F_y) in counts as two counts inside the disc of FULL_SCALE counts whose
+/// [`stored_length`] is |F| rounded to the nearest count; among those, the nearest to (x, y).
+///
+/// The evaluation interpolates the stored lengths (`interpolate.rs`, the chord correction), and
+/// rounding a length is monotone where rounding two components is not: along a ray without spin
+/// the exact theory's |F| rises monotonically to μQ, and components rounded one by one made the
+/// lengths of neighbouring nodes on the full-sliding plateau go down and up by a count
+/// (tests/ladder_invariants.rs). The chosen counts are within 2 counts of (x, y): half a count
+/// for the rounded length, one for the lattice of counts in a ring one count wide, half a count
+/// across.
+fn quantize_force(x: f64, y: f64) -> [i16; 2] {
+    let length = x.hypot(y);
+    let target = length.round().min(FULL_SCALE);
+    // The point of length `target` in the direction of (x, y), and the counts around it.
+    let scale = if length > 0.0 { target / length } else { 0.0 };
+    let (px, py) = (x * scale, y * scale);
+    let mut best: Option<([i16; 2], f64)> = None;
+    for qx in (px.floor() as i32 - 2)..=(px.ceil() as i32 + 2) {
+        for qy in (py.floor() as i32 - 2)..=(py.ceil() as i32 + 2) {
+            let (Ok(qx), Ok(qy)) = (i16::try_from(qx), i16::try_from(qy)) else { continue };
+            let distance = (f64::from(qx) - x).hypot(f64::from(qy) - y);
+            if stored_length(qx, qy) == target && best.is_none_or(|(_, d)| distance < d) {
+                best = Some(([qx, qy], distance));
+            }
+        }
+    }
+    // Always found (two floors or ceilings of (px, py) already give a length within a count
+    // below `target`); the components rounded one by one, inside the disc, otherwise.
+    best.map_or_else(
+        || {
+            let [mut qx, mut qy] = [x, y].map(|c| c.round().clamp(-FULL_SCALE, FULL_SCALE) as i16);
+            while f64::from(qx).hypot(f64::from(qy)) > FULL_SCALE {
+                let larger = if qx.abs() >= qy.abs() { &mut qx } else { &mut qy };
+                *larger -= larger.signum();
+            }
+            [qx, qy]
+        },
+        |(counts, _)| counts,
+    )
+}
+
+/// The length of a stored force in counts, as the evaluation uses it: |(qx, qy)| rounded up, so
+/// that it is never shorter than the components (the bound |F| ≤ μQ holds for both).
+fn stored_length(qx: i16, qy: i16) -> f64 {
+    f64::from(qx).hypot(f64::from(qy)).ceil()
+}
+
 /// Sequential little-endian reads with a clear error at the end of the data.
 struct Reader<'a> {
     bytes: &'a [u8],
@@ -433,15 +475,45 @@ mod tests {
                 let value = f64::from(node[k]).clamp(-1.0, 2.5);
                 let count = stored[k] / unit;
                 assert!((count - count.round()).abs() < 3e-3, "node {i}, value {k}: {count} counts");
+                // Forces within 2 counts (`quantize_force`), moments within half a count.
+                let counts = if k < 2 { 2.0 } else { 0.5 };
                 assert!(
-                    (stored[k] - value).abs() <= unit + 1e-7 * unit * FULL_SCALE,
+                    (stored[k] - value).abs() <= counts * unit + 1e-7 * unit * FULL_SCALE,
                     "node {i}, value {k}: {stored:?}"
                 );
             }
-            assert!(stored[0].hypot(stored[1]) <= 1.0 + 1e-7 && stored[3] <= 1.0, "node {i}: {stored:?}");
-            assert!((stored[3] - stored[0].hypot(stored[1])).abs() <= 1e-7, "node {i}: {stored:?}");
+            // The derived length: |F| rounded to the nearest count, never shorter than the stored
+            // components.
+            let (length, unit) = (stored[0].hypot(stored[1]), force_unit);
+            let exact = f64::from(node[0]).hypot(f64::from(node[1])).min(1.0);
+            assert!(length <= 1.0 + 1e-7 && stored[3] <= 1.0, "node {i}: {stored:?}");
+            assert!(stored[3] >= length - 1e-7 && stored[3] - length < unit + 1e-7, "node {i}: {stored:?}");
+            assert!((stored[3] - (exact / unit).round() * unit).abs() <= 1e-7, "node {i}: {stored:?}");
         }
         assert_eq!(table.nodes[4], [1.0, 0.0, 0.0, 1.0], "full sliding along ξ is μQ exactly");
         assert_eq!(Table::from_bytes(&table.to_bytes()), Ok(table));
+    }
+
+    /// The stored length is |F| rounded to the nearest count, so it keeps the order of the
+    /// forces' lengths along a ray (monotone saturation), also on the full-sliding plateau where
+    /// neighbouring nodes differ by less than a count; the counts stay within 2 counts of the
+    /// force and inside the disc.
+    #[test]
+    fn stored_lengths_keep_the_order_of_the_forces() {
+        let lengths =
+            [0.0, 0.3, 0.7, 1.0, 1.49, 2.6, 17.3, 1000.5, 20000.2, 32765.9, 32766.2, 32766.5, 32766.8, 32767.0];
+        for direction in 0..2000 {
+            let angle = direction as f64 * 0.003_141_6;
+            let mut previous = 0.0;
+            for length in lengths {
+                let (x, y) = (length * angle.cos(), length * angle.sin());
+                let [qx, qy] = quantize_force(x, y);
+                let stored = stored_length(qx, qy);
+                assert_eq!(stored, x.hypot(y).round(), "angle {angle}, length {length}: counts ({qx}, {qy})");
+                assert!(stored >= previous && f64::from(qx).hypot(f64::from(qy)) <= FULL_SCALE);
+                assert!((f64::from(qx) - x).hypot(f64::from(qy) - y) <= 2.0, "angle {angle}, length {length}");
+                previous = stored;
+            }
+        }
     }
 }
