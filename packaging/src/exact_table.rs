@@ -8,36 +8,52 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use wheel_rail_contact::models::exact_table::generation::{
-    assemble, refresh_full_slip, slice_values, Slice, SliceStatistics,
+    assemble, extrapolate, refresh_full_slip, slice_values, Slice, SliceStatistics,
 };
 use wheel_rail_contact::models::exact_table::{TableAxes, A_OVER_B_RANGE};
 use wheel_rail_contact::ExactTheory;
 
 /// Version of the generator (bump when the values it makes change for the same settings).
-pub const GENERATOR_VERSION: u32 = 2;
+pub const GENERATOR_VERSION: u32 = 3;
+/// Version of the saved slices' solves (bump when a slice solved on the same grid at the same
+/// nodes would change), part of the slices' directory names: slices of an earlier generator
+/// whose solves are still the same are reused.
+const SLICE_VERSION: u32 = 2;
+
+/// Below this a/b a contact is "wide" and its nodes are solved on `Settings::wide_grid`.
+pub const WIDE_BELOW: f64 = 1.0 / 3.0;
 
 /// What a generation makes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
     /// The table's axes.
     pub axes: TableAxes,
-    /// The exact solver's grid (longitudinal × lateral elements over 2.2 a × 2.2 b).
+    /// The exact solver's grid (longitudinal × lateral elements over 2.2 a × 2.2 b) for a/b ≥
+    /// [`WIDE_BELOW`].
     pub grid: (usize, usize),
+    /// The grid for a/b < [`WIDE_BELOW`], where the lateral elements are the coarse ones.
+    pub wide_grid: (usize, usize),
+    /// Whether every node is extrapolated along x from its grid and one with half the
+    /// longitudinal elements ([`extrapolate`]).
+    pub extrapolate: bool,
 }
 
 impl Settings {
     /// The shipped table: a/b ∈ [0.1, 10] (29 nodes, uniform in ln a/b), ν ∈ [0, 0.5] (4),
-    /// β (41), α (13), τ (49), solved on 80 × 20 elements (docs/exact_table.md: the grid's error
-    /// is small against the interpolation's; 18.4 MB in 16-bit values, below the 20 MB the issue
-    /// allows).
+    /// β (41), α (13), τ (49); nodes solved on 80 × 20 elements (40 × 40 for a/b < 1/3) and on
+    /// half as many along x, and extrapolated (docs/exact_table.md, "How it was made": the node
+    /// study behind the choice); 18.4 MB in 16-bit values, below the 20 MB the issue allows.
     pub fn shipped() -> Self {
         Self {
             axes: TableAxes { counts: [29, 4, 41, 13, 49], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) },
             grid: (80, 20),
+            wide_grid: (40, 40),
+            extrapolate: true,
         }
     }
 
-    /// Parses `--counts A,N,B,AL,T` and `--grid NXxNY` over the shipped settings.
+    /// Parses `--counts A,N,B,AL,T`, `--grid NXxNY`, `--wide-grid NXxNY` and
+    /// `--extrapolate yes|no` over the shipped settings.
     pub fn from_args(args: &[String]) -> Result<Self, String> {
         let mut settings = Self::shipped();
         let mut args = args.iter();
@@ -46,16 +62,25 @@ impl Settings {
             let numbers = |separator: char| -> Result<Vec<usize>, String> {
                 value.split(separator).map(|n| n.parse().map_err(|_| format!("{flag} {value}: not a count"))).collect()
             };
+            let grid = || match numbers('x')?.as_slice() {
+                &[nx, ny] if nx >= 2 && ny >= 2 => Ok((nx, ny)),
+                _ => Err(format!("{flag} {value}: NXxNY, at least 2 elements each way")),
+            };
             match flag.as_str() {
                 "--counts" => {
                     settings.axes.counts = numbers(',')?
                         .try_into()
                         .map_err(|_| format!("--counts {value}: five counts (a/b, ν, β, α, t)"))?
                 }
-                "--grid" => match numbers('x')?.as_slice() {
-                    &[nx, ny] => settings.grid = (nx, ny),
-                    _ => return Err(format!("--grid {value}: NXxNY")),
-                },
+                "--grid" => settings.grid = grid()?,
+                "--wide-grid" => settings.wide_grid = grid()?,
+                "--extrapolate" => {
+                    settings.extrapolate = match value.as_str() {
+                        "yes" => true,
+                        "no" => false,
+                        _ => return Err(format!("--extrapolate {value}: yes or no")),
+                    }
+                }
                 _ => return Err(format!("unknown option {flag}")),
             }
         }
@@ -66,59 +91,85 @@ impl Settings {
         Ok(settings)
     }
 
-    fn key(&self) -> String {
+    /// The grid the nodes at this a/b are solved on.
+    fn grid_at(&self, a_over_b: f64) -> (usize, usize) {
+        if a_over_b < WIDE_BELOW {
+            self.wide_grid
+        } else {
+            self.grid
+        }
+    }
+
+    /// The directory of the slices solved on `grid` (at the nodes found on `nodes_of`, when
+    /// that is another grid).
+    fn slice_directory(&self, grid: (usize, usize), nodes_of: (usize, usize)) -> String {
         let c = self.axes.counts;
-        format!("v{GENERATOR_VERSION}-{}x{}-{}-{}-{}-{}-{}", self.grid.0, self.grid.1, c[0], c[1], c[2], c[3], c[4])
+        let at = if grid == nodes_of { String::new() } else { format!("-at-{}x{}", nodes_of.0, nodes_of.1) };
+        format!("v{SLICE_VERSION}-{}x{}{at}-{}-{}-{}-{}-{}", grid.0, grid.1, c[0], c[1], c[2], c[3], c[4])
     }
 }
 
 /// Generates (or resumes) the table and writes it to `out`.
 pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), String> {
-    let parts = work_dir.join(settings.key());
-    std::fs::create_dir_all(&parts).map_err(|e| format!("{}: {e}", parts.display()))?;
-    let solver = ExactTheory::new(settings.grid.0, settings.grid.1);
     let [n_ab, n_nu, ..] = settings.axes.counts;
     let started = Instant::now();
     let mut totals = SliceStatistics::default();
     let mut slices = Vec::new();
     for i_ab in 0..n_ab {
         for i_nu in 0..n_nu {
-            let path = parts.join(format!("slice-{i_ab:03}-{i_nu:03}.f32"));
-            let slice = match read_slice(&path, &settings.axes) {
-                Some(saved) => refresh_full_slip(&settings.axes, i_ab, i_nu, &saved),
-                None => {
-                    let slice_started = Instant::now();
-                    let (slice, stats) = slice_values(&settings.axes, i_ab, i_nu, &solver)
-                        .map_err(|e| format!("slice a/b node {i_ab}, ν node {i_nu}: {e}"))?;
-                    write_slice(&path, &slice)?;
-                    totals += stats;
-                    println!(
-                        "slice {:>3}/{}: a/b = {:.4}, ν = {:.3}: {} solves ({} unconverged), {:.1} Newton steps and {:.0} products per solve, {:.1} s",
-                        i_ab * n_nu + i_nu + 1,
-                        n_ab * n_nu,
-                        settings.axes.a_over_b_node(i_ab),
-                        settings.axes.poisson_node(i_nu),
-                        stats.solves,
-                        stats.unconverged,
-                        stats.iterations as f64 / stats.solves.max(1) as f64,
-                        stats.operator_products as f64 / stats.solves.max(1) as f64,
-                        slice_started.elapsed().as_secs_f64()
-                    );
-                    slice
+            let grid = settings.grid_at(settings.axes.a_over_b_node(i_ab));
+            let mut obtain = |solved_on: (usize, usize), nodes_of: Option<&Slice>| {
+                let directory = work_dir.join(settings.slice_directory(solved_on, grid));
+                let path = directory.join(format!("slice-{i_ab:03}-{i_nu:03}.f32"));
+                if let Some(saved) = read_slice(&path, &settings.axes) {
+                    return Ok(refresh_full_slip(&settings.axes, i_ab, i_nu, &saved));
                 }
+                let slice_started = Instant::now();
+                let solver = ExactTheory::new(solved_on.0, solved_on.1);
+                let (slice, stats) = slice_values(&settings.axes, i_ab, i_nu, &solver, nodes_of)
+                    .map_err(|e| format!("slice a/b node {i_ab}, ν node {i_nu}: {e}"))?;
+                std::fs::create_dir_all(&directory).map_err(|e| format!("{}: {e}", directory.display()))?;
+                write_slice(&path, &slice)?;
+                totals += stats;
+                println!(
+                    "slice {:>3}/{} on {}x{}: a/b = {:.4}, ν = {:.3}: {} solves ({} unconverged), {:.1} Newton steps and {:.0} products per solve, {:.1} s",
+                    i_ab * n_nu + i_nu + 1,
+                    n_ab * n_nu,
+                    solved_on.0,
+                    solved_on.1,
+                    settings.axes.a_over_b_node(i_ab),
+                    settings.axes.poisson_node(i_nu),
+                    stats.solves,
+                    stats.unconverged,
+                    stats.iterations as f64 / stats.solves.max(1) as f64,
+                    stats.operator_products as f64 / stats.solves.max(1) as f64,
+                    slice_started.elapsed().as_secs_f64()
+                );
+                Ok::<_, String>(slice)
+            };
+            let fine = obtain(grid, None)?;
+            let slice = if settings.extrapolate {
+                let coarse = obtain((grid.0 / 2, grid.1), Some(&fine))?;
+                extrapolate(&fine, &coarse)
+            } else {
+                fine
             };
             slices.push(slice);
         }
     }
     let provenance = format!(
         "wheel-rail-contact {} exact_table generator v{GENERATOR_VERSION}: `cargo fmu exact-table{}`; \
-         ExactTheory (FFT Newton-GMRES) on {} x {} elements over 2.2a x 2.2b; nodes a/b {} (ln-uniform \
-         over {:?}), nu {} over {:?}, beta {}, alpha {}, tau {} (kink-fitted size: each ray's adhesion collapse \
-         at tau 0.5625, found by bisection); tau = 1 by full-sliding quadrature; values 16-bit",
+         ExactTheory (FFT Newton-GMRES) on {} x {} elements over 2.2a x 2.2b ({} x {} for a/b < 1/3){}; \
+         nodes a/b {} (ln-uniform over {:?}), nu {} over {:?}, beta {}, alpha {}, tau {} (kink-fitted size: \
+         each ray's adhesion collapse at tau 0.5625, found by bisection); tau = 1 by full-sliding \
+         quadrature; values 16-bit",
         env!("CARGO_PKG_VERSION"),
         args_text(settings),
         settings.grid.0,
         settings.grid.1,
+        settings.wide_grid.0,
+        settings.wide_grid.1,
+        if settings.extrapolate { ", extrapolated along x from half as many elements" } else { "" },
         settings.axes.counts[0],
         settings.axes.a_over_b,
         settings.axes.counts[1],
@@ -150,7 +201,20 @@ fn args_text(settings: &Settings) -> String {
         return String::new();
     }
     let c = settings.axes.counts;
-    format!(" --counts {},{},{},{},{} --grid {}x{}", c[0], c[1], c[2], c[3], c[4], settings.grid.0, settings.grid.1)
+    let (g, w) = (settings.grid, settings.wide_grid);
+    format!(
+        " --counts {},{},{},{},{} --grid {}x{} --wide-grid {}x{} --extrapolate {}",
+        c[0],
+        c[1],
+        c[2],
+        c[3],
+        c[4],
+        g.0,
+        g.1,
+        w.0,
+        w.1,
+        if settings.extrapolate { "yes" } else { "no" }
+    )
 }
 
 /// A saved slice (its values, then its rays' collapse, f32), or `None` when it is missing or

@@ -14,9 +14,9 @@ const USAGE: &str = "usage: cargo fmu [COMMAND]
              prints a table, writes target/fmu/default_scene.csv and .svg
   reference  read CSV of FMU inputs and parameters (header: their names; optional step_size for
              creep relaxation) on stdin, write the core library's outputs as CSV on stdout
-  exact-table [--counts A,N,B,AL,T] [--grid NXxNY] [--out PATH]
+  exact-table [--counts A,N,B,AL,T] [--grid NXxNY] [--wide-grid NXxNY] [--extrapolate yes|no] [--out PATH]
              generate the exact_table model's table (default: the shipped settings, written to
-             data/exact_table.bin; about an hour on two cores). Resumable: solved slices are kept
+             data/exact_table.bin; hours on two cores, docs/exact_table.md). Resumable: solved slices are kept
              in target/exact-table/";
 
 fn out_dir() -> PathBuf {

@@ -62,20 +62,27 @@ impl std::ops::AddAssign for SliceStatistics {
 
 /// Slice (`i_ab`, `i_nu`), solved by `solver` on rayon's thread pool, one ray (fixed β, α;
 /// t rising, each solve warm-started from a previous one) per task; the τ = 1 nodes by the
-/// full-sliding quadrature.
+/// full-sliding quadrature. Each ray's collapse is found by bisection on `solver`'s grid, or,
+/// with `collapse_of` (another slice of the same nodes), taken from that slice, so that both
+/// slices hold the same t at every node (as [`extrapolate`] needs).
 pub fn slice_values(
     axes: &TableAxes,
     i_ab: usize,
     i_nu: usize,
     solver: &ExactTheory,
+    collapse_of: Option<&Slice>,
 ) -> Result<(Slice, SliceStatistics), crate::InvalidInput> {
     let a_over_b = axes.a_over_b_node(i_ab);
     let poisson_ratio = axes.poisson_node(i_nu);
     let scale = scale_factors(a_over_b, poisson_ratio);
     let solved = solved_rays(axes);
+    let n_alpha = axes.counts[3];
     let rays: Vec<(Ray, SliceStatistics)> = solved
         .par_iter()
-        .map(|&(k, l)| ray(axes, k, l, a_over_b, poisson_ratio, scale, solver))
+        .map(|&(k, l)| {
+            let known = collapse_of.map(|slice| f64::from(slice.collapse[k * n_alpha + l]));
+            ray(axes, k, l, a_over_b, poisson_ratio, scale, solver, known)
+        })
         .collect::<Result<_, _>>()?;
     let mut statistics = SliceStatistics::default();
     let mut values = Vec::with_capacity(rays.len());
@@ -173,8 +180,9 @@ fn fill_slice(axes: &TableAxes, i_ab: usize, i_nu: usize, solved: &[(usize, usiz
 }
 
 /// One ray: τ = 0 (no force); the solver at the nodes 0 < τ ≤ `IDENTITY_END` (where τ = t);
-/// the collapse t_c by bisection; the solver at the nodes above, at t = size_of(τ, t_c); τ = 1
-/// is left at zero for [`fill_slice`].
+/// the collapse t_c by bisection (unless `known`); the solver at the nodes above, at
+/// t = size_of(τ, t_c); τ = 1 is left at zero for [`fill_slice`].
+#[allow(clippy::too_many_arguments)]
 fn ray(
     axes: &TableAxes,
     k: usize,
@@ -183,6 +191,7 @@ fn ray(
     poisson_ratio: f64,
     scale: [f64; 3],
     solver: &ExactTheory,
+    known: Option<f64>,
 ) -> Result<(Ray, SliceStatistics), crate::InvalidInput> {
     let n_t = axes.counts[4];
     let (a, b) = (MEAN_SEMI_AXIS * a_over_b.sqrt(), MEAN_SEMI_AXIS / a_over_b.sqrt());
@@ -227,12 +236,32 @@ fn ray(
         start = Some(solution.warm_start());
         m += 1;
     }
+    let collapse = match known {
+        Some(collapse) => collapse,
+        None => find_collapse(&mut solve, start.as_ref(), collapsed)?,
+    };
+    while m < n_t - 1 {
+        let solution = solve(size_of(tau(m), collapse), start.as_ref())?;
+        values.push(forces(&solution));
+        start = Some(solution.warm_start());
+        m += 1;
+    }
+    values.push([0.0; 3]);
+    Ok((Ray { collapse, values }, statistics))
+}
+
+/// A ray's collapse t_c: bisection in `COLLAPSE_RANGE` on whether the adhesion area has
+/// `collapsed`, each solve warm-started from the nearest one below it.
+fn find_collapse(
+    solve: &mut impl FnMut(f64, Option<&WarmStart>) -> Result<ExactSolution, crate::InvalidInput>,
+    start: Option<&WarmStart>,
+    collapsed: impl Fn(&ExactSolution) -> bool,
+) -> Result<f64, crate::InvalidInput> {
     let (mut below, mut above) = COLLAPSE_RANGE;
-    let (below_start, above_start) = (start.clone(), start.clone());
-    let low = solve(below, below_start.as_ref())?;
-    let collapse = if collapsed(&low) {
+    let low = solve(below, start)?;
+    Ok(if collapsed(&low) {
         below
-    } else if !collapsed(&solve(above, above_start.as_ref())?) {
+    } else if !collapsed(&solve(above, start)?) {
         above
     } else {
         let mut nearest = low.warm_start();
@@ -247,15 +276,28 @@ fn ray(
             }
         }
         0.5 * (below + above)
-    };
-    while m < n_t - 1 {
-        let solution = solve(size_of(tau(m), collapse), start.as_ref())?;
-        values.push(forces(&solution));
-        start = Some(solution.warm_start());
-        m += 1;
+    })
+}
+
+/// Richardson extrapolation along x of two slices solved at the same nodes (the coarse one
+/// with `collapse_of` the fine one, [`slice_values`]) on grids of n_x and n_x/2 elements: the
+/// solver's error is first order in the element length along the rolling direction, so
+/// F∞ ≈ 2 F(n_x) − F(n_x/2) (docs/exact_table.md, "How it was made"). A force the extrapolation
+/// puts outside the Coulomb disc, which the converged theory never leaves, is scaled back onto
+/// it. τ = 1 (full sliding, the same quadrature in both) and the fold edges' symmetries are kept.
+pub fn extrapolate(fine: &Slice, coarse: &Slice) -> Slice {
+    assert!(
+        fine.collapse == coarse.collapse && fine.values.len() == coarse.values.len(),
+        "extrapolate: the coarse slice must be solved at the fine slice's nodes"
+    );
+    let mut values = Vec::with_capacity(fine.values.len());
+    for (f, c) in fine.values.chunks_exact(3).zip(coarse.values.chunks_exact(3)) {
+        let v: [f64; 3] = std::array::from_fn(|k| 2.0 * f64::from(f[k]) - f64::from(c[k]));
+        let length = v[0].hypot(v[1]);
+        let inside = if length > 1.0 { 1.0 / length } else { 1.0 };
+        values.extend([v[0] * inside, v[1] * inside, v[2]].map(|x| x as f32));
     }
-    values.push([0.0; 3]);
-    Ok((Ray { collapse, values }, statistics))
+    Slice { values, collapse: fine.collapse.clone() }
 }
 
 /// The table from its slices (in the order i_ab, then i_ν), with its provenance text.
@@ -264,4 +306,46 @@ pub fn assemble(provenance: String, axes: TableAxes, slices: Vec<Slice>) -> Resu
     let collapse = slices.iter().flat_map(|slice| slice.collapse.iter().copied()).collect();
     let values = slices.into_iter().flat_map(|slice| slice.values).collect();
     Table::new(provenance, axes, scales, collapse, values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn slice(values: &[[f32; 3]]) -> Slice {
+        Slice { values: values.iter().flatten().copied().collect(), collapse: vec![0.6] }
+    }
+
+    /// Values with an error A/n_x (the solver's first-order error along x) extrapolate to their
+    /// limit; one the extrapolation puts outside the Coulomb disc is scaled back onto it, its
+    /// direction and its moment kept; full sliding, the same on both grids, is unchanged.
+    #[test]
+    fn extrapolation_removes_a_first_order_error_and_stays_in_the_disc() {
+        let limit = [[0.25, -0.5, 0.125], [0.75, 0.5, -0.25], [0.6, 0.8, 0.0]];
+        let error = [[0.5, 0.25, -1.0], [1.0, 1.0, 0.5], [0.0, 0.0, 0.0]];
+        let on =
+            |n: f32| slice(&std::array::from_fn::<_, 3, _>(|i| std::array::from_fn(|k| limit[i][k] + error[i][k] / n)));
+        let extrapolated = extrapolate(&on(80.0), &on(40.0));
+        assert_eq!(extrapolated.collapse, vec![0.6]);
+        for (node, expected) in extrapolated.values.chunks_exact(3).zip(limit) {
+            for k in 0..3 {
+                assert!((node[k] - expected[k]).abs() < 1e-6, "{node:?} against {expected:?}");
+            }
+        }
+        // 2·(0.8, 0.7) − (0.7, 0.6) = (0.9, 0.8), |F| = 1.204: scaled back to length 1.
+        let outside = extrapolate(&slice(&[[0.8, 0.7, 0.3]]), &slice(&[[0.7, 0.6, 0.1]]));
+        let length = 0.9f64.hypot(0.8);
+        let expected = [0.9 / length, 0.8 / length, 0.5];
+        for k in 0..3 {
+            assert!((f64::from(outside.values[k]) - expected[k]).abs() < 1e-6, "{:?}", outside.values);
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "solved at the fine slice's nodes")]
+    fn extrapolation_refuses_slices_of_different_nodes() {
+        let mut other = slice(&[[0.1, 0.2, 0.3]]);
+        other.collapse = vec![0.7];
+        extrapolate(&slice(&[[0.1, 0.2, 0.3]]), &other);
+    }
 }
