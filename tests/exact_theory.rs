@@ -418,3 +418,45 @@ fn extremes_are_finite_and_bounded() {
         }
     }
 }
+
+/// A long ellipse (a/b = 9.8) with spin near the collapse of adhesion, on 320 × 400 elements:
+/// loosely solved Newton steps kept trading ≈ 250 elements between adhesion and slip; after
+/// 200 steps the iterate had 6 % of the adhesion area and F_x = −0.258 μQ. It converges
+/// (accurate steps once sixteen loose ones have not settled) to the forces of the 300 × 400
+/// grid, which converges in 9 steps: F_x = −0.56187 μQ, F_y = 0.08123 μQ.
+#[test]
+fn a_division_that_does_not_settle_is_solved_accurately_until_it_converges() {
+    let case = ContactInput {
+        creepage_longitudinal: 7.641165e-4,
+        creepage_lateral: -9.891905e-4,
+        spin_creepage: 0.1249448,
+        poisson_ratio: 0.4644424,
+        ..input(15.671075e-3, 1.5952958e-3, 80e3, 0.3, 0.4644424)
+    };
+    let limit = 0.3 * 80e3;
+    let solution = ExactTheory::new(320, 400).solve(&case).unwrap();
+    assert!(solution.converged, "{} steps, {} products", solution.iterations, solution.operator_products);
+    let forces = solution.forces;
+    assert!((forces.force_longitudinal / limit + 0.56187).abs() < 2e-3, "{forces:?}");
+    assert!((forces.force_lateral / limit - 0.08123).abs() < 2e-3, "{forces:?}");
+}
+
+/// An iterate that did not converge is never passed on as forces: the error names the grid and
+/// the solver's limits.
+#[test]
+fn an_unconverged_solution_is_refused_with_the_grid_named() {
+    let case = ContactInput { creepage_longitudinal: 1e-3, spin_creepage: 0.3, ..input(6e-3, 4e-3, 80e3, 0.3, 0.28) };
+    let mut solution = ExactTheory::new(20, 16).solve(&case).unwrap();
+    assert!(solution.clone().converged().is_ok());
+    solution.converged = false;
+    let message = solution.converged().unwrap_err().to_string();
+    for part in [
+        "grid_elements_longitudinal = 20",
+        "grid_elements_lateral = 16",
+        "did not converge",
+        &format!("{} Newton steps", wheel_rail_contact::models::exact::MAX_ITERATIONS),
+        &format!("{} operator products", wheel_rail_contact::models::exact::MAX_PRODUCTS),
+    ] {
+        assert!(message.contains(part), "{message}: no {part:?}");
+    }
+}

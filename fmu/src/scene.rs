@@ -93,6 +93,27 @@ fn reported(error: InvalidInput, counts: &[(&'static str, &'static str, i32)]) -
     }
 }
 
+/// The exact theory's grid in the core's names and in the FMU's.
+const EXACT_GRID_NAMES: [(&str, &str); 2] = [
+    ("grid_elements_longitudinal", "exact_elements_longitudinal"),
+    ("grid_elements_lateral", "exact_elements_lateral"),
+];
+
+/// A step's error in the FMU's variable names: the core names the exact theory's grid by its
+/// own fields (an exact solve that did not converge names the grid, `ExactSolution::converged`).
+fn in_fmu_names(error: SceneError) -> String {
+    let rename = |name: &'static str| EXACT_GRID_NAMES.iter().find(|(core, _)| *core == name).map_or(name, |n| n.1);
+    match error {
+        SceneError::Invalid(error) => InvalidInput {
+            variable: rename(error.variable),
+            with: error.with.map(|other| other.map(|(name, value)| (rename(name), value))),
+            ..error
+        }
+        .to_string(),
+        other => other.to_string(),
+    }
+}
+
 /// The core's scene the parameters select, validated; the error names the FMU variable and
 /// its value.
 pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
@@ -242,7 +263,7 @@ pub(crate) fn compute_outputs(
 ) -> Result<Outputs, String> {
     let (scene, state) = cache.plan(&values.parameters)?;
     state.relaxed_forces = *relaxed_forces;
-    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
+    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(in_fmu_names)?;
     *relaxed_forces = state.relaxed_forces;
     Ok(Outputs::from_scene(&output))
 }
@@ -257,9 +278,8 @@ pub(crate) fn directional_derivative(
     direction: &Inputs,
 ) -> Result<Outputs, String> {
     let (scene, _) = cache.plan(&values.parameters)?;
-    let rates = scene
-        .directional_derivative(&values.inputs.scene_input(), &direction.scene_input())
-        .map_err(|e: SceneError| e.to_string())?;
+    let rates =
+        scene.directional_derivative(&values.inputs.scene_input(), &direction.scene_input()).map_err(in_fmu_names)?;
     Ok(Outputs::from_scene(&rates))
 }
 
@@ -282,6 +302,25 @@ mod tests {
     use wheel_rail_contact::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
     use wheel_rail_contact::scene::relaxation::RelaxationLengths;
     use wheel_rail_contact::{CreepForceModel, LargeCreepage};
+
+    /// An exact solve's error (one that did not converge names the core's grid fields) reaches
+    /// the master in the FMU's parameter names, with the values.
+    #[test]
+    fn exact_grid_errors_name_the_fmu_parameters() {
+        let error = InvalidInput {
+            variable: "grid_elements_longitudinal",
+            value: 320.0,
+            requirement: "the exact theory did not converge",
+            with: [Some(("grid_elements_lateral", 400.0)), None],
+        };
+        assert_eq!(
+            in_fmu_names(SceneError::Invalid(error)),
+            "exact_elements_longitudinal = 320 is invalid with exact_elements_lateral = 400: the exact theory did not converge"
+        );
+        let other =
+            InvalidInput { variable: "normal_force", value: -1.0, requirement: "must be ≥ 0", with: [None; 2] };
+        assert_eq!(in_fmu_names(SceneError::Invalid(other)), other.to_string());
+    }
 
     fn outputs_of(values: &Values) -> Result<Outputs, String> {
         compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)

@@ -333,7 +333,7 @@ impl Scene {
                 (polach.creep_forces_with_cache(&contact, &mut state.shape)?, input.friction_coefficient)
             }
             (TractionLaw::Coulomb, ModelChoice::Exact(exact)) => {
-                let solution = exact.solve_from(&contact, Some(&state.exact_start))?;
+                let solution = exact.solve_from(&contact, Some(&state.exact_start))?.converged()?;
                 state.exact_start = solution.warm_start();
                 (solution.forces, input.friction_coefficient)
             }

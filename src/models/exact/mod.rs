@@ -142,12 +142,29 @@ pub struct ExactSolution {
     /// Whether the iteration met its tolerance (tractions to ≈ 1e-7 × the largest: an accurate
     /// Newton step that changed no element's state and no traction by more than 1e-3 × the
     /// largest traction, then no element released) within the limits [`MAX_ITERATIONS`] and
-    /// [`MAX_PRODUCTS`]. Every case in the tests converges; the forces are the last iterate
-    /// otherwise.
+    /// [`MAX_PRODUCTS`]. Otherwise the tractions and forces are the last iterate, which
+    /// [`ExactSolution::converged`] refuses to pass on as forces.
     pub converged: bool,
 }
 
 impl ExactSolution {
+    /// The solution, if its iteration converged; otherwise an error naming the grid. An
+    /// unconverged iterate's forces can be far off (0.3 μQ in the case `tangential.rs` cites),
+    /// so the models' forces ([`CreepForceModel::creep_forces`], the FMU) are never taken from
+    /// one.
+    pub fn converged(self) -> Result<Self, InvalidInput> {
+        if self.converged {
+            return Ok(self);
+        }
+        Err(InvalidInput::new(
+            "grid_elements_longitudinal",
+            self.grid.longitudinal as f64,
+            "the exact theory did not converge on this grid for this contact within its limits \
+             (200 Newton steps, 4000 operator products); choose another grid or model",
+        )
+        .involving([Some(("grid_elements_lateral", self.grid.lateral as f64)), None]))
+    }
+
     /// Centre of element (i, j) \[m\] relative to the contact centre.
     pub fn element_centre(&self, i: usize, j: usize) -> (f64, f64) {
         let x = (i as f64 + 0.5 - 0.5 * self.grid.longitudinal as f64) * self.element_length;
@@ -392,7 +409,7 @@ impl ExactTheory {
 
 impl CreepForceModel for ExactTheory {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
-        self.solve(input).map(|solution| solution.forces)
+        Ok(self.solve(input)?.converged()?.forces)
     }
 }
 

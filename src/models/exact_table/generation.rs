@@ -336,8 +336,8 @@ mod tests {
         let outside = extrapolate(&slice(&[[0.8, 0.7, 0.3]]), &slice(&[[0.7, 0.6, 0.1]]));
         let length = 0.9f64.hypot(0.8);
         let expected = [0.9 / length, 0.8 / length, 0.5];
-        for k in 0..3 {
-            assert!((f64::from(outside.values[k]) - expected[k]).abs() < 1e-6, "{:?}", outside.values);
+        for (value, expected) in outside.values.iter().zip(expected) {
+            assert!((f64::from(*value) - expected).abs() < 1e-6, "{:?}", outside.values);
         }
     }
 
