@@ -1,21 +1,36 @@
 //! The exact_table nodes' grid error: candidate solver grids for the table's nodes against the
-//! converged theory, on random contacts near the knee of saturation with spin (where the third
-//! table's largest errors are; docs/exact_table.md, "What is not there yet"). The converged
-//! values are extrapolated along x from 320 and 400 × 400 elements (the solver converges as
-//! 1/n_x); "R(n₁,n₂)" is the same extrapolation from two candidate grids, "adapt" puts
-//! 20·√(b/a) elements across a contact wider than long.
+//! converged theory, on random contacts near the knee of saturation with spin (where the
+//! table's largest errors are; docs/exact_table.md, "How it was made"). The converged values
+//! are extrapolated along x from 320 and 400 × 400 elements (the solver converges as 1/n_x). A
+//! candidate `NXxNY` is the solver on that grid; `NXxNY,MXxMY` is the extrapolation along x
+//! from the two, 2F(MX) − F(NX) for MX = 2 NX (the rule `cargo fmu exact-table` builds with).
+//! A contact whose reference solve does not converge is left out and counted.
 //!
-//! Run: `cargo run --release --example node_grid_study -- 40` (the number of contacts; ≈ 5 min).
-use wheel_rail_contact::{ContactInput, CreepForceModel, CreepForces, ExactTheory, KalkerCoefficients};
+//! Run: `cargo run --release --example node_grid_study -- N SEED LOG10_LOW LOG10_HIGH GRIDS…`:
+//! N contacts with a/b log-uniform between 10^LOG10_LOW and 10^LOG10_HIGH (≈ 10 s per contact
+//! on two cores, most of it the reference). Without arguments: `40 4660 -1 1 80x20 40x20,80x20
+//! 20x40,40x40`. Prints, per candidate and a/b band, max |ΔF|/(μQ) / max |ΔM_z|/(μQc), and the
+//! median |ΔF|.
+use wheel_rail_contact::{ContactInput, CreepForces, ExactTheory, KalkerCoefficients};
 
 /// F_x/(μQ), F_y/(μQ), M_z/(μQc).
 fn scaled(f: &CreepForces, l: f64, c: f64) -> [f64; 3] {
     [f.force_longitudinal / l, f.force_lateral / l, f.spin_moment.unwrap() / (l * c)]
 }
 
+fn grid(text: &str) -> (usize, usize) {
+    let counts: Vec<usize> = text.split('x').map(|n| n.parse().expect("a grid NXxNY")).collect();
+    (counts[0], counts[1])
+}
+
 fn main() {
-    let n: usize = std::env::args().nth(1).map(|a| a.parse().unwrap()).unwrap_or(40);
-    let mut state = 0x1234_u64;
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if args.is_empty() {
+        args = "40 4660 -1 1 80x20 40x20,80x20 20x40,40x40".split(' ').map(String::from).collect();
+    }
+    let n: usize = args[0].parse().expect("N");
+    let mut state: u64 = args[1].parse().expect("SEED");
+    let (low, high): (f64, f64) = (args[2].parse().expect("LOG10_LOW"), args[3].parse().expect("LOG10_HIGH"));
     let mut next = move || {
         state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
@@ -24,7 +39,7 @@ fn main() {
     let l = mu * q;
     let mut cases = Vec::new();
     for i in 0..n {
-        let a_over_b = 10f64.powf(-1.0 + 2.0 * (i as f64 + next()) / n as f64);
+        let a_over_b = 10f64.powf(low + (high - low) * (i as f64 + next()) / n as f64);
         let poisson_ratio = 0.5 * next();
         let level = 0.4 + 1.6 * next();
         let z = (0.3 + 0.7 * next()) * if next() < 0.5 { -1.0 } else { 1.0 };
@@ -44,49 +59,48 @@ fn main() {
             poisson_ratio,
         });
     }
-    let solve_one = |input: &ContactInput, grid: (usize, usize)| {
-        scaled(&ExactTheory::new(grid.0, grid.1).creep_forces(input).unwrap(), l, c)
-    };
-    let solve = |grid: (usize, usize)| -> Vec<[f64; 3]> {
-        ExactTheory::new(grid.0, grid.1)
+    let solve = |(nx, ny): (usize, usize)| -> Vec<Option<[f64; 3]>> {
+        ExactTheory::new(nx, ny)
             .creep_forces_many(&cases)
             .into_iter()
-            .map(|f| scaled(&f.unwrap(), l, c))
+            .map(|f| f.ok().map(|f| scaled(&f, l, c)))
             .collect()
     };
-    let extrapolate = |a: &[[f64; 3]], b: &[[f64; 3]], n1: f64, n2: f64| -> Vec<[f64; 3]> {
-        a.iter().zip(b).map(|(a, b)| [0, 1, 2].map(|k| (n2 * b[k] - n1 * a[k]) / (n2 - n1))).collect()
+    let extrapolate = |coarse: &[Option<[f64; 3]>], fine: &[Option<[f64; 3]>], n1: f64, n2: f64| {
+        let combine = |a: &Option<[f64; 3]>, b: &Option<[f64; 3]>| {
+            let (a, b) = ((*a)?, (*b)?);
+            Some([0, 1, 2].map(|k| (n2 * b[k] - n1 * a[k]) / (n2 - n1)))
+        };
+        coarse.iter().zip(fine).map(|(a, b)| combine(a, b)).collect::<Vec<_>>()
     };
     let reference = extrapolate(&solve((320, 400)), &solve((400, 400)), 320.0, 400.0);
-    let ny_adapted = |input: &ContactInput, nx: usize| {
-        let b_over_a = input.semi_axis_b / input.semi_axis_a;
-        (nx, (20.0 * b_over_a.max(1.0).sqrt()).round() as usize)
+    let left_out = reference.iter().filter(|r| r.is_none()).count();
+    let bands: &[(f64, f64)] = if high <= 0.0 {
+        &[(0.1, 0.15), (0.15, 0.22), (0.22, 1.0 / 3.0), (1.0 / 3.0, 1.0)]
+    } else {
+        &[(0.1, 0.3), (0.3, 1.0), (1.0, 3.0), (3.0, 10.01)]
     };
-    let mut rules: Vec<(String, Vec<[f64; 3]>)> = Vec::new();
-    let f80 = solve((80, 20));
-    let f160 = solve((160, 20));
-    rules.push(("80x20".into(), f80.clone()));
-    rules.push(("160x20".into(), f160.clone()));
-    rules.push(("R(80,160)x20".into(), extrapolate(&f80, &f160, 80.0, 160.0)));
-    let f80_40 = solve((80, 40));
-    let f160_40 = solve((160, 40));
-    rules.push(("80x40".into(), f80_40.clone()));
-    rules.push(("R(80,160)x40".into(), extrapolate(&f80_40, &f160_40, 80.0, 160.0)));
-    let a80: Vec<[f64; 3]> = cases.iter().map(|i| solve_one(i, ny_adapted(i, 80))).collect();
-    let a160: Vec<[f64; 3]> = cases.iter().map(|i| solve_one(i, ny_adapted(i, 160))).collect();
-    rules.push(("80xadapt".into(), a80.clone()));
-    rules.push(("R(80,160)xadapt".into(), extrapolate(&a80, &a160, 80.0, 160.0)));
-    let bands = [(0.1, 0.3), (0.3, 1.0), (1.0, 3.0), (3.0, 10.01)];
-    println!("rule: per a/b band [0.1,0.3) [0.3,1) [1,3) [3,10]: max F / max M_z; overall median F");
-    for (name, values) in &rules {
-        let mut line = format!("{name:>16}:");
+    let band_names: Vec<String> = bands.iter().map(|(lo, hi)| format!("[{lo:.2}, {hi:.2})")).collect();
+    println!(
+        "{n} contacts ({left_out} left out: reference not converged); per a/b band {}: max F / max M_z; median F",
+        band_names.join(" ")
+    );
+    for candidate in &args[4..] {
+        let grids: Vec<(usize, usize)> = candidate.split(',').map(grid).collect();
+        let values = match grids[..] {
+            [single] => solve(single),
+            [coarse, fine] => extrapolate(&solve(coarse), &solve(fine), coarse.0 as f64, fine.0 as f64),
+            _ => panic!("{candidate}: one grid, or two to extrapolate along x"),
+        };
+        let mut line = format!("{candidate:>16}:");
         let mut all = Vec::new();
-        for (lo, hi) in bands {
+        for &(lo, hi) in bands {
             let (mut f, mut m) = (0.0f64, 0.0f64);
             for (i, input) in cases.iter().enumerate() {
-                let ab = input.semi_axis_a / input.semi_axis_b;
-                if ab >= lo && ab < hi {
-                    let e = [0, 1, 2].map(|k| (values[i][k] - reference[i][k]).abs());
+                let a_over_b = input.semi_axis_a / input.semi_axis_b;
+                let (Some(value), Some(reference)) = (values[i], reference[i]) else { continue };
+                if a_over_b >= lo && a_over_b < hi {
+                    let e = [0, 1, 2].map(|k| (value[k] - reference[k]).abs());
                     f = f.max(e[0].max(e[1]));
                     m = m.max(e[2]);
                     all.push(e[0].max(e[1]));
@@ -95,7 +109,7 @@ fn main() {
             line += &format!("  {f:.4}/{m:.4}");
         }
         all.sort_by(f64::total_cmp);
-        line += &format!("  median {:.4}", all[all.len() / 2]);
+        line += &format!("  median {:.4}", all.get(all.len() / 2).copied().unwrap_or(f64::NAN));
         println!("{line}");
     }
 }

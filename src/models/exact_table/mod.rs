@@ -3,7 +3,8 @@
 //!
 //! Kalker tabulated his own exact theory for the same purpose (USETAB, 1996: 25 a/b × 16 ξ ×
 //! 16 η × 32 φ cases on 12 × 12 grids). This table is made by our exact solver
-//! ([`crate::ExactTheory`], on a grid within ≈ 0.002 μQ of its converged solution) and differs in
+//! ([`crate::ExactTheory`]; how, and how close its nodes are to the converged theory:
+//! docs/exact_table.md) and differs in
 //! its coordinates (`coordinates.rs`): Kalker's similarity law removes Q, μ, G and the size of
 //! the ellipse, the problem's symmetries fold the creepages onto one octant, and the creepages
 //! become a direction (α, β) and a size t ∈ [0, 1] whose end t = 1 is full sliding, tabulated by
