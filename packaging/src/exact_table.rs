@@ -84,6 +84,12 @@ impl Settings {
                 _ => return Err(format!("unknown option {flag}")),
             }
         }
+        if settings.extrapolate && [settings.grid, settings.wide_grid].iter().any(|g| !g.0.is_multiple_of(2)) {
+            return Err(format!(
+                "--grid {}x{} --wide-grid {}x{}: even counts along x, to extrapolate from half as many",
+                settings.grid.0, settings.grid.1, settings.wide_grid.0, settings.wide_grid.1
+            ));
+        }
         let counts = settings.axes.counts;
         if counts.iter().any(|&n| n < 2) || counts[2].is_multiple_of(2) {
             return Err(format!("--counts {counts:?}: at least 2 nodes per axis, an odd count along β (β = 0 a node)"));
@@ -238,4 +244,41 @@ fn write_slice(path: &Path, slice: &Slice) -> Result<(), String> {
     let bytes: Vec<u8> = slice.values.iter().chain(&slice.collapse).flat_map(|v| v.to_le_bytes()).collect();
     file.write_all(&bytes).and_then(|()| file.sync_all()).map_err(|e| format!("{}: {e}", temporary.display()))?;
     std::fs::rename(&temporary, path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &str) -> Result<Settings, String> {
+        Settings::from_args(&args.split_whitespace().map(String::from).collect::<Vec<_>>())
+    }
+
+    #[test]
+    fn options_override_the_shipped_settings_and_the_provenance_repeats_them() {
+        assert_eq!(parse(""), Ok(Settings::shipped()));
+        let settings = parse("--counts 3,2,5,3,17 --grid 60x30 --wide-grid 30x60 --extrapolate no").unwrap();
+        assert_eq!(settings.axes.counts, [3, 2, 5, 3, 17]);
+        assert_eq!((settings.grid, settings.wide_grid, settings.extrapolate), ((60, 30), (30, 60), false));
+        assert_eq!(parse(&args_text(&settings)), Ok(settings.clone()));
+        assert_eq!(settings.grid_at(WIDE_BELOW * 0.99), (30, 60));
+        assert_eq!(settings.grid_at(WIDE_BELOW), (60, 30));
+    }
+
+    #[test]
+    fn bad_options_are_refused_with_the_option_named() {
+        for (args, expected) in [
+            ("--grid 81x20", "--grid 81x20 --wide-grid 40x40: even counts along x"),
+            ("--grid 80", "--grid 80: NXxNY"),
+            ("--wide-grid 1x40", "--wide-grid 1x40: NXxNY, at least 2"),
+            ("--extrapolate maybe", "--extrapolate maybe: yes or no"),
+            ("--counts 3,2,4,3,17", "an odd count along β"),
+            ("--grid", "--grid needs a value"),
+            ("--grids 80x20", "unknown option --grids"),
+        ] {
+            let error = parse(args).unwrap_err();
+            assert!(error.contains(expected), "{args}: {error}");
+        }
+        assert!(parse("--grid 81x20 --wide-grid 41x40 --extrapolate no").is_ok());
+    }
 }
