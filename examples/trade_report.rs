@@ -7,6 +7,7 @@
 //! Run: `cargo run --release --example trade_report` (or `-- --quick` for the reduced CI set).
 
 use plotters::prelude::*;
+use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::hint::black_box;
 use std::time::Instant;
@@ -472,7 +473,8 @@ fn write_held_out_recheck(
     // A reference solve that does not converge (`ExactSolution::converged`) leaves its point
     // out, said in its row, rather than comparing against an unconverged iterate.
     let solve = |(longitudinal, lateral): (usize, usize)| -> Vec<Option<CreepForces>> {
-        ExactTheory::new(longitudinal, lateral).creep_forces_many(&chosen).into_iter().map(Result::ok).collect()
+        let model = ExactTheory::new(longitudinal, lateral);
+        chosen.par_iter().map(|input| Some(model.solve(input).ok()?.converged().ok()?.forces)).collect()
     };
     let (coarse, fine) = (solve(grids[0]), solve(grids[1]));
     let [(n1, lateral), (n2, _)] = grids;

@@ -12,6 +12,7 @@ use super::model_description::{
     Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters, StiffnessSource as StiffnessChoice, Switch,
     TractionBound as TractionBoundChoice, TractionLaw as TractionLawChoice, Values,
 };
+use wheel_rail_contact::models::exact::{MAX_ITERATIONS, MAX_PRODUCTS};
 use wheel_rail_contact::scene::{
     CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneState, TractionLaw,
 };
@@ -90,27 +91,6 @@ fn reported(error: InvalidInput, counts: &[(&'static str, &'static str, i32)]) -
     match counts.iter().find(|(core_name, _, _)| *core_name == error.variable) {
         Some(&(_, variable, value)) => InvalidInput { variable, value: value as f64, ..error }.to_string(),
         None => error.to_string(),
-    }
-}
-
-/// The exact theory's grid in the core's names and in the FMU's.
-const EXACT_GRID_NAMES: [(&str, &str); 2] = [
-    ("grid_elements_longitudinal", "exact_elements_longitudinal"),
-    ("grid_elements_lateral", "exact_elements_lateral"),
-];
-
-/// A step's error in the FMU's variable names: the core names the exact theory's grid by its
-/// own fields (an exact solve that did not converge names the grid, `ExactSolution::converged`).
-fn in_fmu_names(error: SceneError) -> String {
-    let rename = |name: &'static str| EXACT_GRID_NAMES.iter().find(|(core, _)| *core == name).map_or(name, |n| n.1);
-    match error {
-        SceneError::Invalid(error) => InvalidInput {
-            variable: rename(error.variable),
-            with: error.with.map(|other| other.map(|(name, value)| (rename(name), value))),
-            ..error
-        }
-        .to_string(),
-        other => other.to_string(),
     }
 }
 
@@ -253,19 +233,32 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
     })
 }
 
-/// The outputs for `values`, or the reason they cannot be computed (names the variable and
-/// value). `relaxed_forces` is read and, on success only, advanced (or initialised).
+/// The outputs for `values` with a warning for the master when they are an unconverged exact
+/// solve's last iterate, or the reason they cannot be computed (names the variable and value).
+/// `relaxed_forces` is read and, on success only, advanced (or initialised).
 pub(crate) fn compute_outputs(
     values: &Values,
     cache: &mut ModelCache,
     relaxed_forces: &mut RelaxedForces,
     evaluation: Evaluation,
-) -> Result<Outputs, String> {
+) -> Result<(Outputs, Option<String>), String> {
     let (scene, state) = cache.plan(&values.parameters)?;
     state.relaxed_forces = *relaxed_forces;
-    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(in_fmu_names)?;
+    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
     *relaxed_forces = state.relaxed_forces;
-    Ok(Outputs::from_scene(&output))
+    let warning = output.unconverged_grid.map(|grid| {
+        format!(
+            "creep_force_model = {} (exact): the exact theory did not converge on exact_elements_longitudinal × \
+             exact_elements_lateral = {} × {} elements within its limits ({MAX_ITERATIONS} Newton steps, \
+             {MAX_PRODUCTS} operator products); the outputs are its last iterate (usually close, not \
+             guaranteed): another grid, or creep_force_model = {} (exact_table), avoids it",
+            Model::Exact as i32,
+            grid.longitudinal,
+            grid.lateral,
+            Model::ExactTable as i32,
+        )
+    });
+    Ok((Outputs::from_scene(&output), warning))
 }
 
 /// d(outputs) along `direction` (one rate per continuous input) at the current `values` — of
@@ -278,8 +271,9 @@ pub(crate) fn directional_derivative(
     direction: &Inputs,
 ) -> Result<Outputs, String> {
     let (scene, _) = cache.plan(&values.parameters)?;
-    let rates =
-        scene.directional_derivative(&values.inputs.scene_input(), &direction.scene_input()).map_err(in_fmu_names)?;
+    let rates = scene
+        .directional_derivative(&values.inputs.scene_input(), &direction.scene_input())
+        .map_err(|e: SceneError| e.to_string())?;
     Ok(Outputs::from_scene(&rates))
 }
 
@@ -303,27 +297,9 @@ mod tests {
     use wheel_rail_contact::scene::relaxation::RelaxationLengths;
     use wheel_rail_contact::{CreepForceModel, LargeCreepage};
 
-    /// An exact solve's error (one that did not converge names the core's grid fields) reaches
-    /// the master in the FMU's parameter names, with the values.
-    #[test]
-    fn exact_grid_errors_name_the_fmu_parameters() {
-        let error = InvalidInput {
-            variable: "grid_elements_longitudinal",
-            value: 320.0,
-            requirement: "the exact theory did not converge",
-            with: [Some(("grid_elements_lateral", 400.0)), None],
-        };
-        assert_eq!(
-            in_fmu_names(SceneError::Invalid(error)),
-            "exact_elements_longitudinal = 320 is invalid with exact_elements_lateral = 400: the exact theory did not converge"
-        );
-        let other =
-            InvalidInput { variable: "normal_force", value: -1.0, requirement: "must be ≥ 0", with: [None; 2] };
-        assert_eq!(in_fmu_names(SceneError::Invalid(other)), other.to_string());
-    }
-
     fn outputs_of(values: &Values) -> Result<Outputs, String> {
         compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)
+            .map(|(outputs, _)| outputs)
     }
 
     fn outputs(values: &Values) -> Outputs {
@@ -688,7 +664,7 @@ mod tests {
         values.parameters.creep_relaxation = on();
         let mut cache = ModelCache::default();
         let mut state = RelaxedForces::default();
-        let initial = compute_outputs(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap();
+        let initial = compute_outputs(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap().0;
         let steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
         assert_eq!(state, [steady.force_longitudinal, steady.force_lateral]);
         assert_eq!(
@@ -701,7 +677,7 @@ mod tests {
         let new_steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
         let lengths = RelaxationLengths::from_contact(7.2e-3, 5.4e-3, 0.28).unwrap();
         let mut one_step = before;
-        let after = compute_outputs(&values, &mut cache, &mut one_step, Evaluation::Step(4e-4)).unwrap();
+        let after = compute_outputs(&values, &mut cache, &mut one_step, Evaluation::Step(4e-4)).unwrap().0;
         let steady_forces = [new_steady.force_longitudinal, new_steady.force_lateral];
         assert_eq!(one_step, lengths.advance(before, steady_forces, 20.0, 4e-4).unwrap());
         assert_eq!([after.force_longitudinal, after.force_lateral], one_step);
@@ -724,7 +700,7 @@ mod tests {
         let uniform = RelaxationLengths::uniform(0.05).unwrap();
         assert_eq!(state, uniform.advance(before, steady_forces, 20.0, 1e-3).unwrap());
         values.inputs.normal_force = 0.0;
-        let lifted = compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
+        let lifted = compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap().0;
         assert_eq!((state, lifted.force_longitudinal, lifted.adhesion_utilisation), ([0.0; 2], 0.0, 0.0));
     }
 
@@ -736,7 +712,7 @@ mod tests {
         let mut state = RelaxedForces::default();
         let mut evaluate = |values: &Values| {
             cache.parameters_changed();
-            compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3))
+            compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3)).map(|(outputs, _)| outputs)
         };
         let before = evaluate(&values).unwrap();
         values.parameters.measured_peak_adhesion = 0.36;
@@ -795,7 +771,7 @@ mod tests {
         ];
         let run = |values: &Values, evaluation| {
             let mut state = [-2e3, 1e3];
-            let outputs = compute_outputs(values, &mut ModelCache::default(), &mut state, evaluation).unwrap();
+            let outputs = compute_outputs(values, &mut ModelCache::default(), &mut state, evaluation).unwrap().0;
             Values { outputs, ..*values }
         };
         let inputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Input).collect();

@@ -50,6 +50,7 @@ use super::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use super::kinematics::WheelKinematics;
 use super::relaxation::{renewal_speed, RelaxationLengths};
 use crate::contact_input::hertz_max_pressure;
+use crate::models::exact::GridSize;
 use crate::models::polach::resulting_creepage_at;
 use crate::{
     ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, ModelChoice, Polach, Polach2005,
@@ -166,6 +167,11 @@ pub struct SceneOutput {
     pub max_pressure: f64,
     /// Hertz's approach δ \[m\] (0 with the ellipse from the inputs).
     pub approach: f64,
+    /// The exact theory's grid when its iteration stopped at its limits
+    /// ([`crate::models::exact::MAX_ITERATIONS`] Newton steps or
+    /// [`crate::models::exact::MAX_PRODUCTS`] products) without converging: the outputs are
+    /// its last iterate. `None` for every other evaluation.
+    pub unconverged_grid: Option<GridSize>,
 }
 
 /// What a scene carries from one evaluation to the next. `relaxed_forces` is the physical state
@@ -322,6 +328,7 @@ impl Scene {
         let s_c =
             Polach::resulting_creepage(creepages.longitudinal, creepages.lateral, creepages.spin, ellipse.semi_axis_a);
         let slip_velocity = s_c * creepages.speed;
+        let mut unconverged_grid = None;
         let (steady, friction) = match (self.traction_law, self.model) {
             (TractionLaw::Polach2005(law), ModelChoice::Polach(polach)) => {
                 let model = Polach { large_creepage: Some(LargeCreepage::new(law, creepages.speed)?), ..polach };
@@ -333,8 +340,9 @@ impl Scene {
                 (polach.creep_forces_with_cache(&contact, &mut state.shape)?, input.friction_coefficient)
             }
             (TractionLaw::Coulomb, ModelChoice::Exact(exact)) => {
-                let solution = exact.solve_from(&contact, Some(&state.exact_start))?.converged()?;
+                let solution = exact.solve_from(&contact, Some(&state.exact_start))?;
                 state.exact_start = solution.warm_start();
+                unconverged_grid = (!solution.converged).then_some(solution.grid);
                 (solution.forces, input.friction_coefficient)
             }
             (TractionLaw::Coulomb, model) => (model.creep_forces(&contact)?, input.friction_coefficient),
@@ -360,6 +368,7 @@ impl Scene {
             contact_semi_axis_b: ellipse.semi_axis_b,
             max_pressure: ellipse.max_pressure,
             approach: ellipse.approach,
+            unconverged_grid,
         })
     }
 
@@ -434,6 +443,7 @@ impl Scene {
             contact_semi_axis_b: d.semi_axis_b,
             max_pressure: max_pressure.eps,
             approach: 0.0,
+            unconverged_grid: None,
         })
     }
 

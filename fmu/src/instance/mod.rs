@@ -250,11 +250,13 @@ impl Instance {
             return status;
         }
         self.trace(|| CALL.name().to_owned());
-        if let Err(status) = self.update_outputs(CALL, Evaluation::Initialise) {
-            return status;
+        match self.update_outputs(CALL, Evaluation::Initialise) {
+            Ok(status) => {
+                self.run.mode = Mode::StepComplete;
+                status
+            }
+            Err(status) => status,
         }
-        self.run.mode = Mode::StepComplete;
-        Status::Ok
     }
 
     pub fn terminate(&mut self) -> Status {

@@ -13,17 +13,25 @@ use wheel_rail_contact::scene::Evaluation;
 const TIME_TOLERANCE: f64 = 1e-9;
 
 impl Instance {
+    /// Brings the outputs up to date: `Ok(Status::Ok)`, or `Ok(Status::Warning)` after logging
+    /// why the outputs are to be used with care (an exact solve that stopped at its limits).
     #[inline]
-    pub(super) fn update_outputs(&mut self, call: Call, evaluation: Evaluation) -> Result<(), Status> {
+    pub(super) fn update_outputs(&mut self, call: Call, evaluation: Evaluation) -> Result<Status, Status> {
         // The relaxed forces advance on a copy, kept only if the outputs are good.
         let mut relaxed_forces = self.run.relaxed_forces;
         let outputs = compute_outputs(&self.run.values, &mut self.model, &mut relaxed_forces, evaluation)
-            .and_then(|outputs| finite(&outputs).map(|_| outputs));
+            .and_then(|(outputs, warning)| finite(&outputs).map(|_| (outputs, warning)));
         match outputs {
-            Ok(outputs) => {
+            Ok((outputs, warning)) => {
                 self.run.values.outputs = outputs;
                 self.run.relaxed_forces = relaxed_forces;
-                Ok(())
+                Ok(match warning {
+                    Some(warning) => {
+                        self.emit(Status::Warning, &format!("{call}: {warning}"));
+                        Status::Warning
+                    }
+                    None => Status::Ok,
+                })
             }
             Err(reason) => Err(self.fail(call, &reason)),
         }
@@ -57,11 +65,13 @@ impl Instance {
         if let Some(stop) = self.run.stop_time.filter(|stop| end > stop + tolerance) {
             return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
         }
-        if let Err(status) = self.update_outputs(CALL, Evaluation::Step(h)) {
-            return status;
+        match self.update_outputs(CALL, Evaluation::Step(h)) {
+            Ok(status) => {
+                self.run.time = end;
+                status
+            }
+            Err(status) => status,
         }
-        self.run.time = end;
-        Status::Ok
     }
 
     /// fmi2CancelStep: DoStep never returns fmi2Pending, so there is never a step to cancel.
