@@ -247,14 +247,18 @@ pub(crate) fn compute_outputs(
     let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
     *relaxed_forces = state.relaxed_forces;
     let warning = output.unconverged_grid.map(|grid| {
+        let (length, width) = grid.element_sides(output.contact_semi_axis_a, output.contact_semi_axis_b);
         format!(
             "creep_force_model = {} (exact): the exact theory did not converge on exact_elements_longitudinal × \
-             exact_elements_lateral = {} × {} elements within its limits ({MAX_ITERATIONS} Newton steps, \
-             {MAX_PRODUCTS} operator products); the outputs are its last iterate (usually close, not \
-             guaranteed): another grid, or creep_force_model = {} (exact_table), avoids it",
+             exact_elements_lateral = {} × {} elements ({:.3} mm long × {:.3} mm wide) within its limits \
+             ({MAX_ITERATIONS} Newton steps, {MAX_PRODUCTS} operator products); the outputs are its last \
+             iterate, which can be off by several percent of μQ: elements closer to square, or \
+             creep_force_model = {} (exact_table), avoid it",
             Model::Exact as i32,
             grid.longitudinal,
             grid.lateral,
+            length * 1e3,
+            width * 1e3,
             Model::ExactTable as i32,
         )
     });

@@ -17,6 +17,15 @@ pub struct GridSize {
     pub lateral: usize,
 }
 
+impl GridSize {
+    /// Length (along x) and width (along y) of this grid's elements over the ellipse with
+    /// semi-axes `semi_axis_a` × `semi_axis_b` (in their unit).
+    pub fn element_sides(&self, semi_axis_a: f64, semi_axis_b: f64) -> (f64, f64) {
+        let side = 2.0 * POTENTIAL_AREA_HALF_SIZE;
+        (side * semi_axis_a / self.longitudinal as f64, side * semi_axis_b / self.lateral as f64)
+    }
+}
+
 /// The grid in the solver's units (lengths in units of a) with the Hertzian traction bound.
 pub(crate) struct ContactGrid {
     pub elements_x: usize,
@@ -42,8 +51,7 @@ impl ContactGrid {
     /// slip gives |F| = μQ on every grid.
     pub fn new(size: GridSize, b_over_a: f64) -> Self {
         let (elements_x, elements_y) = (size.longitudinal, size.lateral);
-        let length = 2.0 * POTENTIAL_AREA_HALF_SIZE / elements_x as f64;
-        let width = 2.0 * POTENTIAL_AREA_HALF_SIZE * b_over_a / elements_y as f64;
+        let (length, width) = size.element_sides(1.0, b_over_a);
         let mut pressure = vec![0.0; elements_x * elements_y];
         let mut rows_in_contact = vec![None; elements_y];
         for (j, row) in rows_in_contact.iter_mut().enumerate() {

@@ -43,9 +43,11 @@
 //! extreme creepage does not dominate GMRES's norm. Measured products on 80 × 80 (CONTACT's
 //! spin case): 511 with the local inverse alone, 165 blended.
 //!
-//! Start: a warm start, or the solution on the half grid (`ExactTheory::solve_from`): the
-//! Newton solver moves the boundary between adhesion and slip by about one element layer per
-//! step, so a start with the right division saves most steps (spin case on 80 × 80: 21 → 8).
+//! Start: a warm start, or the solution on a grid with half as many elements along one or both
+//! axes (`ExactTheory::solve_from`, which also solves again cold when a warm start does not
+//! converge): the Newton solver moves the boundary between adhesion and slip by about one
+//! element layer per step, so a start with the right division saves most steps (spin case on
+//! 80 × 80: 21 → 8).
 //!
 //! Bounded cost: at most [`MAX_ITERATIONS`] Newton steps and [`MAX_PRODUCTS`] operator products
 //! per solve; a solve that hits either limit returns its last iterate with `converged = false`.
@@ -232,9 +234,10 @@ impl<'a> Newton<'a> {
             self.right_side(&mut right_side);
             // Solving accurately pays only once the division into adhesion and slip has settled,
             // or once it has failed to settle for long: loose steps can make elements trade
-            // places between adhesion and slip forever (a/b = 9.8 with spin on 320 × 400: 200
-            // steps without settling, the adhesion area left at 6 % of the solution's and F_x
-            // off by 0.3 μQ; with accurate steps after the 16th it converges in 41).
+            // places between adhesion and slip forever (a/b = 9.8 with spin on 320 × 400 from
+            // the 160 × 200 solution: 200 steps without settling, the adhesion area left at 6 %
+            // of the solution's and F_x off by 0.3 μQ; with accurate steps after the 16th it
+            // converges in 41).
             let accurate = settled && !released;
             let tolerance =
                 if accurate || self.iterations > LOOSE_STEPS { SETTLED_TOLERANCE } else { UNSETTLED_TOLERANCE };
