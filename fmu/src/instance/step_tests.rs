@@ -119,8 +119,8 @@ fn a_tunable_parameter_applies_from_the_next_step() {
     assert_eq!(get(&mut instance, vr::FORCE_LONGITUDINAL).to_bits(), kalker.to_bits());
 }
 
-/// An exact solve that stops at its iteration limits is an fmi2Warning naming the grid, its
-/// elements and the limits, and the instance steps on. The case: a long contact (a/b = 20.4)
+/// An exact solve that stops at its iteration limits is an fmi2Warning (of the call that
+/// computed the outputs) naming the grid, its elements and the limits, and the instance steps on. The case: a long contact (a/b = 20.4)
 /// with spin on 39 × 200 elements, a hundred times longer than wide, where adhesion and slip
 /// elements keep trading places until 200 Newton steps are spent. Its last iterate is
 /// (0.217, −0.152) μQ; on 39 × 50 elements the theory converges in 8 steps to (0.254, −0.091).
@@ -147,6 +147,12 @@ fn an_exact_solve_that_does_not_converge_is_a_warning_naming_the_grid() {
     ];
     let (references, values): (Vec<u32>, Vec<f64>) = long.into_iter().unzip();
     assert_eq!(instance.set_real(&references, &values), Status::Ok);
+    // Read in initialization mode, the outputs are computed then, with the same warning.
+    let mut force = [f64::NAN];
+    assert_eq!(instance.get_real(&[vr::FORCE_LONGITUDINAL], &mut force), Status::Warning);
+    assert!(
+        last_message(&log).starts_with("fmi2GetReal: creep_force_model = 5 (exact): the exact theory did not converge")
+    );
     assert_eq!(instance.exit_initialization_mode(), Status::Warning);
     assert_eq!(
         last_message(&log),

@@ -98,9 +98,10 @@ impl Instance {
     }
 
     /// Checks the references and, in initialization mode, brings the outputs up to date with
-    /// the values just set if any is read.
+    /// the values just set if any is read: the status of the call (fmi2Warning for outputs of an
+    /// exact solve that stopped at its limits), or the error.
     #[inline]
-    fn prepare_get(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
+    fn prepare_get(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<Status, Status> {
         self.require(call)?;
         if let Some(&value_reference) = value_references.iter().find(|&&r| !Self::readable(r, value_type)) {
             let reason = Self::not_readable(value_reference, value_type);
@@ -108,9 +109,9 @@ impl Instance {
         }
         let reads_output = || value_references.iter().any(|&r| access_of(r) & access::OUTPUT != 0);
         if self.run.mode == Mode::InitializationMode && reads_output() {
-            self.update_outputs(call, Evaluation::Initialise)?;
+            return self.update_outputs(call, Evaluation::Initialise);
         }
-        Ok(())
+        Ok(Status::Ok)
     }
 
     #[inline]
@@ -129,14 +130,15 @@ impl Instance {
 
     #[inline]
     pub fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
-        if let Err(status) = self.prepare_get(Call::GetReal, value_references, ValueType::Real) {
-            return status;
-        }
+        let status = match self.prepare_get(Call::GetReal, value_references, ValueType::Real) {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
             *slot = self.run.values.real(value_reference).unwrap_or(f64::NAN);
         }
         self.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
-        Status::Ok
+        status
     }
 
     /// fmi2SetInteger: Integer and Enumeration variables.
@@ -154,21 +156,21 @@ impl Instance {
     }
 
     pub fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
-        if let Err(status) = self.prepare_get(Call::GetInteger, value_references, ValueType::Integer) {
-            return status;
-        }
+        let status = match self.prepare_get(Call::GetInteger, value_references, ValueType::Integer) {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
             *slot = self.run.values.integer(value_reference).unwrap_or_default();
         }
         self.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
-        Status::Ok
+        status
     }
 
     /// fmi2GetBoolean / fmi2GetString: this FMU has no such variables, so only n = 0 succeeds.
     pub fn get_absent_type(&mut self, call: Call, value_type: ValueType, value_references: &[u32]) -> Status {
         match self.prepare_get(call, value_references, value_type) {
-            Ok(()) => Status::Ok,
-            Err(status) => status,
+            Ok(status) | Err(status) => status,
         }
     }
 
