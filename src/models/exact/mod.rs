@@ -140,10 +140,11 @@ pub struct ExactSolution {
     /// The friction coefficient μ of the solve: the Coulomb bound of element I is
     /// μ × `pressure[I]`.
     pub friction_coefficient: f64,
-    /// Newton steps used (Gauss–Seidel sweeps for [`ExactTheory::solve_by_gauss_seidel`]).
+    /// Newton steps used (Gauss–Seidel sweeps for [`ExactTheory::solve_by_gauss_seidel`]); a
+    /// warm start that did not converge and the cold solve after it count together.
     pub iterations: usize,
     /// Operator products (FFT convolutions) used on this grid, over all Newton steps (the
-    /// half-grid start of a cold solve not included).
+    /// half-grid start of a cold solve not included; a failed warm start's included).
     pub operator_products: usize,
     /// Whether the iteration met its tolerance (tractions to ≈ 1e-7 × the largest: an accurate
     /// Newton step that changed no element's state and no traction by more than 1e-3 × the
