@@ -28,7 +28,8 @@
 //! pure ξ in partial slip; `benches/exact.rs` on a shared 2-core machine): 6–10 ms at 40 × 40,
 //! 30–40 ms at 80 × 80, 0.15–0.26 s at 160 × 160; a warm-started step of a slowly varying
 //! co-simulation on 40 × 40 ≈ 4.5 ms (30 products). Every solve is bounded ([`MAX_ITERATIONS`]
-//! Newton steps, [`MAX_PRODUCTS`] products).
+//! Newton steps, [`MAX_PRODUCTS`] products; twice that for a warm start that does not converge
+//! and the cold solve after it).
 //!
 //! Grid: the grid error is first order in the element size and comes almost entirely from the
 //! element length δx along the rolling direction (n_x × n_y = 320 × 40 is within 0.0005 μQ of
