@@ -19,8 +19,9 @@
 use rayon::prelude::*;
 use wheel_rail_contact::{ContactInput, ExactTheory, KalkerCoefficients};
 
-const NORMAL_FORCE: f64 = 80e3;
-const FRICTION: f64 = 0.3;
+mod common;
+use common::{Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
+
 /// The second table's node counts along ln(a/b), ν, β, α, and t (the a/b count can be changed:
 /// `--a-over-b-nodes 29` is the third table's).
 const COUNTS: [usize; 5] = [15, 4, 41, 13, 49];
@@ -34,7 +35,7 @@ type Point = [f64; 5];
 
 /// The contact at a point, with the table's scaling u = k · creepage · G/(μp₀).
 fn contact([a_over_b, nu, alpha, beta, t]: Point) -> ContactInput {
-    let (shear_modulus, c) = (82e9, 5e-3);
+    let (shear_modulus, c) = (SHEAR_MODULUS, MEAN_SEMI_AXIS);
     let size = (t / (1.0 - t)).powi(2);
     let u = [(1.0 - alpha) * (1.0 - beta.abs()) * size, alpha * (1.0 - beta.abs()) * size, beta * size];
     let (a, b) = (c * a_over_b.sqrt(), c / a_over_b.sqrt());
@@ -184,11 +185,8 @@ fn main() {
     } else {
         Vec::new()
     };
-    let mut seed = 4242u64;
-    let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = Uniform::new(4242);
+    let mut next = || uniform.next();
     for _ in 0..random {
         points.push([10f64.powf(2.0 * next() - 1.0), 0.5 * next(), next(), 2.0 * next() - 1.0, 0.3 + 0.6 * next()]);
     }

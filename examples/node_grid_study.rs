@@ -12,7 +12,10 @@
 //! 20x40,40x40`. Prints, per candidate and a/b band, max |ΔF|/(μQ) / max |ΔM_z|/(μQc), and the
 //! median |ΔF|.
 use rayon::prelude::*;
-use wheel_rail_contact::{ContactInput, CreepForces, ExactTheory, KalkerCoefficients};
+use wheel_rail_contact::{CreepForces, ExactTheory};
+
+mod common;
+use common::{contact_along, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE};
 
 /// F_x/(μQ), F_y/(μQ), M_z/(μQc).
 fn scaled(f: &CreepForces, l: f64, c: f64) -> [f64; 3] {
@@ -30,35 +33,17 @@ fn main() {
         args = "40 4660 -1 1 80x20 40x20,80x20 20x40,40x40".split(' ').map(String::from).collect();
     }
     let n: usize = args[0].parse().expect("N");
-    let mut state: u64 = args[1].parse().expect("SEED");
+    let mut uniform = Uniform::new(args[1].parse().expect("SEED"));
     let (low, high): (f64, f64) = (args[2].parse().expect("LOG10_LOW"), args[3].parse().expect("LOG10_HIGH"));
-    let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let (q, mu, g, c) = (80e3, 0.3, 82e9, 5e-3);
-    let l = mu * q;
+    let (l, c) = (FRICTION * NORMAL_FORCE, MEAN_SEMI_AXIS);
     let mut cases = Vec::new();
     for i in 0..n {
-        let a_over_b = 10f64.powf(low + (high - low) * (i as f64 + next()) / n as f64);
-        let poisson_ratio = 0.5 * next();
-        let level = 0.4 + 1.6 * next();
-        let z = (0.3 + 0.7 * next()) * if next() < 0.5 { -1.0 } else { 1.0 };
-        let angle = 2.0 * std::f64::consts::PI * next();
-        let planar = (1.0 - z * z).sqrt();
-        let k = KalkerCoefficients::new(a_over_b, poisson_ratio);
-        let unit = mu * q / g / (c * c);
-        cases.push(ContactInput {
-            creepage_longitudinal: level * planar * angle.cos() * unit / k.c11,
-            creepage_lateral: level * planar * angle.sin() * unit / k.c22,
-            spin_creepage: level * z * unit / (c * k.c23),
-            normal_force: q,
-            semi_axis_a: c * a_over_b.sqrt(),
-            semi_axis_b: c / a_over_b.sqrt(),
-            friction_coefficient: mu,
-            shear_modulus: g,
-            poisson_ratio,
-        });
+        let a_over_b = 10f64.powf(low + (high - low) * (i as f64 + uniform.next()) / n as f64);
+        let poisson_ratio = 0.5 * uniform.next();
+        let level = 0.4 + 1.6 * uniform.next();
+        let z = (0.3 + 0.7 * uniform.next()) * if uniform.next() < 0.5 { -1.0 } else { 1.0 };
+        let angle = 2.0 * std::f64::consts::PI * uniform.next();
+        cases.push(contact_along(a_over_b, poisson_ratio, level, z, angle));
     }
     let solve = |(nx, ny): (usize, usize)| -> Vec<Option<[f64; 3]>> {
         let model = ExactTheory::new(nx, ny);

@@ -16,6 +16,9 @@ use wheel_rail_contact::{
     KalkerCoefficients, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
 };
 
+mod common;
+use common::{contact_along, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
+
 /// CONTACT's published cases, the same definitions the tests use.
 #[path = "../tests/data/contact_published_cases.rs"]
 mod contact_published_cases;
@@ -23,12 +26,7 @@ use contact_published_cases::{
     FASTSIM_CASE, FASTSIM_CASE_CONTACT_FASTSIM, FASTSIM_CASE_EXACT, TRACTCURV_CONTACT, TRACTCURV_EXACT,
 };
 
-const NORMAL_FORCE: f64 = 80e3;
-const FRICTION: f64 = 0.3;
-const SHEAR_MODULUS: f64 = 82e9;
 const POISSON: f64 = 0.28;
-/// c = √(ab) of every case [m]; a/b varies around it.
-const MEAN_SEMI_AXIS: f64 = 5e-3;
 /// Points per creep-force curve (the exact theory's curves use every fourth).
 const CURVE_POINTS: usize = 96;
 
@@ -375,30 +373,14 @@ fn write_convergence(report: &mut String, rows: &[Row], finest: &[CreepForces]) 
 /// characteristic creepage.
 fn write_held_out(report: &mut String, settings: &Settings) {
     let (count, (longitudinal, lateral)) = settings.held_out;
-    let mut state = 0x5eed_u64;
-    let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut uniform = Uniform::new(0x5eed);
     let mut cases = Vec::with_capacity(count);
     for _ in 0..count {
-        let a_over_b = 10f64.powf(2.0 * next() - 1.0);
-        let poisson_ratio = 0.5 * next();
-        let level = 10f64.powf(-2.0 + next() * (30f64.log10() + 2.0));
-        let (z, angle) = (2.0 * next() - 1.0, 2.0 * std::f64::consts::PI * next());
-        let planar = (1.0 - z * z).sqrt();
-        let k = KalkerCoefficients::new(a_over_b, poisson_ratio);
-        let c = MEAN_SEMI_AXIS;
-        let unit = FRICTION * NORMAL_FORCE / SHEAR_MODULUS / (c * c);
-        cases.push(ContactInput {
-            poisson_ratio,
-            ..contact(
-                a_over_b,
-                level * planar * angle.cos() * unit / k.c11,
-                level * planar * angle.sin() * unit / k.c22,
-                level * z * unit / (c * k.c23),
-            )
-        });
+        let a_over_b = 10f64.powf(2.0 * uniform.next() - 1.0);
+        let poisson_ratio = 0.5 * uniform.next();
+        let level = 10f64.powf(-2.0 + uniform.next() * (30f64.log10() + 2.0));
+        let (z, angle) = (2.0 * uniform.next() - 1.0, 2.0 * std::f64::consts::PI * uniform.next());
+        cases.push(contact_along(a_over_b, poisson_ratio, level, z, angle));
     }
     let started = Instant::now();
     let exact: Vec<CreepForces> = ExactTheory::new(longitudinal, lateral)
