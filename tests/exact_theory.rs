@@ -283,6 +283,11 @@ fn degenerate_and_invalid_inputs() {
     assert!(ExactTheory::new(400, 400).validate().is_ok());
     let error = ExactTheory::new(400, 401).validate().unwrap_err();
     assert_eq!(error.to_string(), "grid_elements_lateral = 401 is invalid: must lie in [1, 400]");
+    // Refused as such, not through the nested start's coarser (valid) grids.
+    let error = ExactTheory::new(1000, 1000).solve(&base).unwrap_err();
+    assert_eq!(error.to_string(), "grid_elements_longitudinal = 1000 is invalid: must lie in [1, 400]");
+    let error = ExactTheory::new(1000, 40).solve(&ContactInput { semi_axis_b: f64::NAN, ..base }).unwrap_err();
+    assert_eq!(error.variable, "semi_axis_b");
     let error = model.creep_forces(&ContactInput { poisson_ratio: 0.7, ..base }).unwrap_err();
     assert_eq!(error.variable, "poisson_ratio");
     // One element, and absurd magnitudes: finite results on the Coulomb bound.

@@ -120,9 +120,10 @@ fn a_tunable_parameter_applies_from_the_next_step() {
 }
 
 /// An exact solve that stops at its iteration limits is an fmi2Warning (of the call that
-/// computed the outputs) naming the grid, its elements and the limits, and the instance steps on. The case: a long contact (a/b = 20.4)
-/// with spin on 39 × 200 elements, a hundred times longer than wide, where adhesion and slip
-/// elements keep trading places until 200 Newton steps are spent. Its last iterate is
+/// computed the outputs) naming the grid, its elements and the limits, and the instance steps
+/// on. The case: a long contact (a/b = 20.4) with spin on 39 × 200 elements, a hundred times
+/// longer than wide, where adhesion and slip elements keep trading places until 200 Newton
+/// steps are spent. Its last iterate is
 /// (0.217, −0.152) μQ; on 39 × 50 elements the theory converges in 8 steps to (0.254, −0.091).
 #[test]
 fn an_exact_solve_that_does_not_converge_is_a_warning_naming_the_grid() {

@@ -303,7 +303,10 @@ impl ExactTheory {
 
     /// The solve without a start: nested on grids large enough ([`Self::solve_from`]).
     fn solve_cold(&self, input: &ContactInput) -> Result<ExactSolution, InvalidInput> {
+        // Refused before any coarse solve (a grid of 1000 × 1000 would otherwise solve the
+        // nested 250 × 250 first).
         input.validate()?;
+        self.validate()?;
         let coarse_start = match self.nested_start_grid(input.semi_axis_b / input.semi_axis_a) {
             Some(coarse) => Some(ExactTheory { grid: coarse }.solve(input)?.warm_start()),
             None => None,
@@ -326,9 +329,9 @@ impl ExactTheory {
     /// its sides differ [`NESTED_START_ASPECT`] times or more. Halving both axes of elements far
     /// from square coarsens the short side too: 200 × 50 elements at a/b = 0.16 (elements 25
     /// times longer across than along) started from 100 × 25, from which the Newton iteration
-    /// cycled between adhesion and slip at the lateral edges until its limits (7 of 300 random
-    /// contacts; none of 1000 now); 320 × 400 at a/b = 9.8 needed 40 steps from 160 × 200, 7 from
-    /// 320 × 200. And 39 × 200 at a/b = 11.5, not nested when both axes needed 40 elements,
+    /// cycled between adhesion and slip at the lateral edges until its limits (on 200 × 50, 22
+    /// of 1000 random contacts, `examples/convergence_survey.rs`, none now); 320 × 400 at
+    /// a/b = 9.8 needed 40 steps from 160 × 200, 7 from 320 × 200. And 39 × 200 at a/b = 11.5, not nested when both axes needed 40 elements,
     /// cycled cold; from 39 × 100 it converges in 8.
     fn nested_start_grid(&self, b_over_a: f64) -> Option<GridSize> {
         let (along, across) = self.grid.element_sides(1.0, b_over_a);
