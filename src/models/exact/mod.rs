@@ -217,6 +217,7 @@ impl ExactSolution {
 /// value of the stored element that contains its centre. `WarmStart::default()` starts from
 /// zero traction.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WarmStart {
     grid: Option<GridSize>,
     relative_longitudinal: Vec<f64>,
@@ -224,6 +225,30 @@ pub struct WarmStart {
 }
 
 impl WarmStart {
+    /// Checks a start that did not come from [`ExactSolution::warm_start`] (one read back from
+    /// a saved state): empty, or a valid grid with one finite relative traction per element and
+    /// axis. Any such start is safe: it only chooses where the Newton iteration begins.
+    pub fn validate(&self) -> Result<(), InvalidInput> {
+        let elements = match self.grid {
+            None => 0,
+            Some(grid) => {
+                ExactTheory { grid }.validate()?;
+                grid.longitudinal * grid.lateral
+            }
+        };
+        for (variable, relative) in
+            [("warm_start_longitudinal", &self.relative_longitudinal), ("warm_start_lateral", &self.relative_lateral)]
+        {
+            if relative.len() != elements {
+                return Err(InvalidInput::new(variable, relative.len() as f64, "must hold one value per element"));
+            }
+            if let Some(&value) = relative.iter().find(|value| !value.is_finite()) {
+                return Err(InvalidInput::new(variable, value, "must be finite"));
+            }
+        }
+        Ok(())
+    }
+
     /// The start on `grid` in the solver's units (μp₀), or `None` for an empty start.
     fn tractions(&self, grid: &ContactGrid) -> Option<[Vec<f64>; 2]> {
         let stored = self.grid?;

@@ -1,0 +1,52 @@
+//! With `hertz_contact = on` the semi-axis inputs are ignored, so a model's refusal of the
+//! ellipse must name what the ellipse came from — the curvatures, the rolling radius and the a/b
+//! that Hertz's theory gave — not the ignored inputs. Before (issue 27.5), exact_table's refusal
+//! of a/b = 20 blamed `semi_axis_a`/`semi_axis_b`, printed Hertz's values as theirs and never
+//! stated a/b.
+
+mod c_abi;
+
+use c_abi::{Fmu, MessageLog, ERROR, OK};
+use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch};
+
+#[test]
+fn a_hertz_ellipse_outside_exact_tables_range_is_reported_as_hertzs() {
+    // A 5 mm rail crown under a 460 mm wheel: a long, narrow ellipse.
+    let (radius, rail_curvature) = (0.46, 200.0);
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("hertz", &log);
+    assert_eq!(
+        fmu.set_integer(&[vr::CREEP_FORCE_MODEL, vr::HERTZ_CONTACT], &[Model::ExactTable as i32, Switch::On as i32]),
+        OK
+    );
+    assert_eq!(fmu.set_real(&[vr::RAIL_PROFILE_CURVATURE, vr::WHEEL_ROLLING_RADIUS], &[rail_curvature, radius]), OK);
+    // SAFETY: a live instance.
+    unsafe {
+        use wheel_rail_contact_fmu::ffi::{
+            fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2SetupExperiment,
+        };
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+        assert_eq!(fmi2ExitInitializationMode(fmu.c), ERROR);
+    }
+    let message = log.texts().pop().unwrap();
+    // Hertz's ellipse of the same curvatures (the default load 100 kN, G = 82 GPa, ν = 0.28).
+    let curvature = RelativeCurvature::from_profile_curvatures(radius, 0.0, rail_curvature).unwrap();
+    let ellipse = HertzContact::solve(100e3, &curvature, contact_modulus(82e9, 0.28).unwrap()).unwrap();
+    let a_over_b = ellipse.semi_axis_a / ellipse.semi_axis_b;
+    assert!(a_over_b > 10.0, "{a_over_b}");
+    let expected = format!(
+        "fmi2ExitInitializationMode: hertz_contact = on: Hertz's ellipse from wheel_rolling_radius = 0.46 m, \
+         wheel_profile_curvature = 0 1/m and rail_profile_curvature = 200 1/m has a/b = {a_over_b:.4} (a = {:.4} mm, \
+         b = {:.4} mm), which the model cannot take (semi_axis_a over semi_axis_b must lie in the exact_table's a/b \
+         range [0.1, 10])",
+        ellipse.semi_axis_a * 1e3,
+        ellipse.semi_axis_b * 1e3
+    );
+    assert_eq!(message, expected);
+    // The instance stays usable: a rail crown of 300 mm gives a/b ≈ 1.3, inside the table.
+    assert_eq!(fmu.set_real(&[vr::RAIL_PROFILE_CURVATURE], &[1.0 / 0.3]), OK);
+    // SAFETY: a live instance.
+    assert_eq!(unsafe { wheel_rail_contact_fmu::ffi::fmi2ExitInitializationMode(fmu.c) }, OK);
+}
