@@ -569,7 +569,9 @@ fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationL
 ///
 /// The relaxed force never exceeds the friction limit μQ of this evaluation's μ and Q
 /// ([`within_friction_limit`]): relaxation lags the build-up of the elastic deformation, but no
-/// stored deformation can hold a force beyond what Coulomb's law lets the tractions carry.
+/// stored deformation can hold a force beyond what Coulomb's law lets the tractions carry. (A
+/// model without a friction limit, Kalker's linear theory, is bounded by its steady force
+/// instead where that is larger.)
 fn relax_forces(
     contact: &ContactInput,
     steady: &CreepForces,
@@ -592,7 +594,10 @@ fn relax_forces(
         Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, renewal_speed, step)?,
     };
     let friction_limit = contact.normal_force * friction;
-    let relaxed = within_friction_limit(relaxed, friction_limit);
+    // Kalker's linear theory has no friction limit: its forces may exceed μQ, and the relaxed
+    // force is then bounded by the steady force it relaxes towards.
+    let limit = friction_limit.max(steady.force_longitudinal.hypot(steady.force_lateral));
+    let relaxed = within_friction_limit(relaxed, limit);
     Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
 }
 
