@@ -4,6 +4,7 @@
 mod c_abi;
 
 use c_abi::{bits, run_scene, Fmu, MessageLog, ERROR, OK, OUTPUTS};
+use wheel_rail_contact::ModelMemory;
 use wheel_rail_contact_fmu::ffi::{
     fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetFMUstate, fmi2SetupExperiment, fmi2Terminate,
 };
@@ -275,6 +276,32 @@ fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
             "{message}"
         );
     }
+    // An exact theory's warm start with a NaN traction, and one with too few values for its grid.
+    let exact = exact_mid_run("exact");
+    let state = exact.get_state();
+    let exact_bytes = exact.serialize(state);
+    exact.free_state(state);
+    let memory = decode(&exact_bytes).unwrap().scene.model;
+    let mut encoded = postcard::to_stdvec(&memory).unwrap();
+    let last = encoded.len() - 8;
+    encoded[last..].copy_from_slice(&f64::NAN.to_le_bytes());
+    let with_nan: ModelMemory = postcard::from_bytes(&encoded).unwrap();
+    let blob = forged(&exact_bytes, |s| s.scene.model = with_nan.clone());
+    assert_eq!(fmu.deserialize(&blob), Err(ERROR));
+    assert!(log.texts().pop().unwrap().ends_with("warm_start_lateral = NaN is invalid: must be finite"));
+    // The lateral values' count (a varint of 960 = 2 bytes) one less.
+    let count = encoded.len() - 8 * 960 - 2;
+    assert_eq!(&encoded[count..count + 2], &[0xc0, 0x07]);
+    encoded[count] = 0xbf;
+    encoded.truncate(encoded.len() - 8);
+    let short: ModelMemory = postcard::from_bytes(&encoded).unwrap();
+    assert_eq!(fmu.deserialize(&forged(&exact_bytes, |s| s.scene.model = short.clone())), Err(ERROR));
+    assert!(log
+        .texts()
+        .pop()
+        .unwrap()
+        .ends_with("warm_start_lateral = 959 is invalid: must hold one value per element"));
+
     // Nothing changed, and a state with a legal stop time (after the time) is accepted.
     assert_eq!(fmu.get_real(&OUTPUTS), outputs);
     let legal = fmu.deserialize(&forged(&bytes, |s| s.stop_time = Some(1.0))).unwrap();

@@ -51,6 +51,11 @@ pub struct ModelMemory {
 
 impl ModelMemory {
     /// Checks a memory that did not come from an evaluation (one read back from a saved state).
+    ///
+    /// ```
+    /// # use wheel_rail_contact::ModelMemory;
+    /// assert!(ModelMemory::default().validate().is_ok());
+    /// ```
     pub fn validate(&self) -> Result<(), InvalidInput> {
         self.exact_start.validate()
     }
@@ -85,6 +90,25 @@ impl ModelChoice {
     /// [`CreepForceModel::creep_forces`] of `input`, with what it keeps between evaluations —
     /// `memory` (read here; its successor is returned, so that a failed evaluation leaves the
     /// caller's memory as it was) and `cache` (updated).
+    ///
+    /// ```
+    /// use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTheory, ModelCache, ModelChoice, ModelMemory};
+    /// let model = ModelChoice::Exact(ExactTheory::new(24, 24));
+    /// let contact = |xi: f64| ContactInput {
+    ///     creepage_longitudinal: xi, creepage_lateral: 0.0, spin_creepage: 0.0,
+    ///     normal_force: 100e3, semi_axis_a: 7.2e-3, semi_axis_b: 5.4e-3,
+    ///     friction_coefficient: 0.3, shear_modulus: 82e9, poisson_ratio: 0.28,
+    /// };
+    /// let mut cache = ModelCache::default();
+    /// let first = model.creep_forces_in_sequence(&contact(1e-3), &ModelMemory::default(), &mut cache).unwrap();
+    /// // The next step starts from the first one's tractions: the same forces as a cold solve,
+    /// // to the solver's tolerance (10⁻⁹ μQ), not bit for bit.
+    /// let next = model.creep_forces_in_sequence(&contact(1.1e-3), &first.memory, &mut cache).unwrap();
+    /// let cold = model.creep_forces(&contact(1.1e-3)).unwrap();
+    /// assert!((next.forces.force_longitudinal - cold.force_longitudinal).abs() < 1e-9 * 0.3 * 100e3);
+    /// assert_ne!(next.memory, first.memory);
+    /// assert!(next.unconverged_grid.is_none());
+    /// ```
     pub fn creep_forces_in_sequence(
         &self,
         input: &ContactInput,
@@ -110,6 +134,18 @@ impl ModelChoice {
     /// This model under Polach's 2005 traction law (friction falling with the slip velocity,
     /// reduced stiffness) at the speed `speed` [m/s]: Polach's method only, `None` for every
     /// other model.
+    ///
+    /// ```
+    /// use wheel_rail_contact::{KalkerLinear, ModelChoice, Polach, Polach2005};
+    /// let polach = ModelChoice::Polach(Polach::default());
+    /// let Some(ModelChoice::Polach(under)) = polach.under_polach2005(Polach2005::DRY, 20.0).unwrap() else {
+    ///     unreachable!()
+    /// };
+    /// assert!(under.large_creepage.is_some());
+    /// assert_eq!(ModelChoice::KalkerLinear(KalkerLinear).under_polach2005(Polach2005::DRY, 20.0), Ok(None));
+    /// // The speed must be finite.
+    /// assert!(polach.under_polach2005(Polach2005::DRY, f64::NAN).is_err());
+    /// ```
     pub fn under_polach2005(self, law: Polach2005, speed: f64) -> Result<Option<Self>, InvalidInput> {
         Ok(match self {
             Self::Polach(polach) => {
