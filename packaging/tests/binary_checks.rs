@@ -23,6 +23,7 @@ fn objdump_dynamic_symbols(library: &std::path::Path) -> Vec<Vec<String>> {
 }
 
 #[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn glibc_versions_and_exports_agree_with_objdump_and_a_too_new_glibc_is_refused() {
     let library = build_shared_library(Profile::Dev).unwrap();
     let bytes = std::fs::read(&library).unwrap();
@@ -83,6 +84,7 @@ fn which(program: &str) -> std::path::PathBuf {
 /// with plain cargo on this machine (Debian 12: GLIBC_2.35) would not load where it promised.
 /// It now states the glibc read off the binary it ships, and how that binary was built.
 #[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn the_documentation_states_the_glibc_its_linux_binary_needs() {
     let directory = tempfile::tempdir().unwrap();
     let packaged = package(Profile::Dev, Reach::ThisMachine, directory.path()).unwrap();
