@@ -1,8 +1,10 @@
 //! fmi2GetDirectionalDerivative through the C ABI: refused with its message for every option
-//! that transforms the inputs, and, for the exact theory, confined to the declared
-//! `<ModelStructure>` dependencies.
+//! that transforms the inputs; for the exact theory, confined to the declared
+//! `<ModelStructure>` dependencies; taken at the current inputs, never of a stored output.
 
 mod c_abi;
+
+use std::f64::consts::PI;
 
 use c_abi::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact_fmu::model_description::{
@@ -102,4 +104,48 @@ fn exact_theorys_derivatives_stay_within_the_declared_dependencies() {
         let (_, rates) = fmu.directional_derivative(&[vr::FORCE_LATERAL, vr::SPIN_MOMENT], &[input], &[1.0]);
         assert!(rates.iter().all(|r| *r != 0.0), "input {input}: {rates:?}");
     }
+}
+
+/// d(max_pressure) is taken at the current inputs, not from the last step's output:
+/// p₀ = 3Q/(2πab), so dp₀/dQ = 3/(2πab) whatever Q is, and dp₀/da = −p₀/a at the current Q.
+#[test]
+fn max_pressure_derivative_is_at_the_current_inputs() {
+    let fmu = Fmu::stepping("max_pressure", 0.0);
+    let (a, b) = (7.2e-3, 5.4e-3);
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE], &[100e3]), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    // A new load, no step: the derivative is of the outputs at 50 kN.
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE], &[50e3]), OK);
+    let (status, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::NORMAL_FORCE], &[1.0]);
+    assert_eq!(status, OK);
+    let per_newton = 3.0 / (2.0 * PI * a * b); // 12280.47 Pa/N
+    assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{} vs {per_newton}", rates[0]);
+    // A new semi-axis: dp₀/da = −3Q/(2πa²b) at Q = 50 kN and the new a.
+    let a_new = 9e-3;
+    assert_eq!(fmu.set_real(&[vr::SEMI_AXIS_A], &[a_new]), OK);
+    let (_, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::SEMI_AXIS_A], &[1.0]);
+    let expected = -3.0 * 50e3 / (2.0 * PI * a_new * a_new * b);
+    assert!((rates[0] / expected - 1.0).abs() < 1e-12, "{} vs {expected}", rates[0]);
+    // After a lift-off step, loaded again without a step: the loaded rate, not 0.
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE, vr::SEMI_AXIS_A], &[-1.0, a]), OK);
+    assert_eq!(fmu.do_step(1e-3, 1e-3), OK);
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE], &[80e3]), OK);
+    let (_, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::NORMAL_FORCE], &[1.0]);
+    assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{}", rates[0]);
+}
+
+/// In initialisation mode before any output was computed: the rate at the start values.
+#[test]
+fn max_pressure_derivative_in_initialisation_mode() {
+    let fmu = Fmu::instantiate("initialisation", None);
+    // SAFETY: a live instance.
+    unsafe {
+        use wheel_rail_contact_fmu::ffi::{fmi2EnterInitializationMode, fmi2SetupExperiment};
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+    }
+    let (status, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::NORMAL_FORCE], &[1.0]);
+    assert_eq!(status, OK);
+    let per_newton = 3.0 / (2.0 * PI * 7.2e-3 * 5.4e-3);
+    assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{}", rates[0]);
 }

@@ -1,4 +1,5 @@
-//! With `hertz_contact = on` the semi-axis inputs are ignored, so a model's refusal of the
+//! Hertz's contact (`hertz_contact = on`) through the C ABI: its errors name the FMU's
+//! variables and the cause. The semi-axis inputs are ignored then, so a model's refusal of the
 //! ellipse must name what the ellipse came from — the curvatures, the rolling radius and the a/b
 //! that Hertz's theory gave — not the ignored inputs. Before (issue 27.5), exact_table's refusal
 //! of a/b = 20 blamed `semi_axis_a`/`semi_axis_b`, printed Hertz's values as theirs and never
@@ -49,4 +50,37 @@ fn a_hertz_ellipse_outside_exact_tables_range_is_reported_as_hertzs() {
     assert_eq!(fmu.set_real(&[vr::RAIL_PROFILE_CURVATURE], &[1.0 / 0.3]), OK);
     // SAFETY: a live instance.
     assert_eq!(unsafe { wheel_rail_contact_fmu::ffi::fmi2ExitInitializationMode(fmu.c) }, OK);
+}
+
+/// The message of a DoStep with Hertz on and these profile curvatures (wheel, rail) [1/m].
+fn hertz_message(wheel: f64, rail: f64) -> String {
+    use wheel_rail_contact_fmu::model_description::Switch;
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("hertz", &log);
+    assert_eq!(fmu.set_integer(&[vr::HERTZ_CONTACT], &[Switch::On as i32]), OK);
+    fmu.initialise(0.0);
+    assert_eq!(fmu.set_real(&[vr::WHEEL_PROFILE_CURVATURE, vr::RAIL_PROFILE_CURVATURE], &[wheel, rail]), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), ERROR);
+    log.texts().last().unwrap().clone()
+}
+
+/// Hertz's errors name the FMU's variables with their values and the actual reason, never
+/// an internal quantity (the combined curvature B) nor a concave profile that is not there.
+#[test]
+fn hertz_errors_name_the_fmu_variables_and_the_cause() {
+    for (wheel, rail, named) in [
+        (0.0, 1e-20, ["rail_profile_curvature = 1e-20", "wheel_profile_curvature = 0"]),
+        (0.0, 0.0, ["rail_profile_curvature = 0", "wheel_profile_curvature = 0"]),
+        (0.0, -1.0, ["rail_profile_curvature = -1", "wheel_profile_curvature = 0"]),
+    ] {
+        let message = hertz_message(wheel, rail);
+        assert!(message.starts_with("fmi2DoStep: "), "{message}");
+        for text in named {
+            assert!(message.contains(text), "{text} not in {message}");
+        }
+        assert!(!message.contains("curvature_lateral") && !message.contains("concave wheel"), "{message}");
+    }
+    // A concave wheel flatter than nothing: that cause, named.
+    let message = hertz_message(-5.0, 3.0);
+    assert!(message.contains("wheel_profile_curvature = -5") && message.contains("concave wheel"), "{message}");
 }
