@@ -46,6 +46,13 @@ fn a_hertz_ellipse_outside_exact_tables_range_is_reported_as_hertzs() {
         ellipse.semi_axis_b * 1e3
     );
     assert_eq!(message, expected);
+    // A refusal of anything but the ellipse keeps its own name: a negative μ is the input's.
+    assert_eq!(fmu.set_real(&[vr::FRICTION_COEFFICIENT], &[-0.1]), OK);
+    // SAFETY: a live instance.
+    assert_eq!(unsafe { wheel_rail_contact_fmu::ffi::fmi2ExitInitializationMode(fmu.c) }, ERROR);
+    let message = log.texts().pop().unwrap();
+    assert!(message.starts_with("fmi2ExitInitializationMode: friction_coefficient = -0.1 is invalid"), "{message}");
+    assert_eq!(fmu.set_real(&[vr::FRICTION_COEFFICIENT], &[0.3]), OK);
     // The instance stays usable: a rail crown of 300 mm gives a/b ≈ 1.3, inside the table.
     assert_eq!(fmu.set_real(&[vr::RAIL_PROFILE_CURVATURE], &[1.0 / 0.3]), OK);
     // SAFETY: a live instance.
