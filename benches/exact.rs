@@ -11,9 +11,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::{ContactInput, ExactTheory};
 
-#[allow(dead_code)] // the bench uses one of the published cases
-#[path = "../tests/data/contact_published_cases.rs"]
-mod published;
+use wheel_rail_contact::reference_cases as published;
 
 const GRIDS: [usize; 3] = [40, 80, 160];
 

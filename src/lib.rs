@@ -37,6 +37,7 @@ mod invalid_input;
 mod kalker_coefficients;
 pub mod models;
 mod numerics;
+pub mod reference_cases;
 pub mod scene;
 
 pub use contact_input::ContactInput;

@@ -79,7 +79,7 @@ fn full_adhesion_reproduces_kalkers_coefficients() {
 /// 0.5 % over a/b = 0.1 … 2 and ν = 0, 0.25, 0.5, with two exceptions; at a/b = 5 and 10 it is
 /// within 0.5 % for C23 and above the table for C11 and C22. Every entry beyond 0.5 % is held to
 /// its measured deviation (± 0.2 %). All rows: docs/reference/kalker-table-check.txt
-/// (`cargo run --release --example kalker_table_check`).
+/// (`cargo run --release -p lab --bin kalker_table_check`).
 /// - C11 at a/b = 0.5, ν = 0.5, +1.0 %: a table outlier. The solver is 0.4 % above the table at
 ///   a/b = 0.3, 0.4, 0.6 and 0.7; its values 4.819, 4.839, 4.877, 4.929, 4.991 run smoothly
 ///   where the table's 4.80, 4.82, 4.83, 4.91, 4.97 do not.

@@ -355,7 +355,7 @@ impl ExactTheory {
     /// from square coarsens the short side too: 200 × 50 elements at a/b = 0.16 (elements 25
     /// times longer across than along) started from 100 × 25, from which the Newton iteration
     /// cycled between adhesion and slip at the lateral edges until its limits (on 200 × 50, 22
-    /// of 1000 random contacts, `examples/convergence_survey.rs`, none now); 320 × 400 at
+    /// of 1000 random contacts, `lab/src/bin/convergence_survey.rs`, none now); 320 × 400 at
     /// a/b = 9.8 needed 40 steps from 160 × 200, 7 from 320 × 200. And 39 × 200 at a/b = 11.5, not nested when both axes needed 40 elements,
     /// cycled cold; from 39 × 100 it converges in 8.
     fn nested_start_grid(&self, b_over_a: f64) -> Option<GridSize> {
