@@ -459,18 +459,26 @@ fn a_long_contact_on_long_elements_starts_from_a_grid_halved_across_only() {
     assert_long_contact_forces(&solution);
 }
 
-/// From the 160 × 200 solution, loosely solved Newton steps keep trading ≈ 250 elements between
-/// adhesion and slip of [`long_contact_near_the_collapse`] on 320 × 400 (after 200 steps the
-/// iterate had 6 % of the adhesion area and F_x = −0.258 μQ). After sixteen loose steps every
-/// step is solved accurately, and it converges.
+/// From the 160 × 200 solution the warm Newton iteration needs 40 steps (≈ 1300 products; the
+/// unit test `a_division_that_does_not_settle_is_solved_accurately_until_it_converges` in
+/// `src/models/exact/mod.rs` runs it alone): the cold solve racing it converges first, so the
+/// step gives the converged forces for at most twice a cold solve's products (+ one Newton step
+/// of the warm iteration, which can be ahead when the cold one converges: 30 products allowed).
 #[test]
 #[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
-fn a_division_that_does_not_settle_is_solved_accurately_until_it_converges() {
+fn a_slow_warm_start_is_overtaken_by_the_cold_solve() {
     let case = long_contact_near_the_collapse();
     let start = ExactTheory::new(160, 200).solve(&case).unwrap().warm_start();
-    let solution = ExactTheory::new(320, 400).solve_from(&case, Some(&start)).unwrap();
-    assert!(solution.iterations > 16, "{} Newton steps: the loose steps settled", solution.iterations);
+    let model = ExactTheory::new(320, 400);
+    let solution = model.solve_from(&case, Some(&start)).unwrap();
     assert_long_contact_forces(&solution);
+    let cold = model.solve(&case).unwrap();
+    assert!(
+        solution.operator_products <= 2 * cold.operator_products + 30,
+        "{} products, cold {}",
+        solution.operator_products,
+        cold.operator_products
+    );
 }
 
 /// An iterate that did not converge is never passed on as forces: the error names the grid and

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use std::time::Instant;
 use wheel_rail_contact::ExactTheory;
 
-use lab::random_contacts::{contact_along, Uniform};
+use lab::random_contacts::{random_contact, Uniform};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -27,15 +27,7 @@ fn main() {
     let lateral: usize = argument(2, "NY", None).parse().expect("NY");
     let mut uniform = Uniform::new(argument(3, "SEED", Some("77")).parse().expect("SEED"));
     let span: f64 = argument(4, "S", Some("1.2")).parse().expect("S");
-    let cases: Vec<_> = (0..count)
-        .map(|_| {
-            let a_over_b = 10f64.powf(span * (2.0 * uniform.next() - 1.0));
-            let poisson_ratio = 0.5 * uniform.next();
-            let level = 10f64.powf(-2.0 + uniform.next() * (30f64.log10() + 2.0));
-            let (z, angle) = (2.0 * uniform.next() - 1.0, 2.0 * std::f64::consts::PI * uniform.next());
-            contact_along(a_over_b, poisson_ratio, level, z, angle)
-        })
-        .collect();
+    let cases: Vec<_> = (0..count).map(|_| random_contact(&mut uniform, span)).collect();
     let model = ExactTheory::new(longitudinal, lateral);
     let started = Instant::now();
     let solutions: Vec<_> = cases.par_iter().map(|input| model.solve(input).expect("a valid contact")).collect();

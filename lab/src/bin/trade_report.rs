@@ -16,7 +16,7 @@ use wheel_rail_contact::{
     KalkerCoefficients, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
 };
 
-use lab::random_contacts::{contact_along, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
+use lab::random_contacts::{random_contact, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
 
 /// CONTACT's published cases, the same definitions the tests use.
 use wheel_rail_contact::reference_cases::{
@@ -373,11 +373,7 @@ fn write_held_out(report: &mut String, settings: &Settings) {
     let mut uniform = Uniform::new(0x5eed);
     let mut cases = Vec::with_capacity(count);
     for _ in 0..count {
-        let a_over_b = 10f64.powf(2.0 * uniform.next() - 1.0);
-        let poisson_ratio = 0.5 * uniform.next();
-        let level = 10f64.powf(-2.0 + uniform.next() * (30f64.log10() + 2.0));
-        let (z, angle) = (2.0 * uniform.next() - 1.0, 2.0 * std::f64::consts::PI * uniform.next());
-        cases.push(contact_along(a_over_b, poisson_ratio, level, z, angle));
+        cases.push(random_contact(&mut uniform, 1.0));
     }
     let started = Instant::now();
     let exact: Vec<CreepForces> = ExactTheory::new(longitudinal, lateral)

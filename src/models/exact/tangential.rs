@@ -44,8 +44,8 @@
 //! spin case): 511 with the local inverse alone, 165 blended.
 //!
 //! Start: a warm start, or the solution on a grid with half as many elements along one or both
-//! axes (`ExactTheory::solve_from`, which also solves again cold when a warm start does not
-//! converge): the Newton solver moves the boundary between adhesion and slip by about one
+//! axes (`ExactTheory::solve_from`; a cold solve races a warm start that does not converge
+//! soon, [`solve_warm_or_cold`]): the Newton solver moves the boundary between adhesion and slip by about one
 //! element layer per step, so a start with the right division saves most steps (spin case on
 //! 80 × 80: 21 → 8).
 //!
@@ -57,6 +57,7 @@ use super::element::local_traction;
 use super::grid::ContactGrid;
 use super::influence::InfluenceTable;
 use super::ElementState;
+use crate::InvalidInput;
 
 /// Target accuracy of the tractions, relative to the largest. The iteration stops after an
 /// accurately solved Newton step (to [`SETTLED_TOLERANCE`]) that changed no element's state and
@@ -71,7 +72,7 @@ pub const MAX_ITERATIONS: usize = 200;
 /// Newton steps solved to [`UNSETTLED_TOLERANCE`] at most; every later step is solved to
 /// [`SETTLED_TOLERANCE`] (`Newton::run`). Above the 4–15 steps the tested and benchmarked
 /// cases converge in, so it changes none of them.
-const LOOSE_STEPS: usize = 16;
+pub(crate) const LOOSE_STEPS: usize = 16;
 /// Most operator products (FFT convolutions) per solve, summed over all linear steps.
 pub const MAX_PRODUCTS: usize = 4000;
 /// Slip elements whose slip direction is further than arccos(0.9) ≈ 26° from opposite to their
@@ -88,6 +89,15 @@ const RESTART: usize = 30;
 /// 430, 200; a fixed 1e-3: 53, 205, 563, 277.
 const UNSETTLED_TOLERANCE: f64 = 0.1;
 const SETTLED_TOLERANCE: f64 = 1e-4;
+/// Operator products a warm start spends alone before a cold solve races it
+/// ([`ExactTheory::solve_from`](super::ExactTheory::solve_from)): about a cold solve's (on
+/// 200 × 50, 31–75 products for random contacts, a/b 0.06–16), so that the warm attempt and the
+/// race after it stay within about twice a cold solve. A step of a slowly varying
+/// co-simulation converges within it (on 200 × 50, 27–46 products with the creepages changing
+/// by 0.1–0.3 % per step), so it never pays for the race; with changes of 0.5–1.5 % per step
+/// warm solves take 33–78 products, and the race costs 4 % more over 40 such steps (2085
+/// products against 1999 without a race; cold solves 2320).
+pub const WARM_ALONE_PRODUCTS: usize = 50;
 
 /// Tractions (units μp₀) and element states, row-major (index i + j·nx).
 pub(crate) struct TangentialSolution {
@@ -105,28 +115,93 @@ pub(crate) struct TangentialSolution {
 pub(crate) fn solve(
     grid: &ContactGrid,
     table: &InfluenceTable,
-    convolution: &mut SlipConvolution,
     rigid_slip: [&[f64]; 2],
     start: Option<[&[f64]; 2]>,
 ) -> TangentialSolution {
-    let mut solver = Newton::new(grid, table, convolution, rigid_slip, start);
-    let converged = solver.run();
-    TangentialSolution {
-        traction_x: solver.traction[0].clone(),
-        traction_y: solver.traction[1].clone(),
-        state: solver.state.clone(),
-        iterations: solver.iterations,
-        products: solver.products,
-        converged,
+    let mut work = Workspace::new(table);
+    let mut solver = Newton::new(grid, table, rigid_slip, start);
+    let converged = solver.run(&mut work);
+    solver.into_solution(converged, (0, 0))
+}
+
+/// [`solve`] from a warm start `warm` with the cost of a step bounded by a cold solve's: the
+/// warm start's iteration runs alone for [`WARM_ALONE_PRODUCTS`] operator products; if it has
+/// not converged by then, the cold solve (from `cold_start`, the nested start, computed only then)
+/// races it, the iteration that has used fewer operator products taking the next Newton step,
+/// until either converges. The counts are both iterations'.
+///
+/// Why a race: a start far from the solution (a contact that jumped between steps) can leave
+/// the Newton iteration cycling between adhesion and slip for hundreds of steps (200 × 50,
+/// full slip → ξ = 1e-7: 203 steps, 3434 products, 3.5 s where a cold solve takes 36 products),
+/// while a start that converges slowly is not cycling (320 × 400 from the 160 × 200 solution:
+/// 40 steps, see `LOOSE_STEPS`); no test on the first steps tells them apart, and the cold
+/// solve's cost is unknown until it is done. Racing bounds the step by twice the cost of the
+/// cheaper of the two plus the one Newton step either may be ahead, or the warm start's
+/// products alone and a cold solve: products ≤ max(2·cold + one warm step,
+/// [`WARM_ALONE_PRODUCTS`] + cold) and ≤ max(2·warm + one cold step, warm).
+pub(crate) fn solve_warm_or_cold(
+    grid: &ContactGrid,
+    table: &InfluenceTable,
+    rigid_slip: [&[f64]; 2],
+    warm: [&[f64]; 2],
+    cold_start: impl FnOnce() -> Result<Option<[Vec<f64>; 2]>, InvalidInput>,
+) -> Result<TangentialSolution, InvalidInput> {
+    let mut work = Workspace::new(table);
+    let mut warm = Newton::new(grid, table, rigid_slip, Some(warm));
+    let mut warm_finished = warm.check(&mut work);
+    while warm_finished.is_none() && warm.products < WARM_ALONE_PRODUCTS {
+        warm.advance(&mut work);
+        warm_finished = warm.check(&mut work);
+    }
+    if warm_finished == Some(true) {
+        return Ok(warm.into_solution(true, (0, 0)));
+    }
+    let cold_start = cold_start()?;
+    let mut cold = Newton::new(grid, table, rigid_slip, cold_start.as_ref().map(|[x, y]| [x.as_slice(), y.as_slice()]));
+    let mut cold_finished = cold.check(&mut work);
+    loop {
+        match (warm_finished, cold_finished) {
+            (Some(true), _) => {
+                let other = (cold.iterations, cold.products);
+                return Ok(warm.into_solution(true, other));
+            }
+            (_, Some(converged)) if converged || warm_finished.is_some() => {
+                // Both at their limits: the cold iterate, as a solve without a start gives.
+                let other = (warm.iterations, warm.products);
+                return Ok(cold.into_solution(converged, other));
+            }
+            _ => {}
+        }
+        // Ties go to the cold solve: its cost is the bound.
+        if cold_finished.is_some() || (warm_finished.is_none() && warm.products < cold.products) {
+            warm.advance(&mut work);
+            warm_finished = warm.check(&mut work);
+        } else {
+            cold.advance(&mut work);
+            cold_finished = cold.check(&mut work);
+        }
     }
 }
 
 /// Vectors of the linear steps: x components in the first half, y components in the second.
 type Field = Vec<f64>;
 
+/// What the Newton iterations on one grid share: the FFT convolution and GMRES's Krylov vectors
+/// (kept between solves: allocating them anew each iteration costs page faults on large grids).
+struct Workspace {
+    convolution: SlipConvolution,
+    krylov_basis: Vec<Field>,
+    krylov_preconditioned: Vec<Field>,
+}
+
+impl Workspace {
+    fn new(table: &InfluenceTable) -> Self {
+        Self { convolution: SlipConvolution::new(table), krylov_basis: Vec::new(), krylov_preconditioned: Vec::new() }
+    }
+}
+
 struct Newton<'a> {
     grid: &'a ContactGrid,
-    convolution: &'a mut SlipConvolution,
     rigid_slip: [&'a [f64]; 2],
     count: usize,
     traction: [Vec<f64>; 2],
@@ -144,17 +219,21 @@ struct Newton<'a> {
     steps: [Vec<f64>; 2],
     product: [Vec<f64>; 2],
     unscaled: [Vec<f64>; 2],
-    krylov_basis: Vec<Field>,
-    krylov_preconditioned: Vec<Field>,
+    right_side: Field,
     iterations: usize,
     products: usize,
+    /// The last step was accurate and changed nothing: converged if the slip releases nothing.
+    converging: bool,
+    /// The last step changed no element's state.
+    settled: bool,
+    /// The last check released elements.
+    released: bool,
 }
 
 impl<'a> Newton<'a> {
     fn new(
         grid: &'a ContactGrid,
         table: &InfluenceTable,
-        convolution: &'a mut SlipConvolution,
         rigid_slip: [&'a [f64]; 2],
         start: Option<[&[f64]; 2]>,
     ) -> Self {
@@ -163,7 +242,6 @@ impl<'a> Newton<'a> {
         let centre = table.index(0, 0);
         let mut solver = Self {
             grid,
-            convolution,
             rigid_slip,
             count,
             traction: [vec![0.0; count], vec![0.0; count]],
@@ -176,10 +254,12 @@ impl<'a> Newton<'a> {
             steps: [vec![0.0; steps], vec![0.0; steps]],
             product: [vec![0.0; count], vec![0.0; count]],
             unscaled: [vec![0.0; count], vec![0.0; count]],
-            krylov_basis: Vec::new(),
-            krylov_preconditioned: Vec::new(),
+            right_side: vec![0.0; 2 * count],
             iterations: 0,
             products: 0,
+            converging: false,
+            settled: false,
+            released: false,
         };
         for element in 0..count {
             let bound = grid.pressure[element];
@@ -213,49 +293,75 @@ impl<'a> Newton<'a> {
     }
 
     /// Newton iteration; returns whether it converged.
-    fn run(&mut self) -> bool {
-        let mut converging = false;
-        let mut settled = false;
-        let mut right_side = vec![0.0; 2 * self.count];
+    fn run(&mut self, work: &mut Workspace) -> bool {
         loop {
-            self.evaluate_slip();
-            let released = self.release();
-            if released {
-                self.evaluate_slip();
+            if let Some(converged) = self.check(work) {
+                return converged;
             }
-            self.linearise();
-            if converging && !released {
-                return true;
-            }
-            if self.iterations == MAX_ITERATIONS || self.products >= MAX_PRODUCTS {
-                return false;
-            }
-            self.iterations += 1;
-            self.right_side(&mut right_side);
-            // Solving accurately pays only once the division into adhesion and slip has settled,
-            // or once it has failed to settle for long: loose steps can make elements trade
-            // places between adhesion and slip forever (a/b = 9.8 with spin on 320 × 400 from
-            // the 160 × 200 solution: 200 steps without settling, the adhesion area left at 6 %
-            // of the solution's and F_x off by 0.3 μQ; with accurate steps after the 16th it
-            // converges in 41).
-            let accurate = settled && !released;
-            let tolerance =
-                if accurate || self.iterations > LOOSE_STEPS { SETTLED_TOLERANCE } else { UNSETTLED_TOLERANCE };
-            let update = self.gmres(&right_side, tolerance);
-            let (relative_step, changed) = self.update(&update);
-            settled = !changed;
-            converging = accurate && !changed && relative_step <= RELATIVE_TOLERANCE / SETTLED_TOLERANCE;
+            self.advance(work);
+        }
+    }
+
+    /// The slip of the current iterate, released slip elements, and the stopping test:
+    /// `Some(converged)` when the iteration is finished (converged, or at its limits).
+    fn check(&mut self, work: &mut Workspace) -> Option<bool> {
+        self.evaluate_slip(&mut work.convolution);
+        self.released = self.release();
+        if self.released {
+            self.evaluate_slip(&mut work.convolution);
+        }
+        self.linearise();
+        if self.converging && !self.released {
+            return Some(true);
+        }
+        if self.iterations == MAX_ITERATIONS || self.products >= MAX_PRODUCTS {
+            return Some(false);
+        }
+        None
+    }
+
+    /// One Newton step from the iterate of the last [`Self::check`].
+    fn advance(&mut self, work: &mut Workspace) {
+        self.iterations += 1;
+        let mut right_side = std::mem::take(&mut self.right_side);
+        self.right_side(&mut right_side);
+        // Solving accurately pays only once the division into adhesion and slip has settled,
+        // or once it has failed to settle for long: loose steps can make elements trade
+        // places between adhesion and slip forever (a/b = 9.8 with spin on 320 × 400 from
+        // the 160 × 200 solution: 200 steps without settling, the adhesion area left at 6 %
+        // of the solution's and F_x off by 0.3 μQ; with accurate steps after the 16th it
+        // converges in 41).
+        let accurate = self.settled && !self.released;
+        let tolerance = if accurate || self.iterations > LOOSE_STEPS { SETTLED_TOLERANCE } else { UNSETTLED_TOLERANCE };
+        let update = self.gmres(work, &right_side, tolerance);
+        self.right_side = right_side;
+        let (relative_step, changed) = self.update(&update);
+        self.settled = !changed;
+        self.converging = accurate && !changed && relative_step <= RELATIVE_TOLERANCE / SETTLED_TOLERANCE;
+    }
+
+    /// The solution of this iteration, its counts plus `other`'s (iterations, products): those
+    /// of an iteration that raced it.
+    fn into_solution(self, converged: bool, other: (usize, usize)) -> TangentialSolution {
+        let [traction_x, traction_y] = self.traction;
+        TangentialSolution {
+            traction_x,
+            traction_y,
+            state: self.state,
+            iterations: self.iterations + other.0,
+            products: self.products + other.1,
+            converged,
         }
     }
 
     /// slip ← w + (A/δx) Δp for the current tractions.
-    fn evaluate_slip(&mut self) {
+    fn evaluate_slip(&mut self, convolution: &mut SlipConvolution) {
         let [traction_x, traction_y] = &self.traction;
         let (nx, ny) = (self.grid.elements_x, self.grid.elements_y);
         let [steps_x, steps_y] = &mut self.steps;
         steps_of([traction_x, traction_y], [steps_x, steps_y], nx, ny);
         let [slip_x, slip_y] = &mut self.slip;
-        self.convolution.apply([&self.steps[0], &self.steps[1]], [slip_x, slip_y]);
+        convolution.apply([&self.steps[0], &self.steps[1]], [slip_x, slip_y]);
         self.products += 1;
         for component in 0..2 {
             for (slip, rigid) in self.slip[component].iter_mut().zip(self.rigid_slip[component]) {
@@ -337,7 +443,7 @@ impl<'a> Newton<'a> {
     /// The linearised operator: for adhesion elements the slip change, for slip elements the
     /// normal component of the slip change plus the turning term (normal direction) and the
     /// tangential component of the input (an identity that fixes the unused unknown).
-    fn apply_operator(&mut self, input: &[f64], out: &mut [f64]) {
+    fn apply_operator(&mut self, convolution: &mut SlipConvolution, input: &[f64], out: &mut [f64]) {
         let n = self.count;
         let (nx, ny) = (self.grid.elements_x, self.grid.elements_y);
         let (input_x, input_y) = input.split_at(n);
@@ -360,7 +466,7 @@ impl<'a> Newton<'a> {
         let [steps_x, steps_y] = &mut self.steps;
         steps_of([change_x, change_y], [steps_x, steps_y], nx, ny);
         let (out_x, out_y) = out.split_at_mut(n);
-        self.convolution.apply([&self.steps[0], &self.steps[1]], [out_x, out_y]);
+        convolution.apply([&self.steps[0], &self.steps[1]], [out_x, out_y]);
         self.products += 1;
         for element in 0..n {
             match self.state[element] {
@@ -387,7 +493,7 @@ impl<'a> Newton<'a> {
     /// The preconditioner (see the module documentation): circulant inverse, then the row
     /// scan from the leading edge that carries each change downstream through adhesion; slip
     /// elements by their own coefficient.
-    fn precondition(&mut self, input: &[f64], out: &mut [f64]) {
+    fn precondition(&mut self, convolution: &mut SlipConvolution, input: &[f64], out: &mut [f64]) {
         let n = self.count;
         let nx = self.grid.elements_x;
         let (input_x, input_y) = input.split_at(n);
@@ -408,7 +514,7 @@ impl<'a> Newton<'a> {
         {
             let [steps_x, steps_y] = &mut self.product;
             let [unscaled_x, unscaled_y] = &self.unscaled;
-            self.convolution.apply_inverse([unscaled_x, unscaled_y], [steps_x, steps_y]);
+            convolution.apply_inverse([unscaled_x, unscaled_y], [steps_x, steps_y]);
         }
         let (out_x, out_y) = out.split_at_mut(n);
         out_x.iter_mut().for_each(|v| *v = 0.0);
@@ -445,18 +551,15 @@ impl<'a> Newton<'a> {
     }
 
     /// Flexible restarted GMRES with right preconditioning for the Newton step, from zero.
-    fn gmres(&mut self, right_side: &[f64], tolerance: f64) -> Field {
+    fn gmres(&mut self, work: &mut Workspace, right_side: &[f64], tolerance: f64) -> Field {
         let size = right_side.len();
         let mut solution = vec![0.0; size];
         let mut residual = right_side.to_vec();
         let target = tolerance * norm(right_side);
-        // Krylov vectors are kept between solves (allocating them anew each iteration costs
-        // page faults on large grids).
-        let mut basis = std::mem::take(&mut self.krylov_basis);
-        let mut preconditioned = std::mem::take(&mut self.krylov_preconditioned);
+        let Workspace { convolution, krylov_basis: basis, krylov_preconditioned: preconditioned } = work;
         basis.resize_with(RESTART + 1, || vec![0.0; size]);
         preconditioned.resize_with(RESTART, || vec![0.0; size]);
-        let mut work = vec![0.0; size];
+        let mut image = vec![0.0; size];
         loop {
             let beta = norm(&residual);
             if beta <= target || !beta.is_finite() || self.products >= MAX_PRODUCTS {
@@ -468,16 +571,16 @@ impl<'a> Newton<'a> {
             let mut rotations: Vec<(f64, f64)> = Vec::with_capacity(RESTART);
             let mut rotated = vec![beta];
             for k in 0..RESTART {
-                self.precondition(&basis[k], &mut preconditioned[k]);
-                self.apply_operator(&preconditioned[k], &mut work);
+                self.precondition(convolution, &basis[k], &mut preconditioned[k]);
+                self.apply_operator(convolution, &preconditioned[k], &mut image);
                 // Modified Gram–Schmidt.
                 let mut column = Vec::with_capacity(k + 2);
                 for vector in &basis[..=k] {
-                    let h = dot(&work, vector);
-                    work.iter_mut().zip(vector).for_each(|(w, v)| *w -= h * v);
+                    let h = dot(&image, vector);
+                    image.iter_mut().zip(vector).for_each(|(w, v)| *w -= h * v);
                     column.push(h);
                 }
-                let next_norm = norm(&work);
+                let next_norm = norm(&image);
                 column.push(next_norm);
                 for (i, &(c, s)) in rotations.iter().enumerate() {
                     let (a, b) = (column[i], column[i + 1]);
@@ -497,7 +600,7 @@ impl<'a> Newton<'a> {
                 if estimate <= target || next_norm == 0.0 || self.products >= MAX_PRODUCTS {
                     break;
                 }
-                basis[k + 1].iter_mut().zip(&work).for_each(|(v, w)| *v = w / next_norm);
+                basis[k + 1].iter_mut().zip(&image).for_each(|(v, w)| *v = w / next_norm);
             }
             // Back substitution for the coefficients, then the update from the preconditioned
             // vectors.
@@ -510,18 +613,16 @@ impl<'a> Newton<'a> {
                 }
                 coefficients[i] = if hessenberg[i][i] == 0.0 { 0.0 } else { sum / hessenberg[i][i] };
             }
-            for (coefficient, vector) in coefficients.iter().zip(&preconditioned) {
+            for (coefficient, vector) in coefficients.iter().zip(preconditioned.iter()) {
                 solution.iter_mut().zip(vector).for_each(|(x, z)| *x += coefficient * z);
             }
             if rotated[used].abs() <= target || self.products >= MAX_PRODUCTS {
                 break;
             }
             // Restart from the true residual.
-            self.apply_operator(&solution, &mut work);
-            residual.iter_mut().zip(right_side.iter().zip(&work)).for_each(|(r, (b, w))| *r = b - w);
+            self.apply_operator(convolution, &solution, &mut image);
+            residual.iter_mut().zip(right_side.iter().zip(&image)).for_each(|(r, (b, w))| *r = b - w);
         }
-        self.krylov_basis = basis;
-        self.krylov_preconditioned = preconditioned;
         solution
     }
 
