@@ -1,8 +1,9 @@
 //! Kalker's exact theory (FFT Newton–GMRES solver), one thread: CONTACT's published spin case
 //! (η with spin, partial slip, F_y ≈ −0.61 μN) and a pure-ξ partial-slip case (ξ = 1e-3 on
 //! CONTACT's ellipse, F_x ≈ −0.47 μN) at 40 × 40, 80 × 80 and 160 × 160 elements over the
-//! potential contact area; and a warm-started co-simulation on 40 × 40 and 200 × 50, each step
-//! starting from the previous one's tractions while the creepages and the ellipse vary slowly.
+//! potential contact area; a warm-started co-simulation on 40 × 40 and 200 × 50, each step
+//! starting from the previous one's tractions while the creepages and the ellipse vary slowly;
+//! and a sequence of random jumps on 200 × 50, its worst step against a cold solve.
 //!
 //! Run: `cargo bench --bench exact`. The solver's iterations and operator products per case are
 //! printed before the timings.
@@ -14,6 +15,10 @@ use wheel_rail_contact::{ContactInput, ExactTheory};
 #[allow(dead_code)] // the bench uses one of the published cases
 #[path = "../tests/data/contact_published_cases.rs"]
 mod published;
+
+#[allow(dead_code)] // the random contacts only
+#[path = "../examples/common/mod.rs"]
+mod random_contacts;
 
 const GRIDS: [usize; 3] = [40, 80, 160];
 
@@ -96,5 +101,40 @@ fn exact_theory_warm_steps(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, exact_theory_cases, exact_theory_warm_steps);
+/// Steps of a co-simulation whose contact jumps at every step (24 random contacts, a/b 0.06–16,
+/// any creepage up to 30 × the characteristic one; seed 77, the sequence of
+/// `tests/exact_step_cost.rs`), each started from the previous step's solution on 200 × 50:
+/// every step's operator products against a cold solve's are printed, and the step with the
+/// largest ratio is timed warm-started and cold.
+fn exact_theory_jump_steps(c: &mut Criterion) {
+    let model = ExactTheory::new(200, 50);
+    let mut uniform = random_contacts::Uniform::new(77);
+    let contacts: Vec<ContactInput> = (0..=24).map(|_| random_contacts::random_contact(&mut uniform, 1.2)).collect();
+    let mut start = model.solve(&contacts[0]).unwrap().warm_start();
+    let mut worst = (0.0, 0, start.clone());
+    for (step, contact) in contacts.iter().enumerate().skip(1) {
+        let warm = model.solve_from(contact, Some(&start)).unwrap();
+        let cold = model.solve(contact).unwrap();
+        let ratio = warm.operator_products as f64 / cold.operator_products as f64;
+        println!(
+            "jump {step}: {} operator products warm-started, {} cold ({ratio:.2})",
+            warm.operator_products, cold.operator_products
+        );
+        if ratio > worst.0 {
+            worst = (ratio, step, start);
+        }
+        start = warm.warm_start();
+    }
+    let (ratio, step, start) = worst;
+    println!("worst step: jump {step}, {ratio:.2} × a cold solve's operator products");
+    let mut group = c.benchmark_group("exact_theory_worst_jump_step_200x50");
+    group.sample_size(10);
+    group.bench_function("warm_started", |bencher| {
+        bencher.iter(|| model.solve_from(black_box(&contacts[step]), Some(&start)).unwrap().forces)
+    });
+    group.bench_function("cold", |bencher| bencher.iter(|| model.solve(black_box(&contacts[step])).unwrap().forces));
+    group.finish();
+}
+
+criterion_group!(benches, exact_theory_cases, exact_theory_warm_steps, exact_theory_jump_steps);
 criterion_main!(benches);
