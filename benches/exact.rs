@@ -9,16 +9,12 @@
 //! printed before the timings.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::hint::black_box;
 use wheel_rail_contact::{ContactInput, ExactTheory};
 
-#[allow(dead_code)] // the bench uses one of the published cases
-#[path = "../tests/data/contact_published_cases.rs"]
-mod published;
-
-#[allow(dead_code)] // the random contacts only
-#[path = "../examples/common/mod.rs"]
-mod random_contacts;
+use wheel_rail_contact::reference_cases as published;
 
 const GRIDS: [usize; 3] = [40, 80, 160];
 
@@ -101,15 +97,33 @@ fn exact_theory_warm_steps(c: &mut Criterion) {
     group.finish();
 }
 
-/// Steps of a co-simulation whose contact jumps at every step (24 random contacts, a/b 0.06–16,
-/// any creepage up to 30 × the characteristic one; seed 77, the sequence of
-/// `tests/exact_step_cost.rs`), each started from the previous step's solution on 200 × 50:
-/// every step's operator products against a cold solve's are printed, and the step with the
-/// largest ratio is timed warm-started and cold.
+/// Steps of a co-simulation whose contact jumps at every step (24 jumps between random contacts
+/// of CONTACT's ellipse area: a/b log-uniform in [0.06, 16], ν in [0, 0.5], |(ξ, η)|
+/// log-uniform in [1e-5, 3e-2] in any direction, φ up to that over √(ab); seeded), each started
+/// from the previous step's solution on 200 × 50: every step's operator products against a cold
+/// solve's are printed, and the step with the largest ratio is timed warm-started and cold.
 fn exact_theory_jump_steps(c: &mut Criterion) {
     let model = ExactTheory::new(200, 50);
-    let mut uniform = random_contacts::Uniform::new(77);
-    let contacts: Vec<ContactInput> = (0..=24).map(|_| random_contacts::random_contact(&mut uniform, 1.2)).collect();
+    let base = published::FASTSIM_CASE;
+    let area = base.semi_axis_a * base.semi_axis_b;
+    let mut runner = TestRunner::new_with_rng(Config::default(), TestRng::from_seed(RngAlgorithm::ChaCha, &[31; 32]));
+    let strategy = (-1.2..1.2f64, 0.0..0.5f64, -5.0..-1.5f64, 0.0..std::f64::consts::TAU, -1.0..1.0f64);
+    let contacts: Vec<ContactInput> = (0..=24)
+        .map(|_| {
+            let (log_ratio, poisson_ratio, log_creepage, angle, spin) =
+                strategy.new_tree(&mut runner).unwrap().current();
+            let (creepage, ratio) = (10f64.powf(log_creepage), 10f64.powf(log_ratio));
+            ContactInput {
+                creepage_longitudinal: creepage * angle.cos(),
+                creepage_lateral: creepage * angle.sin(),
+                spin_creepage: spin * creepage / area.sqrt(),
+                semi_axis_a: (area * ratio).sqrt(),
+                semi_axis_b: (area / ratio).sqrt(),
+                poisson_ratio,
+                ..base
+            }
+        })
+        .collect();
     let mut start = model.solve(&contacts[0]).unwrap().warm_start();
     let mut worst = (0.0, 0, start.clone());
     for (step, contact) in contacts.iter().enumerate().skip(1) {

@@ -37,6 +37,7 @@ mod invalid_input;
 mod kalker_coefficients;
 pub mod models;
 mod numerics;
+pub mod reference_cases;
 pub mod scene;
 
 pub use contact_input::ContactInput;
@@ -49,7 +50,7 @@ pub use models::exact_table::{ExactTable, TableError};
 pub use models::fastsim::{Discretisation, Fastsim, FastsimResult, Flexibility, TractionBound};
 pub use models::kalker_linear::KalkerLinear;
 pub use models::measured_curve::{MeasuredCurve, MeasuredCurveError};
-pub use models::model_choice::ModelChoice;
+pub use models::model_choice::{ModelCache, ModelChoice, ModelMemory, SequenceStep};
 pub use models::polach::{spin_moment_factor, Polach, PolachShape, ShapeCache, StiffnessSource};
 pub use models::polach2005::{LargeCreepage, Polach2005};
 pub use models::shen_hedrick_elkins::ShenHedrickElkins;

@@ -68,6 +68,7 @@ fn saturating_models_stay_within_coulomb_and_saturate_monotonically() {
 }
 
 #[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn extremes_grid_is_finite_bounded_and_never_panics() {
     let magnitudes = [0.0, 1e-300, 1e-12, 1e-6, 1e-3, 1.0, 1e3, 1e6];
     let creepages: Vec<f64> = magnitudes.iter().flat_map(|&m| [m, -m]).skip(1).collect();

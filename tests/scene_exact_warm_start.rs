@@ -3,7 +3,7 @@
 //! slowly varying co-simulation and across a jump that a poor start makes (other creepage sign,
 //! other ellipse, lift-off and back).
 
-use wheel_rail_contact::scene::{Evaluation, Scene, SceneInput, SceneState};
+use wheel_rail_contact::scene::{Evaluation, Scene, SceneCache, SceneInput, SceneState};
 use wheel_rail_contact::{CreepForceModel, ExactTheory, ModelChoice};
 
 fn input(xi: f64, eta: f64, spin: f64, normal_force: f64, semi_axis_a: f64) -> SceneInput {
@@ -24,7 +24,7 @@ fn input(xi: f64, eta: f64, spin: f64, normal_force: f64, semi_axis_a: f64) -> S
 fn warm_started_steps_equal_cold_solves() {
     let exact = ExactTheory::new(32, 32);
     let scene = Scene::of_model(ModelChoice::Exact(exact), 82e9, 0.28);
-    let mut state = SceneState::default();
+    let (mut state, mut cache) = (SceneState::default(), SceneCache::default());
     let mut cases: Vec<SceneInput> =
         (0..12).map(|k| input(4e-4 + 1e-4 * k as f64, -2e-4, 0.3 + 0.02 * k as f64, 100e3, 7.2e-3)).collect();
     // Poor starts: the creepage reversed, another ellipse, lift-off, and back.
@@ -35,7 +35,8 @@ fn warm_started_steps_equal_cold_solves() {
         input(1e-3, 0.0, 0.0, 100e3, 7.2e-3),
     ]);
     for (k, case) in cases.iter().enumerate() {
-        let warm = scene.evaluate(case, &mut state, Evaluation::Step(1e-3)).unwrap();
+        let warm;
+        (warm, state) = scene.evaluate(case, &state, &mut cache, Evaluation::Step(1e-3)).unwrap();
         let cold = exact.creep_forces(&scene.contact_input(case)).unwrap();
         let limit = 0.3 * case.normal_force.max(0.0);
         for (warm, cold) in

@@ -14,30 +14,26 @@ use super::model_description::{
 };
 use wheel_rail_contact::models::exact::{MAX_ITERATIONS, MAX_PRODUCTS};
 use wheel_rail_contact::scene::{
-    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneState, TractionLaw,
+    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneState, TractionLaw,
 };
 use wheel_rail_contact::{
     ContactInput, ExactTable, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve,
     ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
-/// The relaxed forces [F_x, F_y] \[N\] (used when `creep_relaxation = on`): the scene's state
-/// ([`SceneState::relaxed_forces`]), saved with the FMU state.
-pub type RelaxedForces = [f64; 2];
-
 /// The scene the parameters select, built (the measured-curve fit, FASTSIM's load
 /// normalisation, every check of the parameters) when first needed and again only after
 /// [`ModelCache::parameters_changed`] — the instance calls it whenever a parameter is written or
-/// an FMU state is set — so a step pays no comparison of the parameters; and Polach's shape
-/// factors (Kalker's coefficients, K_S) for the last ellipse shape, recomputed only when a/b or ν
-/// change. Derived data, so not part of the FMU's state.
+/// an FMU state is set — so a step pays no comparison of the parameters; and the scene's
+/// [`SceneCache`] (Polach's shape factors for the last ellipse shape). Derived data, so not part
+/// of the FMU's state (the scene's [`SceneState`] is, in the instance's snapshot).
 #[derive(Debug, Clone, Default)]
 pub struct ModelCache {
     /// The parameters it was built for (checked against the current ones in debug builds: a
     /// missed `parameters_changed` fails every test) and the scene or why there is none.
     built: Option<(Parameters, Result<Scene, String>)>,
-    /// The scene's derived data (Polach's shape factors); its relaxed forces are the instance's.
-    state: SceneState,
+    /// The scene's derived data (Polach's shape factors).
+    scene_cache: SceneCache,
 }
 
 impl ModelCache {
@@ -47,9 +43,9 @@ impl ModelCache {
         self.built = None;
     }
 
-    /// The scene for `parameters` and the scene's derived state; the error names the parameter.
+    /// The scene for `parameters` and the scene's cache; the error names the parameter.
     #[inline]
-    fn plan(&mut self, parameters: &Parameters) -> Result<(&Scene, &mut SceneState), String> {
+    fn plan(&mut self, parameters: &Parameters) -> Result<(&Scene, &mut SceneCache), String> {
         let (built_for, scene) = self.built.get_or_insert_with(|| (*parameters, scene_of(parameters)));
         // A NaN parameter never equals itself (`parameters != parameters`): such a scene is an
         // error, reported alike whether cached or rebuilt.
@@ -57,7 +53,7 @@ impl ModelCache {
         let unchanged_or_nan = built_for == parameters || parameters != parameters;
         debug_assert!(unchanged_or_nan, "a parameter changed without ModelCache::parameters_changed");
         match scene {
-            Ok(scene) => Ok((scene, &mut self.state)),
+            Ok(scene) => Ok((scene, &mut self.scene_cache)),
             Err(reason) => Err(reason.clone()),
         }
     }
@@ -233,19 +229,18 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
     })
 }
 
-/// The outputs for `values` with a warning for the master when they are an unconverged exact
-/// solve's last iterate, or the reason they cannot be computed (names the variable and value).
-/// `relaxed_forces` is read and, on success only, advanced (or initialised).
+/// The outputs for `values` from the scene's `state`, the state after this evaluation (advanced
+/// or initialised) and a warning for the master when the outputs are an unconverged exact
+/// solve's last iterate; or the reason they cannot be computed (names the variable and value).
 pub(crate) fn compute_outputs(
     values: &Values,
     cache: &mut ModelCache,
-    relaxed_forces: &mut RelaxedForces,
+    state: &SceneState,
     evaluation: Evaluation,
-) -> Result<(Outputs, Option<String>), String> {
-    let (scene, state) = cache.plan(&values.parameters)?;
-    state.relaxed_forces = *relaxed_forces;
-    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
-    *relaxed_forces = state.relaxed_forces;
+) -> Result<(Outputs, SceneState, Option<String>), String> {
+    let (scene, scene_cache) = cache.plan(&values.parameters)?;
+    let (output, next_state) =
+        scene.evaluate(&values.inputs.scene_input(), state, scene_cache, evaluation).map_err(|e| e.to_string())?;
     let warning = output.unconverged_grid.map(|grid| {
         let (length, width) = grid.element_sides(output.contact_semi_axis_a, output.contact_semi_axis_b);
         format!(
@@ -262,7 +257,7 @@ pub(crate) fn compute_outputs(
             Model::ExactTable as i32,
         )
     });
-    Ok((Outputs::from_scene(&output), warning))
+    Ok((Outputs::from_scene(&output), next_state, warning))
 }
 
 /// d(outputs) along `direction` (one rate per continuous input) at the current `values` — of
@@ -302,8 +297,22 @@ mod tests {
     use wheel_rail_contact::{CreepForceModel, LargeCreepage};
 
     fn outputs_of(values: &Values) -> Result<Outputs, String> {
-        compute_outputs(values, &mut ModelCache::default(), &mut RelaxedForces::default(), Evaluation::Initialise)
-            .map(|(outputs, _)| outputs)
+        evaluate_relaxed(values, &mut ModelCache::default(), &mut [0.0; 2], Evaluation::Initialise)
+    }
+
+    /// [`compute_outputs`] from a state of these relaxed forces (and no model memory), which
+    /// advance on success.
+    fn evaluate_relaxed(
+        values: &Values,
+        cache: &mut ModelCache,
+        relaxed_forces: &mut [f64; 2],
+        evaluation: Evaluation,
+    ) -> Result<Outputs, String> {
+        let state = SceneState::with_relaxed_forces(*relaxed_forces);
+        compute_outputs(values, cache, &state, evaluation).map(|(outputs, next, _)| {
+            *relaxed_forces = next.relaxed_forces;
+            outputs
+        })
     }
 
     fn outputs(values: &Values) -> Outputs {
@@ -537,7 +546,7 @@ mod tests {
             change(&mut values);
             let mut cache = ModelCache::default();
             let mut relaxed = [1.0, 2.0];
-            let result = compute_outputs(&values, &mut cache, &mut relaxed, Evaluation::Step(1e-3));
+            let result = evaluate_relaxed(&values, &mut cache, &mut relaxed, Evaluation::Step(1e-3));
             assert_eq!(result.unwrap_err(), expected);
             assert_eq!(relaxed, [1.0, 2.0], "the state is kept on an error");
         }
@@ -667,8 +676,8 @@ mod tests {
         let mut values = rich_scene();
         values.parameters.creep_relaxation = on();
         let mut cache = ModelCache::default();
-        let mut state = RelaxedForces::default();
-        let initial = compute_outputs(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap().0;
+        let mut state = [0.0; 2];
+        let initial = evaluate_relaxed(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap();
         let steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
         assert_eq!(state, [steady.force_longitudinal, steady.force_lateral]);
         assert_eq!(
@@ -681,7 +690,7 @@ mod tests {
         let new_steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
         let lengths = RelaxationLengths::from_contact(7.2e-3, 5.4e-3, 0.28).unwrap();
         let mut one_step = before;
-        let after = compute_outputs(&values, &mut cache, &mut one_step, Evaluation::Step(4e-4)).unwrap().0;
+        let after = evaluate_relaxed(&values, &mut cache, &mut one_step, Evaluation::Step(4e-4)).unwrap();
         let steady_forces = [new_steady.force_longitudinal, new_steady.force_lateral];
         assert_eq!(one_step, lengths.advance(before, steady_forces, 20.0, 4e-4).unwrap());
         assert_eq!([after.force_longitudinal, after.force_lateral], one_step);
@@ -689,8 +698,8 @@ mod tests {
         let progress = (one_step[0] - before[0]) / (steady_forces[0] - before[0]);
         assert!((progress - (1.0 - (-20.0 * 4e-4 / lengths.longitudinal).exp())).abs() < 1e-12, "{progress}");
         let mut two_steps = before;
-        compute_outputs(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
-        compute_outputs(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
+        evaluate_relaxed(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
+        evaluate_relaxed(&values, &mut cache, &mut two_steps, Evaluation::Step(2e-4)).unwrap();
         for (one, two) in one_step.iter().zip(two_steps) {
             assert!((one - two).abs() <= 1e-12 * one.abs(), "{one_step:?} vs {two_steps:?}");
         }
@@ -700,11 +709,11 @@ mod tests {
         values.parameters.relaxation_length = 0.05;
         cache.parameters_changed();
         let mut state = before;
-        compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
+        evaluate_relaxed(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
         let uniform = RelaxationLengths::uniform(0.05).unwrap();
         assert_eq!(state, uniform.advance(before, steady_forces, 20.0, 1e-3).unwrap());
         values.inputs.normal_force = 0.0;
-        let lifted = compute_outputs(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap().0;
+        let lifted = evaluate_relaxed(&values, &mut cache, &mut state, Evaluation::Step(1e-3)).unwrap();
         assert_eq!((state, lifted.force_longitudinal, lifted.adhesion_utilisation), ([0.0; 2], 0.0, 0.0));
     }
 
@@ -713,10 +722,10 @@ mod tests {
         let mut values = Values::default();
         values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
         let mut cache = ModelCache::default();
-        let mut state = RelaxedForces::default();
+        let mut state = [0.0; 2];
         let mut evaluate = |values: &Values| {
             cache.parameters_changed();
-            compute_outputs(values, &mut cache, &mut state, Evaluation::Step(1e-3)).map(|(outputs, _)| outputs)
+            evaluate_relaxed(values, &mut cache, &mut state, Evaluation::Step(1e-3))
         };
         let before = evaluate(&values).unwrap();
         values.parameters.measured_peak_adhesion = 0.36;
@@ -775,7 +784,7 @@ mod tests {
         ];
         let run = |values: &Values, evaluation| {
             let mut state = [-2e3, 1e3];
-            let outputs = compute_outputs(values, &mut ModelCache::default(), &mut state, evaluation).unwrap().0;
+            let outputs = evaluate_relaxed(values, &mut ModelCache::default(), &mut state, evaluation).unwrap();
             Values { outputs, ..*values }
         };
         let inputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Input).collect();

@@ -2,7 +2,8 @@
 //! computes with, as plain values, and its byte encoding.
 //!
 //! What is saved is a [`Snapshot`]: the state-machine mode, time and stop time, every variable's
-//! value (the generated [`Values`], whole) and the scene's relaxed forces. A
+//! value (the generated [`Values`], whole) and the scene's state (relaxed forces, the exact
+//! theory's warm start: [`SceneState`]). A
 //! field added to any of these is saved and restored with no change here. Not saved, because
 //! they are the master's settings for this instance rather than its state: the instance name,
 //! the resource location, the logger and the debug-logging selection.
@@ -31,12 +32,13 @@
 use serde::{Deserialize, Serialize};
 
 use crate::mode::Mode;
-use crate::model_description::{Values, GUID, STATE_LAYOUT_TAG};
+use crate::model_description::{Causality, Values, GUID, STATE_LAYOUT_TAG, VARIABLES};
+use wheel_rail_contact::scene::SceneState;
 
 /// First bytes of every serialized state of this FMU.
 pub const MAGIC: [u8; 8] = *b"WRCstate";
 /// The layout of the header and payload described in the module documentation.
-pub const FORMAT_VERSION: u16 = 2;
+pub const FORMAT_VERSION: u16 = 3;
 
 /// Everything an instance computes with: what an FMU state holds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -49,9 +51,10 @@ pub struct Snapshot {
     pub stop_time: Option<f64>,
     /// Every variable: inputs, parameters and the last outputs.
     pub values: Values,
-    /// The scene's state carried from step to step: the relaxed forces [F_x, F_y] \[N\]
-    /// (`creep_relaxation = on`; see [`wheel_rail_contact::scene::SceneState`]).
-    pub relaxed_forces: [f64; 2],
+    /// The scene's state carried from step to step: the relaxed forces (`creep_relaxation =
+    /// on`) and the model's memory (the exact theory's warm start), so that a restored instance
+    /// continues bit for bit ([`SceneState`]).
+    pub scene: SceneState,
 }
 
 impl Snapshot {
@@ -62,7 +65,7 @@ impl Snapshot {
             time: 0.0,
             stop_time: None,
             values: Values::default(),
-            relaxed_forces: [0.0; 2],
+            scene: SceneState::default(),
         }
     }
 }
@@ -142,10 +145,32 @@ pub fn decode(bytes: &[u8]) -> Result<Snapshot, String> {
         Ok(_) => return Err("corrupted: the payload has bytes after the state".to_owned()),
         Err(error) => return Err(format!("corrupted: the payload does not decode ({error})")),
     };
-    if state.mode == Mode::Fatal {
-        return Err("corrupted: a state cannot be in mode fatal".to_owned());
-    }
+    check_sense(&state).map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
     Ok(state)
+}
+
+/// The checks the setters and the state machine apply to what a state holds, for a state whose
+/// bytes are intact but whose content did not come from this FMU (a forged or hand-edited one):
+/// a live mode, a finite time, a stop time that fmi2SetupExperiment would accept and that the
+/// time has not passed, finite outputs (an instance only ever keeps finite ones) and a valid
+/// scene state. Inputs and parameters may hold any value, as after fmi2SetReal/fmi2SetInteger:
+/// an invalid one is reported by the next evaluation, naming it.
+fn check_sense(state: &Snapshot) -> Result<(), String> {
+    if state.mode == Mode::Fatal {
+        return Err("mode fatal".to_owned());
+    }
+    if !state.time.is_finite() {
+        return Err(format!("time = {} is invalid: must be finite", state.time));
+    }
+    if let Some(stop) = state.stop_time.filter(|stop| !(*stop >= state.time)) {
+        return Err(format!("stopTime = {stop} is invalid: must be >= time = {}", state.time));
+    }
+    for variable in VARIABLES.iter().filter(|variable| variable.causality == Causality::Output) {
+        if let Some(value) = state.values.real(variable.value_reference).filter(|value| !value.is_finite()) {
+            return Err(format!("{} = {value} is invalid: an output is always finite", variable.name));
+        }
+    }
+    state.scene.validate().map_err(|error| error.to_string())
 }
 
 #[cfg(test)]
@@ -203,8 +228,8 @@ mod tests {
             "not a serialized state of this FMU (wrong magic bytes)"
         );
         let mut version = bytes.clone();
-        version[8] = 1;
-        assert_eq!(decode(&version).unwrap_err(), "format version 1; this FMU reads version 2");
+        version[8] = 2;
+        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 3");
         let mut layout = bytes.clone();
         layout[10] ^= 1;
         let error = decode(&layout).unwrap_err();

@@ -1,8 +1,10 @@
 //! fmi2GetDirectionalDerivative through the C ABI: refused with its message for every option
-//! that transforms the inputs, and, for the exact theory, confined to the declared
-//! `<ModelStructure>` dependencies.
+//! that transforms the inputs; for the exact theory, confined to the declared
+//! `<ModelStructure>` dependencies; taken at the current inputs, never of a stored output.
 
 mod c_abi;
+
+use std::f64::consts::PI;
 
 use c_abi::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact_fmu::model_description::{
@@ -101,5 +103,112 @@ fn exact_theorys_derivatives_stay_within_the_declared_dependencies() {
     {
         let (_, rates) = fmu.directional_derivative(&[vr::FORCE_LATERAL, vr::SPIN_MOMENT], &[input], &[1.0]);
         assert!(rates.iter().all(|r| *r != 0.0), "input {input}: {rates:?}");
+    }
+}
+
+/// d(max_pressure) is taken at the current inputs, not from the last step's output:
+/// p₀ = 3Q/(2πab), so dp₀/dQ = 3/(2πab) whatever Q is, and dp₀/da = −p₀/a at the current Q.
+#[test]
+fn max_pressure_derivative_is_at_the_current_inputs() {
+    let fmu = Fmu::stepping("max_pressure", 0.0);
+    let (a, b) = (7.2e-3, 5.4e-3);
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE], &[100e3]), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    // A new load, no step: the derivative is of the outputs at 50 kN.
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE], &[50e3]), OK);
+    let (status, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::NORMAL_FORCE], &[1.0]);
+    assert_eq!(status, OK);
+    let per_newton = 3.0 / (2.0 * PI * a * b); // 12280.47 Pa/N
+    assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{} vs {per_newton}", rates[0]);
+    // A new semi-axis: dp₀/da = −3Q/(2πa²b) at Q = 50 kN and the new a.
+    let a_new = 9e-3;
+    assert_eq!(fmu.set_real(&[vr::SEMI_AXIS_A], &[a_new]), OK);
+    let (_, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::SEMI_AXIS_A], &[1.0]);
+    let expected = -3.0 * 50e3 / (2.0 * PI * a_new * a_new * b);
+    assert!((rates[0] / expected - 1.0).abs() < 1e-12, "{} vs {expected}", rates[0]);
+    // After a lift-off step, loaded again without a step: the loaded rate, not 0.
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE, vr::SEMI_AXIS_A], &[-1.0, a]), OK);
+    assert_eq!(fmu.do_step(1e-3, 1e-3), OK);
+    assert_eq!(fmu.set_real(&[vr::NORMAL_FORCE], &[80e3]), OK);
+    let (_, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::NORMAL_FORCE], &[1.0]);
+    assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{}", rates[0]);
+}
+
+/// In initialisation mode before any output was computed: the rate at the start values.
+#[test]
+fn max_pressure_derivative_in_initialisation_mode() {
+    let fmu = Fmu::instantiate("initialisation", None);
+    // SAFETY: a live instance.
+    unsafe {
+        use wheel_rail_contact_fmu::ffi::{fmi2EnterInitializationMode, fmi2SetupExperiment};
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+    }
+    let (status, rates) = fmu.directional_derivative(&[vr::MAX_PRESSURE], &[vr::NORMAL_FORCE], &[1.0]);
+    assert_eq!(status, OK);
+    let per_newton = 3.0 / (2.0 * PI * 7.2e-3 * 5.4e-3);
+    assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{}", rates[0]);
+}
+
+/// The outputs `unknowns` of an `exact_table` instance after a step with `inputs` set.
+fn exact_table_outputs(inputs: &[(u32, f64)], unknowns: &[u32]) -> Vec<f64> {
+    let fmu = exact_table_at(inputs);
+    fmu.get_real(unknowns)
+}
+
+/// An `exact_table` instance stepped once with the default scene and `inputs` set.
+fn exact_table_at(inputs: &[(u32, f64)]) -> Fmu {
+    let fmu = Fmu::instantiate("exact_table", None);
+    assert_eq!(fmu.set_integer(&[vr::CREEP_FORCE_MODEL], &[Model::ExactTable as i32]), OK);
+    initialise(&fmu);
+    let (references, values): (Vec<u32>, Vec<f64>) = inputs.iter().copied().unzip();
+    assert_eq!(fmu.set_real(&references, &values), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    fmu
+}
+
+/// Issue 27.1: on exact_table's fold planes J matched neither one-sided difference, with
+/// fmi2OK. At each point below, ∂(unknown)/∂(known) must equal the difference quotient on one
+/// side (the side the seed points to, or the only side inside the table's a/b range) within
+/// 1e-3 of the larger of the two: the interpolant is linear in its cell, the remaining error is
+/// the step's own (1e-9 relative) and the fold maps' curvature.
+#[test]
+fn exact_tables_derivatives_on_its_fold_planes_are_one_sided() {
+    let c = 5e-3_f64;
+    let (wide_a, wide_b) = (c / 10_f64.sqrt(), c * 10_f64.sqrt()); // a/b = 0.09999999999999999
+                                                                   // (what, point, known and its step, unknown): the three points of the review, and the
+                                                                   // other folds: η = 0, φ = 0, the a/b edge from the other side.
+    let free_rolling = [(vr::CREEPAGE_LONGITUDINAL, 0.0), (vr::CREEPAGE_LATERAL, 4e-4), (vr::SPIN_CREEPAGE, 0.3)];
+    let pure_spin = [(vr::CREEPAGE_LONGITUDINAL, 0.0), (vr::CREEPAGE_LATERAL, 0.0), (vr::SPIN_CREEPAGE, 0.05)];
+    let edge = [(vr::SEMI_AXIS_A, wide_a), (vr::SEMI_AXIS_B, wide_b), (vr::SPIN_CREEPAGE, 0.3)];
+    let no_lateral = [(vr::CREEPAGE_LONGITUDINAL, 1e-3), (vr::CREEPAGE_LATERAL, 0.0), (vr::SPIN_CREEPAGE, 0.3)];
+    let no_spin = [(vr::CREEPAGE_LONGITUDINAL, 1e-3), (vr::CREEPAGE_LATERAL, -4e-4), (vr::SPIN_CREEPAGE, 0.0)];
+    let cases: [(&str, &[(u32, f64)], u32, f64, u32); 7] = [
+        ("∂F_y/∂ξ at ξ = 0", &free_rolling, vr::CREEPAGE_LONGITUDINAL, 1e-9, vr::FORCE_LATERAL),
+        ("∂F_x/∂η at pure spin", &pure_spin, vr::CREEPAGE_LATERAL, 1e-9, vr::FORCE_LONGITUDINAL),
+        ("∂F_y/∂η at pure spin", &pure_spin, vr::CREEPAGE_LATERAL, 1e-9, vr::FORCE_LATERAL),
+        ("∂M_z/∂a at a/b = 0.1", &edge, vr::SEMI_AXIS_A, 1e-9 * wide_a, vr::SPIN_MOMENT),
+        ("∂M_z/∂b at a/b = 0.1", &edge, vr::SEMI_AXIS_B, -1e-9 * wide_b, vr::SPIN_MOMENT),
+        ("∂M_z/∂η at η = 0", &no_lateral, vr::CREEPAGE_LATERAL, 1e-9, vr::SPIN_MOMENT),
+        ("∂F_y/∂φ at φ = 0", &no_spin, vr::SPIN_CREEPAGE, 1e-6, vr::FORCE_LATERAL),
+    ];
+    for (what, point, known, step, unknown) in cases {
+        let fmu = exact_table_at(point);
+        let centre = fmu.get_real(&[unknown])[0];
+        let at = |offset: f64| {
+            let mut moved: Vec<(u32, f64)> = point.to_vec();
+            match moved.iter_mut().find(|(reference, _)| *reference == known) {
+                Some(entry) => entry.1 += offset,
+                None => moved.push((known, offset)),
+            }
+            exact_table_outputs(&moved, &[unknown])[0]
+        };
+        // The seed points along `step`: J·sign(step) must be that side's quotient.
+        let (status, rates) = fmu.directional_derivative(&[unknown], &[known], &[step.signum()]);
+        assert_eq!(status, OK, "{what}");
+        let rate = rates[0] * step.signum();
+        let towards = (at(step) - centre) / step;
+        let scale = towards.abs().max(rate.abs()).max(1e-9);
+        assert!((rate - towards).abs() <= 1e-3 * scale, "{what}: J = {rate}, one-sided quotient {towards}");
     }
 }

@@ -3,12 +3,14 @@
 
 mod c_abi;
 
-use c_abi::{bits, run_scene, Fmu, ERROR, OK, OUTPUTS};
+use c_abi::{bits, run_scene, Fmu, MessageLog, ERROR, OK, OUTPUTS};
+use wheel_rail_contact::ModelMemory;
 use wheel_rail_contact_fmu::ffi::{
     fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetFMUstate, fmi2SetupExperiment, fmi2Terminate,
 };
 use wheel_rail_contact_fmu::fmi2::fmi2FMUstate;
-use wheel_rail_contact_fmu::model_description::{value_reference as vr, Switch};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch};
+use wheel_rail_contact_fmu::snapshot::{decode, encode, Snapshot};
 
 const STEP: f64 = 1e-3;
 
@@ -187,4 +189,122 @@ fn a_serialised_mid_transient_state_continues_bit_identically_in_a_fresh_instanc
     assert_eq!(other.set_state(restored), OK);
     assert_eq!(bits(&expected), bits(&hold_inputs(&other, time, 10)));
     other.free_state(restored);
+}
+
+/// The exact theory on 40 × 24 elements (small, so the test is quick; every grid warm-starts
+/// alike), stepped 20 times through the sweeping scene: its warm start (the last tractions) is
+/// now part of the instance's state.
+fn exact_mid_run(name: &str) -> Fmu {
+    let fmu = Fmu::instantiate(name, None);
+    assert_eq!(
+        fmu.set_integer(
+            &[vr::CREEP_FORCE_MODEL, vr::EXACT_ELEMENTS_LONGITUDINAL, vr::EXACT_ELEMENTS_LATERAL],
+            &[Model::Exact as i32, 40, 24]
+        ),
+        OK
+    );
+    initialise(&fmu);
+    run_scene(&fmu, 0, 20, 0.0, STEP);
+    fmu
+}
+
+/// Issue 27.4: with the exact theory a step starts from the previous step's tractions, which
+/// changes its result within the solver's tolerance (≈ 1e-11 relative): a state without the
+/// warm start repeated the steps only to that tolerance (F_x …4.88510734648 vs …647), and a
+/// state deserialised into a fresh instance never continued bit for bit. Both do now.
+#[test]
+fn an_exact_theory_state_restores_its_warm_start_bit_for_bit() {
+    let fmu = exact_mid_run("exact");
+    let state = fmu.get_state();
+    let bytes = fmu.serialize(state);
+    let first = run_scene(&fmu, 20, 5, 20.0 * STEP, STEP);
+    assert_eq!(fmu.set_state(state), OK);
+    assert_eq!(bits(&first), bits(&run_scene(&fmu, 20, 5, 20.0 * STEP, STEP)), "rolled back in place");
+    fmu.free_state(state);
+
+    // A fresh instance, and one that has stepped elsewhere (its own warm start replaced).
+    let fresh = Fmu::instantiate("fresh", None);
+    let other = exact_mid_run("other");
+    run_scene(&other, 300, 7, 20.0 * STEP, STEP);
+    for instance in [&fresh, &other] {
+        let restored = instance.deserialize(&bytes).unwrap();
+        assert_eq!(instance.set_state(restored), OK);
+        assert_eq!(bits(&first), bits(&run_scene(instance, 20, 5, 20.0 * STEP, STEP)), "deserialised");
+        instance.free_state(restored);
+    }
+    // The saved tractions are 2 × 40 × 24 values of 8 bytes beyond a state without them.
+    assert!(bytes.len() > 2 * 40 * 24 * 8, "{} bytes", bytes.len());
+}
+
+/// A state whose bytes are intact (valid checksum) but whose content this FMU can never be in.
+fn forged(bytes: &[u8], forge: impl FnOnce(&mut Snapshot)) -> Vec<u8> {
+    let mut snapshot = decode(bytes).unwrap();
+    forge(&mut snapshot);
+    encode(&snapshot)
+}
+
+/// Issue 27.7: deserialisation applies the checks of the setters and of the state machine. A
+/// forged state with a NaN output was returned by fmi2GetReal with fmi2OK; a NaN time left the
+/// instance stuck; a NaN stop time, or one the time has passed, was accepted although
+/// fmi2SetupExperiment refuses both. Each is fmi2Error naming the value, and nothing changes.
+#[test]
+fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("forged", &log);
+    initialise(&fmu);
+    run_scene(&fmu, 0, 10, 0.0, STEP);
+    let state = fmu.get_state();
+    let bytes = fmu.serialize(state);
+    fmu.free_state(state);
+    let outputs = fmu.get_real(&OUTPUTS);
+    let cases: [(Box<dyn Fn(&mut Snapshot)>, &str); 7] = [
+        (Box::new(|s| s.values.outputs.force_longitudinal = f64::NAN), "force_longitudinal = NaN is invalid"),
+        (Box::new(|s| s.values.outputs.max_pressure = f64::INFINITY), "max_pressure = inf is invalid"),
+        (Box::new(|s| s.time = f64::NAN), "time = NaN is invalid: must be finite"),
+        (Box::new(|s| s.time = f64::NEG_INFINITY), "time = -inf is invalid: must be finite"),
+        (Box::new(|s| s.stop_time = Some(f64::NAN)), "stopTime = NaN is invalid: must be >= time = 0.01"),
+        (Box::new(|s| s.stop_time = Some(0.005)), "stopTime = 0.005 is invalid: must be >= time = 0.01"),
+        (Box::new(|s| s.scene.relaxed_forces[1] = f64::NAN), "relaxed_force_lateral = NaN is invalid: must be finite"),
+    ];
+    for (forge, reason) in cases {
+        let blob = forged(&bytes, forge);
+        assert_eq!(fmu.deserialize(&blob), Err(ERROR), "{reason}");
+        let message = log.texts().pop().unwrap();
+        assert!(
+            message.starts_with("fmi2DeSerializeFMUstate: serializedState rejected: not a state this FMU can be in: ")
+                && message.contains(reason),
+            "{message}"
+        );
+    }
+    // An exact theory's warm start with a NaN traction, and one with too few values for its grid.
+    let exact = exact_mid_run("exact");
+    let state = exact.get_state();
+    let exact_bytes = exact.serialize(state);
+    exact.free_state(state);
+    let memory = decode(&exact_bytes).unwrap().scene.model;
+    let mut encoded = postcard::to_stdvec(&memory).unwrap();
+    let last = encoded.len() - 8;
+    encoded[last..].copy_from_slice(&f64::NAN.to_le_bytes());
+    let with_nan: ModelMemory = postcard::from_bytes(&encoded).unwrap();
+    let blob = forged(&exact_bytes, |s| s.scene.model = with_nan.clone());
+    assert_eq!(fmu.deserialize(&blob), Err(ERROR));
+    assert!(log.texts().pop().unwrap().ends_with("warm_start_lateral = NaN is invalid: must be finite"));
+    // The lateral values' count (a varint of 960 = 2 bytes) one less.
+    let count = encoded.len() - 8 * 960 - 2;
+    assert_eq!(&encoded[count..count + 2], &[0xc0, 0x07]);
+    encoded[count] = 0xbf;
+    encoded.truncate(encoded.len() - 8);
+    let short: ModelMemory = postcard::from_bytes(&encoded).unwrap();
+    assert_eq!(fmu.deserialize(&forged(&exact_bytes, |s| s.scene.model = short.clone())), Err(ERROR));
+    assert!(log
+        .texts()
+        .pop()
+        .unwrap()
+        .ends_with("warm_start_lateral = 959 is invalid: must hold one value per element"));
+
+    // Nothing changed, and a state with a legal stop time (after the time) is accepted.
+    assert_eq!(fmu.get_real(&OUTPUTS), outputs);
+    let legal = fmu.deserialize(&forged(&bytes, |s| s.stop_time = Some(1.0))).unwrap();
+    assert_eq!(fmu.set_state(legal), OK);
+    fmu.free_state(legal);
 }

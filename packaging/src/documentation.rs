@@ -253,7 +253,60 @@ table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:0.25em 0.5em;
 pre{background:#f5f5f5;padding:0.5em}";
 
 /// The whole page.
-pub fn index_html() -> String {
+/// One binary of the FMU, as its documentation describes it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinaryNote {
+    /// linux64, needing glibc ≥ `glibc` (read off the binary), built against the baseline or not.
+    Linux64 {
+        glibc: (u32, u32),
+        baseline_applied: bool,
+    },
+    Win64,
+}
+
+/// The Platforms section's items: what each binary in this FMU needs, read off the binaries
+/// (a linux64 binary built without cargo-zigbuild needs the building machine's glibc, and says so).
+fn platform_items(binaries: &[BinaryNote]) -> String {
+    let mut items: Vec<String> = binaries
+        .iter()
+        .map(|binary| match *binary {
+            BinaryNote::Linux64 { glibc: (major, minor), baseline_applied } => {
+                let how = if baseline_applied {
+                    "built against that glibc with cargo-zigbuild"
+                } else {
+                    "built with plain cargo, so it needs the glibc of the machine that packaged it (`cargo fmu` \
+                     builds against glibc 2.28 with cargo-zigbuild, which it installs from PyPI into .venv \
+                     when Python's venv is available)"
+                };
+                format!(
+                    "<li><b>linux64</b> (x86-64): needs glibc ≥ {major}.{minor} (the newest glibc symbol version it \
+                     uses; {how}); besides glibc it needs only libm, libpthread and libdl. glibc 2.28 is Debian 10, \
+                     Ubuntu 18.10, RHEL/Rocky 8; 2.31 Ubuntu 20.04, 2.34 RHEL/Rocky 9, 2.35 Ubuntu 22.04, 2.36 \
+                     Debian 12.</li>"
+                )
+            }
+            BinaryNote::Win64 => "<li><b>win64</b> (x86-64, Windows 10 or later): built with mingw-w64, the C runtime \
+                 and libgcc linked statically, so it needs only DLLs that Windows ships. Tested under wine: the same \
+                 results as linux64 bit for bit, but for Kalker's exact theory, within 1e-15 of the force (the C math \
+                 libraries round ln and hypot differently in the last bit). An FMU state serialized on one platform \
+                 restores on the other.</li>"
+                .to_owned(),
+        })
+        .collect();
+    if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Win64)) {
+        items.push(
+            "<li>No win64 binary in this build (its toolchain was missing where it was packaged).</li>".to_owned(),
+        );
+    }
+    if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Linux64 { .. })) {
+        items.push("<li>No linux64 binary in this build.</li>".to_owned());
+    }
+    items.join("\n")
+}
+
+/// The FMU's `documentation/index.html`, describing `binaries`.
+pub fn index_html(binaries: &[BinaryNote]) -> String {
+    let platforms = platform_items(binaries);
     let plot = line_plot(
         "Default scene: creep force against creepage (Polach, Kalker stiffness)",
         "creepage [%]",
@@ -331,13 +384,7 @@ s_max).</p>
 
 <h2>Platforms</h2>
 <ul>
-<li><b>linux64</b> (x86-64): built against glibc 2.28 (cargo-zigbuild), so it loads on glibc ≥ 2.28 (Debian 10
-and later, Ubuntu 20.04 and later, RHEL/Rocky 8 and later); it needs only libc, libm, libpthread and libdl. A
-build without zig says so and needs the building machine's glibc.</li>
-<li><b>win64</b> (x86-64, Windows 10 or later): built with mingw-w64, the C runtime and libgcc linked statically,
-so it needs only DLLs that Windows ships. Tested under wine: the same results as linux64 bit for bit, but for
-Kalker's exact theory, within 1e-15 of the force (the C math libraries round ln and hypot differently in the last
-bit). An FMU state serialized on one platform restores on the other.</li>
+{platforms}
 <li>No darwin64 binary yet.</li>
 </ul>
 
@@ -391,8 +438,20 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_platforms_section_states_what_the_binaries_need() {
+        let zig = BinaryNote::Linux64 { glibc: (2, 28), baseline_applied: true };
+        let plain = BinaryNote::Linux64 { glibc: (2, 35), baseline_applied: false };
+        let html = index_html(&[zig, BinaryNote::Win64]);
+        assert!(html.contains("needs glibc ≥ 2.28 (the newest glibc symbol version it uses; built against"));
+        assert!(html.contains("<b>win64</b>") && !html.contains("No win64 binary"));
+        let html = index_html(&[plain]);
+        assert!(html.contains("needs glibc ≥ 2.35 (the newest glibc symbol version it uses; built with plain cargo"));
+        assert!(html.contains("No win64 binary in this build") && !html.contains("glibc ≥ 2.28"));
+    }
+
+    #[test]
     fn every_variable_is_documented_with_its_unit() {
-        let html = index_html();
+        let html = index_html(&[BinaryNote::Win64]);
         for variable in &VARIABLES {
             assert!(html.contains(&format!("<td><code>{}</code></td>", variable.name)), "{}", variable.name);
         }

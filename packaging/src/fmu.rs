@@ -16,6 +16,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+use crate::documentation::BinaryNote;
 use object::read::elf::{ElfFile64, FileHeader as _};
 use object::Object as _;
 use wheel_rail_contact_fmu::model_description::{MODEL_DESCRIPTION_XML, MODEL_IDENTIFIER};
@@ -196,6 +197,30 @@ fn cargo_zigbuild() -> Option<PathBuf> {
     on_path.into_iter().chain([workspace_root().join(".venv/bin/cargo-zigbuild")]).find(|file| file.is_file())
 }
 
+/// Installs cargo-zigbuild and zig into the workspace's `.venv` (`scripts/install-zigbuild`,
+/// pinned versions from PyPI), saying so, and returns it; `None`, after saying why, when that is
+/// not possible here (no Python venv, no network): the linux64 binary then needs this machine's
+/// glibc, which the check and the FMU's documentation state.
+fn install_zigbuild() -> Option<PathBuf> {
+    let script = workspace_root().join("scripts/install-zigbuild");
+    eprintln!(
+        "cargo fmu: cargo-zigbuild is missing; installing it and zig from PyPI into .venv (once, \
+         scripts/install-zigbuild) so that the linux64 binary loads on glibc ≥ {}.{}",
+        GLIBC_BASELINE.0, GLIBC_BASELINE.1
+    );
+    match Command::new(&script).status() {
+        Ok(status) if status.success() => cargo_zigbuild(),
+        outcome => {
+            let reason = match outcome {
+                Ok(status) => format!("{} ended with {status}", script.display()),
+                Err(error) => format!("{}: {error}", script.display()),
+            };
+            eprintln!("cargo fmu: {reason}; building linux64 with plain cargo for this machine's glibc instead");
+            None
+        }
+    }
+}
+
 /// Whether `program` runs (`--version`).
 fn runs(program: &str) -> bool {
     Command::new(program)
@@ -262,7 +287,11 @@ fn build_platform(platform: Platform, profile: Profile) -> Result<Result<(PathBu
     match platform {
         Platform::Linux64 => {
             let native = Platform::this_machine() == Some(Platform::Linux64);
-            match cargo_zigbuild() {
+            let zigbuild = match cargo_zigbuild() {
+                None if native => install_zigbuild(),
+                found => found,
+            };
+            match zigbuild {
                 Some(zigbuild) if native || rust_target_installed(target) => {
                     let mut command = Command::new(&zigbuild);
                     let manifest = workspace_root().join("Cargo.toml");
@@ -406,17 +435,25 @@ pub fn check_library(platform: Platform, linkage: &Linkage, library: &[u8]) -> R
 }
 
 /// Writes the `.fmu` (deflate, `/` separators): the model description, each binary named after
-/// the model identifier in its platform folder, and the generated documentation.
-pub fn write_fmu(binaries: &[(Platform, &Path)], fmu_path: &Path) -> Result<(), String> {
-    let documentation = crate::documentation::index_html();
-    let mut entries: Vec<(String, Vec<u8>)> = vec![
-        ("modelDescription.xml".to_owned(), MODEL_DESCRIPTION_XML.as_bytes().to_vec()),
-        ("documentation/index.html".to_owned(), documentation.into_bytes()),
-    ];
-    for (platform, library) in binaries {
+/// the model identifier in its platform folder, and the generated documentation, which states
+/// what these binaries need (the glibc read off the linux64 one).
+pub fn write_fmu(binaries: &[PlatformBinary], fmu_path: &Path) -> Result<(), String> {
+    let mut entries: Vec<(String, Vec<u8>)> =
+        vec![("modelDescription.xml".to_owned(), MODEL_DESCRIPTION_XML.as_bytes().to_vec())];
+    let mut notes = Vec::new();
+    for binary in binaries {
+        let (platform, library) = (binary.platform, &binary.library);
         let bytes = std::fs::read(library).map_err(|e| format!("{}: {e}", library.display()))?;
+        notes.push(match platform {
+            Platform::Linux64 => BinaryNote::Linux64 {
+                glibc: glibc_versions_needed(&bytes)?.last().copied().unwrap_or((0, 0)),
+                baseline_applied: binary.linkage == Linkage::GlibcBaseline,
+            },
+            Platform::Win64 => BinaryNote::Win64,
+        });
         entries.push((format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform.folder(), platform.extension()), bytes));
     }
+    entries.push(("documentation/index.html".to_owned(), crate::documentation::index_html(&notes).into_bytes()));
     if let Some(folder) = fmu_path.parent() {
         std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
     }
@@ -465,7 +502,6 @@ pub fn package(profile: Profile, reach: Reach, out_dir: &Path) -> Result<Package
         return Err("no platform could be built".to_owned());
     }
     let fmu = out_dir.join(format!("{MODEL_IDENTIFIER}.fmu"));
-    let files: Vec<(Platform, &Path)> = binaries.iter().map(|b| (b.platform, b.library.as_path())).collect();
-    write_fmu(&files, &fmu)?;
+    write_fmu(&binaries, &fmu)?;
     Ok(Packaged { fmu, binaries, skipped })
 }

@@ -8,7 +8,7 @@
 
 use std::io::{BufRead, Write};
 
-use wheel_rail_contact::scene::{Evaluation, Scene, SceneState};
+use wheel_rail_contact::scene::{Evaluation, Scene, SceneCache, SceneState};
 use wheel_rail_contact_fmu::model_description::Outputs;
 use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, VARIABLES};
 use wheel_rail_contact_fmu::scene::scene_of;
@@ -41,12 +41,16 @@ fn values_of(columns: &[String], row: &[f64]) -> Result<Values, String> {
     Ok(values)
 }
 
-/// One row's outputs; `state` carries the relaxed force from row to row, advanced over the row's
-/// `step_size` (0 or absent: set to the steady state, as at initialisation).
+/// One row's outputs; `state` carries the scene's state (the relaxed force, the exact theory's
+/// warm start) from row to row, advanced over the row's `step_size` (0 or absent: set to the
+/// steady state, as at initialisation).
 fn outputs_of(values: &Values, step_size: f64, state: &mut SceneState) -> Result<Vec<f64>, String> {
     let scene: Scene = scene_of(&values.parameters)?;
     let evaluation = if step_size > 0.0 { Evaluation::Step(step_size) } else { Evaluation::Initialise };
-    let output = scene.evaluate(&values.inputs.scene_input(), state, evaluation).map_err(|e| e.to_string())?;
+    let (output, next_state) = scene
+        .evaluate(&values.inputs.scene_input(), state, &mut SceneCache::default(), evaluation)
+        .map_err(|e| e.to_string())?;
+    *state = next_state;
     let outputs = Outputs::from_scene(&output);
     Ok(VARIABLES
         .iter()

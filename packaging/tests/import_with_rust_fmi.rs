@@ -19,6 +19,7 @@ fn packaged_fmu() -> (tempfile::TempDir, std::path::PathBuf) {
 }
 
 #[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn rust_fmi_imports_the_fmu_and_runs_scenes_equal_to_the_core() {
     let (_directory, fmu) = packaged_fmu();
     let import: Fmi2Import = fmi::import::from_path(&fmu).unwrap();

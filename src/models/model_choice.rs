@@ -1,12 +1,12 @@
 //! One type for "whichever rung of the ladder the user picked": enum dispatch, so a caller (the
 //! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
 
-use crate::models::exact::ExactTheory;
+use crate::models::exact::{ExactTheory, GridSize, WarmStart};
 use crate::models::exact_table::ExactTable;
 use crate::models::fastsim::Fastsim;
 use crate::models::kalker_linear::KalkerLinear;
 use crate::models::shen_hedrick_elkins::ShenHedrickElkins;
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, Polach};
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, Polach, Polach2005, ShapeCache};
 
 /// The selected creep-force model with its options.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,6 +36,123 @@ impl ModelChoice {
             Self::Exact(_) => "exact",
             Self::ExactTable(_) => "exact_table",
         }
+    }
+}
+
+/// What a model carries from one evaluation of a sequence to the next that can change the next
+/// result: the exact theory's warm start (its last tractions; the next solve starts there and
+/// ends within the solver's tolerance of a cold solve, not bit for bit on it). It is state, not
+/// cache: an FMU state saves it, so that a restored run continues bit for bit.
+#[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ModelMemory {
+    exact_start: WarmStart,
+}
+
+impl ModelMemory {
+    /// Checks a memory that did not come from an evaluation (one read back from a saved state).
+    ///
+    /// ```
+    /// # use wheel_rail_contact::ModelMemory;
+    /// assert!(ModelMemory::default().validate().is_ok());
+    /// ```
+    pub fn validate(&self) -> Result<(), InvalidInput> {
+        self.exact_start.validate()
+    }
+}
+
+/// What a model keeps between evaluations for speed only — results are bit-identical without
+/// it: Polach's shape factors for the last a/b and ν ([`ShapeCache`]). Never saved.
+#[derive(Debug, Clone, Default)]
+pub struct ModelCache {
+    polach_shape: ShapeCache,
+}
+
+/// One evaluation of a sequence ([`ModelChoice::creep_forces_in_sequence`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SequenceStep {
+    pub forces: CreepForces,
+    /// The memory the next evaluation starts from.
+    pub memory: ModelMemory,
+    /// The exact theory's grid when its iteration stopped at its limits without converging (the
+    /// forces are its last iterate); `None` for every other evaluation.
+    pub unconverged_grid: Option<GridSize>,
+}
+
+impl SequenceStep {
+    fn of(forces: CreepForces) -> Self {
+        Self { forces, memory: ModelMemory::default(), unconverged_grid: None }
+    }
+}
+
+impl ModelChoice {
+    /// The forces of one evaluation of a sequence (a co-simulation's steps): the model's
+    /// [`CreepForceModel::creep_forces`] of `input`, with what it keeps between evaluations —
+    /// `memory` (read here; its successor is returned, so that a failed evaluation leaves the
+    /// caller's memory as it was) and `cache` (updated).
+    ///
+    /// ```
+    /// use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTheory, ModelCache, ModelChoice, ModelMemory};
+    /// let model = ModelChoice::Exact(ExactTheory::new(24, 24));
+    /// let contact = |xi: f64| ContactInput {
+    ///     creepage_longitudinal: xi, creepage_lateral: 0.0, spin_creepage: 0.0,
+    ///     normal_force: 100e3, semi_axis_a: 7.2e-3, semi_axis_b: 5.4e-3,
+    ///     friction_coefficient: 0.3, shear_modulus: 82e9, poisson_ratio: 0.28,
+    /// };
+    /// let mut cache = ModelCache::default();
+    /// let first = model.creep_forces_in_sequence(&contact(1e-3), &ModelMemory::default(), &mut cache).unwrap();
+    /// // The next step starts from the first one's tractions: the same forces as a cold solve,
+    /// // to the solver's tolerance (10⁻⁹ μQ), not bit for bit.
+    /// let next = model.creep_forces_in_sequence(&contact(1.1e-3), &first.memory, &mut cache).unwrap();
+    /// let cold = model.creep_forces(&contact(1.1e-3)).unwrap();
+    /// assert!((next.forces.force_longitudinal - cold.force_longitudinal).abs() < 1e-9 * 0.3 * 100e3);
+    /// assert_ne!(next.memory, first.memory);
+    /// assert!(next.unconverged_grid.is_none());
+    /// ```
+    pub fn creep_forces_in_sequence(
+        &self,
+        input: &ContactInput,
+        memory: &ModelMemory,
+        cache: &mut ModelCache,
+    ) -> Result<SequenceStep, InvalidInput> {
+        match self {
+            Self::Polach(polach) => {
+                Ok(SequenceStep::of(polach.creep_forces_with_cache(input, &mut cache.polach_shape)?))
+            }
+            Self::Exact(exact) => {
+                let solution = exact.solve_from(input, Some(&memory.exact_start))?;
+                Ok(SequenceStep {
+                    forces: solution.forces,
+                    memory: ModelMemory { exact_start: solution.warm_start() },
+                    unconverged_grid: (!solution.converged).then_some(solution.grid),
+                })
+            }
+            model => Ok(SequenceStep::of(model.creep_forces(input)?)),
+        }
+    }
+
+    /// This model under Polach's 2005 traction law (friction falling with the slip velocity,
+    /// reduced stiffness) at the speed `speed` [m/s]: Polach's method only, `None` for every
+    /// other model.
+    ///
+    /// ```
+    /// use wheel_rail_contact::{KalkerLinear, ModelChoice, Polach, Polach2005};
+    /// let polach = ModelChoice::Polach(Polach::default());
+    /// let Some(ModelChoice::Polach(under)) = polach.under_polach2005(Polach2005::DRY, 20.0).unwrap() else {
+    ///     unreachable!()
+    /// };
+    /// assert!(under.large_creepage.is_some());
+    /// assert_eq!(ModelChoice::KalkerLinear(KalkerLinear).under_polach2005(Polach2005::DRY, 20.0), Ok(None));
+    /// // The speed must be finite.
+    /// assert!(polach.under_polach2005(Polach2005::DRY, f64::NAN).is_err());
+    /// ```
+    pub fn under_polach2005(self, law: Polach2005, speed: f64) -> Result<Option<Self>, InvalidInput> {
+        Ok(match self {
+            Self::Polach(polach) => {
+                Some(Self::Polach(Polach { large_creepage: Some(LargeCreepage::new(law, speed)?), ..polach }))
+            }
+            _ => None,
+        })
     }
 }
 

@@ -11,6 +11,6 @@ mod pipeline;
 pub mod relaxation;
 
 pub use pipeline::{
-    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneError, SceneInput, SceneOutput, SceneState,
-    TractionLaw,
+    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneOutput,
+    SceneState, TractionLaw,
 };

@@ -9,13 +9,17 @@
 //!    zero forces before any Hertz computation);
 //! 3. forces: the chosen [`ModelChoice`], with Polach's 2005 traction law applied at this
 //!    evaluation's speed when selected;
-//! 4. relaxation ([`super::relaxation`]): the relaxed forces, the scene's only state, advanced
-//!    exactly over the step from the steady-state forces of step 3, at the speed that renews
-//!    the contact (|V|, or (|V| + |ωr|)/2 with the kinematics: a wheel spinning at standstill
-//!    builds up its force, a contact at rest holds it).
+//! 4. relaxation ([`super::relaxation`]): the relaxed forces advanced exactly over the step from
+//!    the steady-state forces of step 3, at the speed that renews the contact (|V|, or
+//!    (|V| + |ωr|)/2 with the kinematics: a wheel spinning at standstill builds up its force, a
+//!    contact at rest holds it), and never beyond this evaluation's friction limit μQ.
+//!
+//! What carries over from one evaluation to the next is [`SceneState`] (the relaxed forces and
+//! the model's memory: save it and a restored run continues bit for bit) and [`SceneCache`]
+//! (derived data for speed only).
 //!
 //! ```
-//! use wheel_rail_contact::scene::{CreepageSource, Evaluation, Relaxation, Scene, SceneInput, SceneState};
+//! use wheel_rail_contact::scene::{CreepageSource, Evaluation, Relaxation, Scene, SceneCache, SceneInput, SceneState};
 //! use wheel_rail_contact::{ModelChoice, Polach};
 //! // Polach's model, creepages from the wheel's velocities, creep relaxation over 10 mm.
 //! let scene = Scene {
@@ -28,15 +32,16 @@
 //!     rolling_speed: 20.0, wheel_angular_speed: 20.0 / 0.46, wheel_rolling_radius: 0.46,
 //!     ..SceneInput::default()
 //! };
-//! let mut state = SceneState::default();
-//! let start = scene.evaluate(&rolling, &mut state, Evaluation::Initialise).unwrap();
+//! let mut cache = SceneCache::default();
+//! let (start, state) = scene.evaluate(&rolling, &SceneState::default(), &mut cache, Evaluation::Initialise).unwrap();
 //! assert!(start.force_longitudinal.abs() < 1e-6, "free rolling: no creep force");
 //! // Braking: the wheel turns 0.2 % slower; the force builds up over the relaxation length.
 //! let braking = SceneInput { wheel_angular_speed: 0.998 * 20.0 / 0.46, ..rolling };
-//! let after_1_ms = scene.evaluate(&braking, &mut state, Evaluation::Step(1e-3)).unwrap();
+//! let (after_1_ms, _) = scene.evaluate(&braking, &state, &mut cache, Evaluation::Step(1e-3)).unwrap();
 //! let steady = Scene { relaxation: Relaxation::Off, ..scene }
-//!     .evaluate(&braking, &mut SceneState::default(), Evaluation::Initialise)
-//!     .unwrap();
+//!     .evaluate(&braking, &SceneState::default(), &mut cache, Evaluation::Initialise)
+//!     .unwrap()
+//!     .0;
 //! // 20 mm travelled over L = 10 mm: 1 − e⁻² of the way to the steady force (which opposes the creepage).
 //! let expected = steady.force_longitudinal * -(-2.0_f64).exp_m1();
 //! assert!((after_1_ms.force_longitudinal / expected - 1.0).abs() < 1e-3);
@@ -53,8 +58,7 @@ use crate::contact_input::hertz_max_pressure;
 use crate::models::exact::GridSize;
 use crate::models::polach::resulting_creepage_at;
 use crate::{
-    ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, ModelChoice, Polach, Polach2005,
-    ShapeCache, WarmStart,
+    ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelCache, ModelChoice, ModelMemory, Polach, Polach2005,
 };
 
 /// Where the creepages ξ, η, φ come from.
@@ -174,25 +178,44 @@ pub struct SceneOutput {
     pub unconverged_grid: Option<GridSize>,
 }
 
-/// What a scene carries from one evaluation to the next. `relaxed_forces` is the physical state
-/// (an FMU state saves it); the rest is derived data, kept for speed only.
-#[derive(Debug, Clone, Default)]
+/// What a scene carries from one evaluation to the next that changes the next result: the
+/// relaxed forces (the physical state of creep relaxation) and the model's memory (the exact
+/// theory's warm start, [`ModelMemory`]). Save it whole and a restored run continues bit for
+/// bit (the FMU state does, with the `serde` feature).
+#[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SceneState {
-    /// The relaxed forces [F_x, F_y] \[N\] (with creep relaxation on).
+    /// The relaxed forces [F_x, F_y] \[N\] (with creep relaxation on; zero otherwise).
     pub relaxed_forces: [f64; 2],
-    /// Polach's shape factors for the last ellipse shape (bit-identical reuse).
-    shape: ShapeCache,
-    /// The exact theory's last tractions, the start of its next solve ([`WarmStart`]): in a
-    /// co-simulation with slowly varying creepages a step then costs a few iterations. It
-    /// changes the result only within the solver's tolerance ([`crate::models::exact`]).
-    exact_start: WarmStart,
+    /// What the model carries to its next evaluation.
+    pub model: ModelMemory,
 }
 
 impl SceneState {
-    /// A state with these relaxed forces and no cached data.
+    /// A state with these relaxed forces and an empty model memory.
     pub fn with_relaxed_forces(relaxed_forces: [f64; 2]) -> Self {
         Self { relaxed_forces, ..Self::default() }
     }
+
+    /// Checks a state that did not come from an evaluation (one read back from a saved state):
+    /// finite relaxed forces and a valid model memory.
+    pub fn validate(&self) -> Result<(), InvalidInput> {
+        for (variable, force) in
+            [("relaxed_force_longitudinal", self.relaxed_forces[0]), ("relaxed_force_lateral", self.relaxed_forces[1])]
+        {
+            if !force.is_finite() {
+                return Err(InvalidInput::new(variable, force, "must be finite"));
+            }
+        }
+        self.model.validate()
+    }
+}
+
+/// What a scene keeps between evaluations for speed only (results are bit-identical without
+/// it, so it is never saved): the model's [`ModelCache`].
+#[derive(Debug, Clone, Default)]
+pub struct SceneCache {
+    model: ModelCache,
 }
 
 /// What an evaluation is for.
@@ -214,6 +237,19 @@ pub enum SceneError {
     /// A directional derivative was asked with an option on that transforms the inputs in a way
     /// not differentiated (named).
     NoDerivativeWith(&'static str),
+    /// The model refused the ellipse that Hertz's theory gave (`hertz_contact`): the semi-axes
+    /// are not inputs then, so the error names what they came from.
+    HertzEllipseRefused {
+        /// Hertz's semi-axes a, b \[m\].
+        semi_axis_a: f64,
+        semi_axis_b: f64,
+        /// What Hertz's ellipse was computed from: r \[m\] and the profile curvatures [1/m].
+        wheel_rolling_radius: f64,
+        wheel_profile_curvature: f64,
+        rail_profile_curvature: f64,
+        /// The model's refusal (it names a semi-axis and its rule).
+        refusal: InvalidInput,
+    },
 }
 
 impl fmt::Display for SceneError {
@@ -222,6 +258,25 @@ impl fmt::Display for SceneError {
             Self::Invalid(error) => error.fmt(f),
             Self::TractionLawNeedsPolach => f.write_str("the Polach 2005 traction law needs Polach's model"),
             Self::NoDerivativeWith(option) => write!(f, "directional derivatives are not available with {option} on"),
+            Self::HertzEllipseRefused {
+                semi_axis_a: a,
+                semi_axis_b: b,
+                wheel_rolling_radius,
+                wheel_profile_curvature,
+                rail_profile_curvature,
+                refusal,
+            } => write!(
+                f,
+                "hertz_contact = on: Hertz's ellipse from wheel_rolling_radius = {wheel_rolling_radius} m, \
+                 wheel_profile_curvature = {wheel_profile_curvature} 1/m and rail_profile_curvature = \
+                 {rail_profile_curvature} 1/m has a/b = {:.4} (a = {:.4} mm, b = {:.4} mm), which the model cannot \
+                 take ({} {})",
+                a / b,
+                a * 1e3,
+                b * 1e3,
+                refusal.variable,
+                refusal.requirement
+            ),
         }
     }
 }
@@ -275,13 +330,17 @@ impl Scene {
         }
     }
 
-    /// The outputs for `input`. `state` is read and, on success only, advanced (or initialised).
+    /// The outputs for `input` from `state`, and the state after this evaluation (advanced over
+    /// the step, or initialised): the caller keeps it for the next evaluation, or drops it to
+    /// repeat this one. `cache` holds derived data only (any cache, even a fresh one, gives the
+    /// same outputs).
     pub fn evaluate(
         &self,
         input: &SceneInput,
-        state: &mut SceneState,
+        state: &SceneState,
+        cache: &mut SceneCache,
         evaluation: Evaluation,
-    ) -> Result<SceneOutput, SceneError> {
+    ) -> Result<(SceneOutput, SceneState), SceneError> {
         if !input.rolling_speed.is_finite() {
             return Err(InvalidInput::new("rolling_speed", input.rolling_speed, "must be finite").into());
         }
@@ -324,37 +383,33 @@ impl Scene {
             shear_modulus: self.shear_modulus,
             poisson_ratio: self.poisson_ratio,
         };
-        // Polach 2005's slip velocity: the resulting creepage s_C times the speed.
+        // The slip velocity: the resulting creepage s_C times the speed (Polach's eqs. 21, 22).
         let s_c =
             Polach::resulting_creepage(creepages.longitudinal, creepages.lateral, creepages.spin, ellipse.semi_axis_a);
         let slip_velocity = s_c * creepages.speed;
-        let mut unconverged_grid = None;
-        let (steady, friction) = match (self.traction_law, self.model) {
-            (TractionLaw::Polach2005(law), ModelChoice::Polach(polach)) => {
-                let model = Polach { large_creepage: Some(LargeCreepage::new(law, creepages.speed)?), ..polach };
-                let forces = model.creep_forces_with_cache(&contact, &mut state.shape)?;
-                (forces, law.friction(input.friction_coefficient, slip_velocity))
-            }
-            (TractionLaw::Polach2005(_), _) => return Err(SceneError::TractionLawNeedsPolach),
-            (TractionLaw::Coulomb, ModelChoice::Polach(polach)) => {
-                (polach.creep_forces_with_cache(&contact, &mut state.shape)?, input.friction_coefficient)
-            }
-            (TractionLaw::Coulomb, ModelChoice::Exact(exact)) => {
-                let solution = exact.solve_from(&contact, Some(&state.exact_start))?;
-                state.exact_start = solution.warm_start();
-                unconverged_grid = (!solution.converged).then_some(solution.grid);
-                (solution.forces, input.friction_coefficient)
-            }
-            (TractionLaw::Coulomb, model) => (model.creep_forces(&contact)?, input.friction_coefficient),
+        let (model, friction) = match self.traction_law {
+            TractionLaw::Coulomb => (self.model, input.friction_coefficient),
+            TractionLaw::Polach2005(law) => (
+                self.model.under_polach2005(law, creepages.speed)?.ok_or(SceneError::TractionLawNeedsPolach)?,
+                law.friction(input.friction_coefficient, slip_velocity),
+            ),
         };
-        let (forces, relaxed) = match self.relaxation {
-            Relaxation::On { length } => {
-                relax_forces(&contact, &steady, friction, state.relaxed_forces, creepages.renewal, length, evaluation)?
-            }
-            Relaxation::Off => (steady, state.relaxed_forces),
+        let step = model
+            .creep_forces_in_sequence(&contact, &state.model, &mut cache.model)
+            .map_err(|refusal| self.attributed(refusal, input, &ellipse))?;
+        let (forces, relaxed_forces) = match self.relaxation {
+            Relaxation::On { length } => relax_forces(
+                &contact,
+                &step.forces,
+                friction,
+                state.relaxed_forces,
+                creepages.renewal,
+                length,
+                evaluation,
+            )?,
+            Relaxation::Off => (step.forces, state.relaxed_forces),
         };
-        state.relaxed_forces = relaxed;
-        Ok(SceneOutput {
+        let output = SceneOutput {
             force_longitudinal: forces.force_longitudinal,
             force_lateral: forces.force_lateral,
             adhesion_utilisation: forces.adhesion_utilisation,
@@ -368,8 +423,9 @@ impl Scene {
             contact_semi_axis_b: ellipse.semi_axis_b,
             max_pressure: ellipse.max_pressure,
             approach: ellipse.approach,
-            unconverged_grid,
-        })
+            unconverged_grid: step.unconverged_grid,
+        };
+        Ok((output, SceneState { relaxed_forces, model: step.memory }))
     }
 
     /// The option, if any, under which the outputs are not the model's forces of the inputs, so
@@ -447,6 +503,26 @@ impl Scene {
         })
     }
 
+    /// The model's refusal of `input`, with a refused semi-axis of Hertz's ellipse attributed to
+    /// what the ellipse came from (the semi-axis inputs are ignored with `hertz_contact` on).
+    fn attributed(&self, refusal: InvalidInput, input: &SceneInput, ellipse: &HertzContact) -> SceneError {
+        match self.ellipse {
+            EllipseSource::Hertz { wheel_profile_curvature, rail_profile_curvature }
+                if matches!(refusal.variable, "semi_axis_a" | "semi_axis_b") =>
+            {
+                SceneError::HertzEllipseRefused {
+                    semi_axis_a: ellipse.semi_axis_a,
+                    semi_axis_b: ellipse.semi_axis_b,
+                    wheel_rolling_radius: input.wheel_rolling_radius,
+                    wheel_profile_curvature,
+                    rail_profile_curvature,
+                    refusal,
+                }
+            }
+            _ => refusal.into(),
+        }
+    }
+
     fn creepages_of(&self, input: &SceneInput) -> Result<Creepages, InvalidInput> {
         Ok(match self.creepages {
             CreepageSource::Kinematics { regularisation_speed } => {
@@ -490,6 +566,12 @@ fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationL
 
 /// The relaxed forces at the end of this evaluation, and the output forces from them: F_x and
 /// F_y relaxed, M_z the steady state's, the utilisation against the friction `friction` applied.
+///
+/// The relaxed force never exceeds the friction limit μQ of this evaluation's μ and Q
+/// ([`within_friction_limit`]): relaxation lags the build-up of the elastic deformation, but no
+/// stored deformation can hold a force beyond what Coulomb's law lets the tractions carry. (A
+/// model without a friction limit, Kalker's linear theory, is bounded by its steady force
+/// instead where that is larger.)
 fn relax_forces(
     contact: &ContactInput,
     steady: &CreepForces,
@@ -512,5 +594,30 @@ fn relax_forces(
         Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, renewal_speed, step)?,
     };
     let friction_limit = contact.normal_force * friction;
+    // Kalker's linear theory has no friction limit: its forces may exceed μQ, and the relaxed
+    // force is then bounded by the steady force it relaxes towards.
+    let limit = friction_limit.max(steady.force_longitudinal.hypot(steady.force_lateral));
+    let relaxed = within_friction_limit(relaxed, limit);
     Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
+}
+
+/// `forces` scaled onto the circle |F| = `friction_limit` if they lie outside it, unchanged
+/// otherwise.
+///
+/// Why this bound: every traction of the contact obeys Coulomb's law |p| ≤ μ p_n, so the force
+/// |F| = |∫p dA| ≤ ∫μ p_n dA = μQ whatever the history — a relaxed force above the limit (μ or Q
+/// dropped within a step) is a deformation the contact cannot hold. The excess slides off at
+/// once: the contact is then in full slip, where every traction is μ p_n along the slip, and the
+/// slip that releases a stored elastic deformation runs along that deformation's own force, so the
+/// force keeps its direction and takes the magnitude μQ — the radial projection. What calls for
+/// it is a drop of μ or Q within a step: the relaxed law moves the force from where it was
+/// towards a steady state inside the new, smaller disc, and only over the relaxation length.
+fn within_friction_limit(forces: [f64; 2], friction_limit: f64) -> [f64; 2] {
+    let magnitude = forces[0].hypot(forces[1]);
+    if magnitude > friction_limit {
+        let scale = friction_limit / magnitude;
+        [forces[0] * scale, forces[1] * scale]
+    } else {
+        forces
+    }
 }

@@ -4,8 +4,7 @@
 use wheel_rail_contact::{ContactInput, ExactTable, Fastsim, Flexibility, ModelChoice, Polach, TractionBound};
 use wheel_rail_contact::{KalkerLinear, ShenHedrickElkins};
 
-#[path = "../data/contact_published_cases.rs"]
-pub mod published;
+pub use wheel_rail_contact::reference_cases as published;
 
 /// The published CONTACT case 2 contact (a = 8 mm, b = 4 mm, N = 82 kN, G = 82 GPa, ν = 0.28,
 /// μ = 0.3) with no creepage; tests set the creepages they need.

@@ -17,14 +17,13 @@ impl Instance {
     /// why the outputs are to be used with care (an exact solve that stopped at its limits).
     #[inline]
     pub(super) fn update_outputs(&mut self, call: Call, evaluation: Evaluation) -> Result<Status, Status> {
-        // The relaxed forces advance on a copy, kept only if the outputs are good.
-        let mut relaxed_forces = self.run.relaxed_forces;
-        let outputs = compute_outputs(&self.run.values, &mut self.model, &mut relaxed_forces, evaluation)
-            .and_then(|(outputs, warning)| finite(&outputs).map(|_| (outputs, warning)));
+        // The scene's next state is kept only if the outputs are good.
+        let outputs = compute_outputs(&self.run.values, &mut self.model, &self.run.scene, evaluation)
+            .and_then(|(outputs, state, warning)| finite(&outputs).map(|_| (outputs, state, warning)));
         match outputs {
-            Ok((outputs, warning)) => {
+            Ok((outputs, state, warning)) => {
                 self.run.values.outputs = outputs;
-                self.run.relaxed_forces = relaxed_forces;
+                self.run.scene = state;
                 Ok(match warning {
                     Some(warning) => {
                         self.emit(Status::Warning, &format!("{call}: {warning}"));

@@ -126,6 +126,7 @@ fn a_tunable_parameter_applies_from_the_next_step() {
 /// steps are spent. Its last iterate is
 /// (0.217, −0.152) μQ; on 39 × 50 elements the theory converges in 8 steps to (0.254, −0.091).
 #[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn an_exact_solve_that_does_not_converge_is_a_warning_naming_the_grid() {
     let (mut instance, log) = new_instance();
     let exact = crate::model_description::Model::Exact as i32;

@@ -10,6 +10,7 @@ pub const POTENTIAL_AREA_HALF_SIZE: f64 = 1.1;
 /// Number of elements of the grid over the potential contact area
 /// 2.2 a (rolling direction) × 2.2 b (lateral).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GridSize {
     /// Elements along x, the rolling direction.
     pub longitudinal: usize,

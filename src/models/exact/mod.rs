@@ -43,8 +43,8 @@
 //! ellipse; a poor start costs iterations, never accuracy (the solution is the same to the
 //! solver's tolerance). A start that has not converged after [`WARM_ALONE_PRODUCTS`] operator
 //! products is raced by a cold solve, so a step after an abrupt change costs at most about
-//! twice a cold solve (on 200 × 50: 1.0–2.4 × its products over the jumps of
-//! `tests/exact_step_cost.rs`, where the warm start alone cycled for up to 4000 products, 5 s).
+//! twice a cold solve (on 200 × 50: 1.1–2.4 × its products over 24 random jumps, `cargo bench
+//! --bench exact -- worst_jump`, where a warm start alone cycled for up to 4000 products, 5 s).
 
 mod coefficients;
 mod convolution;
@@ -220,6 +220,7 @@ impl ExactSolution {
 /// value of the stored element that contains its centre. `WarmStart::default()` starts from
 /// zero traction.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WarmStart {
     grid: Option<GridSize>,
     relative_longitudinal: Vec<f64>,
@@ -227,6 +228,30 @@ pub struct WarmStart {
 }
 
 impl WarmStart {
+    /// Checks a start that did not come from [`ExactSolution::warm_start`] (one read back from
+    /// a saved state): empty, or a valid grid with one finite relative traction per element and
+    /// axis. Any such start is safe: it only chooses where the Newton iteration begins.
+    pub fn validate(&self) -> Result<(), InvalidInput> {
+        let elements = match self.grid {
+            None => 0,
+            Some(grid) => {
+                ExactTheory { grid }.validate()?;
+                grid.longitudinal * grid.lateral
+            }
+        };
+        for (variable, relative) in
+            [("warm_start_longitudinal", &self.relative_longitudinal), ("warm_start_lateral", &self.relative_lateral)]
+        {
+            if relative.len() != elements {
+                return Err(InvalidInput::new(variable, relative.len() as f64, "must hold one value per element"));
+            }
+            if let Some(&value) = relative.iter().find(|value| !value.is_finite()) {
+                return Err(InvalidInput::new(variable, value, "must be finite"));
+            }
+        }
+        Ok(())
+    }
+
     /// The start on `grid` in the solver's units (μp₀), or `None` for an empty start.
     fn tractions(&self, grid: &ContactGrid) -> Option<[Vec<f64>; 2]> {
         let stored = self.grid?;
@@ -332,7 +357,7 @@ impl ExactTheory {
     /// from square coarsens the short side too: 200 × 50 elements at a/b = 0.16 (elements 25
     /// times longer across than along) started from 100 × 25, from which the Newton iteration
     /// cycled between adhesion and slip at the lateral edges until its limits (on 200 × 50, 22
-    /// of 1000 random contacts, `examples/convergence_survey.rs`, none now); 320 × 400 at
+    /// of 1000 random contacts, `lab/src/bin/convergence_survey.rs`, none now); 320 × 400 at
     /// a/b = 9.8 needed 40 steps from 160 × 200, 7 from 320 × 200. And 39 × 200 at a/b = 11.5, not nested when both axes needed 40 elements,
     /// cycled cold; from 39 × 100 it converges in 8.
     fn nested_start_grid(&self, b_over_a: f64) -> Option<GridSize> {

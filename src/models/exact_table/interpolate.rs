@@ -126,7 +126,9 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
 fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
     let length = magnitude(x, y);
     let (l, s) = (value(length), value(size));
-    if !(l > CHORD_BLEND_START * s && s > l) {
+    // l ≤ s always (the triangle inequality); l = s, where every node's force is parallel, is
+    // the edge of the corrected branch and takes its rate (the only side there is).
+    if !(l > CHORD_BLEND_START * s && s >= l) {
         return (D::from(1.0), length);
     }
     if l >= CHORD_BLEND_END * s {
@@ -213,10 +215,14 @@ fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     // u32: its conversion to f64 is one instruction (usize's is several on x86-64).
     let index = (value(position).max(0.0) as u32).min(axis.nodes as u32 - 2);
     let fraction = position - f64::from(index);
+    // A value a rounding outside the cell is moved onto its edge with its rate kept: the rate
+    // is the cell's own slope, the one-sided derivative from inside at the table's edges (a/b
+    // at 0.1 or 10, ν at 0 or 0.5) and fold edges (α or β at their ends), which a constant
+    // would lose.
     let fraction = if value(fraction) < 0.0 {
-        D::from(0.0)
+        fraction - value(fraction)
     } else if value(fraction) > 1.0 {
-        D::from(1.0)
+        fraction - (value(fraction) - 1.0)
     } else {
         fraction
     };

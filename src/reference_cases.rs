@@ -1,10 +1,9 @@
-//! CONTACT's published reference cases as data, in SI units: the one definition shared by the
-//! tests (through `tests/common`), the trade report (`examples/trade_report.rs`) and the exact
-//! theory's benchmark, which include this file with `#[path]`. Source and the full tables: `contact_published_cases.md`
-//! beside this file (open-source CONTACT, https://github.com/eve70a/CONTACT, `examples/tractcurv`
+//! CONTACT's published reference cases as data, in SI units, to check a model choice against:
+//! the one definition the tests, the exact theory's benchmark and the lab's trade report use.
+//! Source and the full tables: `tests/data/contact_published_cases.md` (open-source CONTACT, https://github.com/eve70a/CONTACT, `examples/tractcurv`
 //! and `examples/fastsim`, Apache-2.0).
 
-use wheel_rail_contact::{ContactInput, TractionBound};
+use crate::{ContactInput, TractionBound};
 
 /// Case 1 (`examples/tractcurv`, Eurosprinter): a/b = 0.5, N = 106.7 kN, μ = 0.33; pure ξ, which
 /// each point sets.

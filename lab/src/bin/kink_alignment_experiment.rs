@@ -11,7 +11,7 @@
 //! For each query point this solves the 16 corner rays of the second table's (a/b, ν, β, α)
 //! cell directly (80 × 20 elements, the table's grid; 49 nodes in t or τ) and prints the error
 //! of both interpolants against the solver at the point itself, in μQ (max of F_x, F_y):
-//! `cargo run --release --example kink_alignment_experiment -- 60` (random points, ≈ 80 s), or
+//! `cargo run --release -p lab --bin kink_alignment_experiment -- 60` (random points, ≈ 80 s), or
 //! `-- 0 worst` (the nine largest errors of the second table on 1000 held-out points); with
 //! `--a-over-b-nodes 29` on the third table's a/b nodes (`-- 300 worst --a-over-b-nodes 29`,
 //! ≈ 10 min). The third table is built on this experiment (docs/exact_table.md).
@@ -19,8 +19,7 @@
 use rayon::prelude::*;
 use wheel_rail_contact::{ContactInput, ExactTheory, KalkerCoefficients};
 
-mod common;
-use common::{Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
+use lab::random_contacts::{Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
 
 /// The second table's node counts along ln(a/b), ν, β, α, and t (the a/b count can be changed:
 /// `--a-over-b-nodes 29` is the third table's).

@@ -2,7 +2,7 @@
 //! finer grids, to tell the node grid's error from the interpolation's (docs/exact_table.md,
 //! "Accuracy"). The contact is the trade report's: Q = 80 kN, μ = 0.3, G = 82 GPa, c = √(ab) = 5 mm.
 //!
-//! Run: `cargo run --release --example exact_table_at_point -- <a/b> <ν> <ξ> <η> <φ [1/m]>`,
+//! Run: `cargo run --release -p lab --bin exact_table_at_point -- <a/b> <ν> <ξ> <η> <φ [1/m]>`,
 //! e.g. `-- 3.787 0.080 1.551e-3 8.044e-3 -1.220`.
 
 use wheel_rail_contact::{ContactInput, CreepForceModel, CreepForces, ExactTable, ExactTheory};

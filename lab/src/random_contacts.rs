@@ -1,6 +1,5 @@
-//! Random contacts shared by the studies among the examples: a seeded stream and the contact
-//! of a creepage direction and size in units of the characteristic creepage.
-#![allow(dead_code)] // each example uses the part it needs
+//! Random contacts shared by the lab's studies: a seeded stream and the contact of a creepage
+//! direction and size in units of the characteristic creepage.
 use wheel_rail_contact::{ContactInput, KalkerCoefficients};
 
 /// Q [N], μ, G [Pa] of every random contact.

@@ -6,7 +6,7 @@
 //! from the two, 2F(MX) − F(NX) for MX = 2 NX (the rule `cargo fmu exact-table` builds with).
 //! A contact whose solve (reference or candidate) does not converge is left out and counted.
 //!
-//! Run: `cargo run --release --example node_grid_study -- N SEED LOG10_LOW LOG10_HIGH GRIDS…`:
+//! Run: `cargo run --release -p lab --bin node_grid_study -- N SEED LOG10_LOW LOG10_HIGH GRIDS…`:
 //! N contacts with a/b log-uniform between 10^LOG10_LOW and 10^LOG10_HIGH (≈ 10 s per contact
 //! on two cores, most of it the reference). Without arguments: `40 4660 -1 1 80x20 40x20,80x20
 //! 20x40,40x40`. Prints, per candidate and a/b band, max |ΔF|/(μQ) / max |ΔM_z|/(μQc), and the
@@ -14,8 +14,7 @@
 use rayon::prelude::*;
 use wheel_rail_contact::{CreepForces, ExactTheory};
 
-mod common;
-use common::{contact_along, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE};
+use lab::random_contacts::{contact_along, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE};
 
 /// F_x/(μQ), F_y/(μQ), M_z/(μQc).
 fn scaled(f: &CreepForces, l: f64, c: f64) -> [f64; 3] {

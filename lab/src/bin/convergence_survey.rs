@@ -4,14 +4,13 @@
 //! uniform on the sphere of (ξ/ξ*, η/η*, φ/φ*), its size log-uniform from 0.01 to 30 × the
 //! characteristic creepage (the same kind as the trade report's held-out points).
 //!
-//! Run: `cargo run --release --example convergence_survey -- N NX NY [SEED] [S]` (defaults:
+//! Run: `cargo run --release -p lab --bin convergence_survey -- N NX NY [SEED] [S]` (defaults:
 //! seed 77, S = 1.2). Prints the summary line and every contact that did not converge.
 use rayon::prelude::*;
 use std::time::Instant;
 use wheel_rail_contact::ExactTheory;
 
-mod common;
-use common::{random_contact, Uniform};
+use lab::random_contacts::{random_contact, Uniform};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -4,7 +4,7 @@
 //! so the solver's moment at a tiny spin creepage yields C33. The solver's grid error is first
 //! order, so two grids n1 < n2 are extrapolated: C33 ≈ v(n2) − (v(n1) − v(n2))·n1/(n2 − n1).
 //!
-//! `cargo run --release --example kalker_c33_check -- 80 120 [branch=g …]`
+//! `cargo run --release -p lab --bin kalker_c33_check -- 80 120 [branch=g …]`
 //! (e.g. `b/a=0.1`; all rows by default). The full table at 80² and 120² takes tens of minutes.
 
 use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTheory, GridSize};
@@ -36,7 +36,7 @@ fn main() {
     let rows: Vec<&String> = args.iter().skip(2).collect();
     println!("row          nu    table   n={n1:<4}  n={n2:<4}  extrapolated  table vs extrapolated");
     for line in
-        include_str!("../data/kalker_c33.csv").lines().filter(|l| !l.starts_with('#') && !l.starts_with("branch"))
+        include_str!("../../../data/kalker_c33.csv").lines().filter(|l| !l.starts_with('#') && !l.starts_with("branch"))
     {
         let fields: Vec<&str> = line.split(',').collect();
         let (branch, g) = (fields[0], fields[1]);

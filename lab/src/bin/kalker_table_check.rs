@@ -7,7 +7,7 @@
 //! resolution too). The convergence is first order but irregular (the staircase edge of the
 //! ellipse moves with the grid), so the two levels are shown rather than extrapolated.
 //!
-//! `cargo run --release --example kalker_table_check -- 200 400` (about two minutes); its
+//! `cargo run --release -p lab --bin kalker_table_check -- 200 400` (about two minutes); its
 //! output is kept in docs/reference/kalker-table-check.txt.
 
 use wheel_rail_contact::{ExactTheory, LinearCoefficients};
@@ -22,7 +22,7 @@ fn main() {
     let levels: Vec<usize> = std::env::args().skip(1).map(|n| n.parse().expect("grid levels n1 n2")).collect();
     let [n1, n2] = [levels.first().copied().unwrap_or(200), levels.get(1).copied().unwrap_or(400)];
     println!("row        nu    coefficient  table   n={n1:<4}   n={n2:<4}  n={n2} vs table");
-    for line in include_str!("../data/kalker_coefficients.csv")
+    for line in include_str!("../../../data/kalker_coefficients.csv")
         .lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("branch"))
     {

@@ -1,0 +1,14 @@
+//! The lab beside the product (`publish = false`): studies and experiments that measure the
+//! core or made its data, as binaries (`cargo run --release -p lab --bin NAME`):
+//!
+//! - `trade_report`: every rung against Kalker's exact theory, error and time side by side
+//!   (docs/trade/, docs/trade.md);
+//! - `convergence_survey`: cold exact-theory solves of random contacts on one grid;
+//! - `node_grid_study`, `kink_alignment_experiment`, `exact_table_at_point`: how exact_table's
+//!   nodes were chosen and where its errors come from (docs/exact_table.md);
+//! - `kalker_table_check`, `kalker_c33_check`: the exact solver against Kalker's table
+//!   (docs/reference/).
+//!
+//! What they share is here: [`random_contacts`].
+
+pub mod random_contacts;
