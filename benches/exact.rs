@@ -1,13 +1,16 @@
 //! Kalker's exact theory (FFT Newton–GMRES solver), one thread: CONTACT's published spin case
 //! (η with spin, partial slip, F_y ≈ −0.61 μN) and a pure-ξ partial-slip case (ξ = 1e-3 on
 //! CONTACT's ellipse, F_x ≈ −0.47 μN) at 40 × 40, 80 × 80 and 160 × 160 elements over the
-//! potential contact area; and a warm-started co-simulation on 40 × 40 and 200 × 50, each step
-//! starting from the previous one's tractions while the creepages and the ellipse vary slowly.
+//! potential contact area; a warm-started co-simulation on 40 × 40 and 200 × 50, each step
+//! starting from the previous one's tractions while the creepages and the ellipse vary slowly;
+//! and a sequence of random jumps on 200 × 50, its worst step against a cold solve.
 //!
 //! Run: `cargo bench --bench exact`. The solver's iterations and operator products per case are
 //! printed before the timings.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::hint::black_box;
 use wheel_rail_contact::{ContactInput, ExactTheory};
 
@@ -94,5 +97,58 @@ fn exact_theory_warm_steps(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, exact_theory_cases, exact_theory_warm_steps);
+/// Steps of a co-simulation whose contact jumps at every step (24 jumps between random contacts
+/// of CONTACT's ellipse area: a/b log-uniform in [0.06, 16], ν in [0, 0.5], |(ξ, η)|
+/// log-uniform in [1e-5, 3e-2] in any direction, φ up to that over √(ab); seeded), each started
+/// from the previous step's solution on 200 × 50: every step's operator products against a cold
+/// solve's are printed, and the step with the largest ratio is timed warm-started and cold.
+fn exact_theory_jump_steps(c: &mut Criterion) {
+    let model = ExactTheory::new(200, 50);
+    let base = published::FASTSIM_CASE;
+    let area = base.semi_axis_a * base.semi_axis_b;
+    let mut runner = TestRunner::new_with_rng(Config::default(), TestRng::from_seed(RngAlgorithm::ChaCha, &[31; 32]));
+    let strategy = (-1.2..1.2f64, 0.0..0.5f64, -5.0..-1.5f64, 0.0..std::f64::consts::TAU, -1.0..1.0f64);
+    let contacts: Vec<ContactInput> = (0..=24)
+        .map(|_| {
+            let (log_ratio, poisson_ratio, log_creepage, angle, spin) =
+                strategy.new_tree(&mut runner).unwrap().current();
+            let (creepage, ratio) = (10f64.powf(log_creepage), 10f64.powf(log_ratio));
+            ContactInput {
+                creepage_longitudinal: creepage * angle.cos(),
+                creepage_lateral: creepage * angle.sin(),
+                spin_creepage: spin * creepage / area.sqrt(),
+                semi_axis_a: (area * ratio).sqrt(),
+                semi_axis_b: (area / ratio).sqrt(),
+                poisson_ratio,
+                ..base
+            }
+        })
+        .collect();
+    let mut start = model.solve(&contacts[0]).unwrap().warm_start();
+    let mut worst = (0.0, 0, start.clone());
+    for (step, contact) in contacts.iter().enumerate().skip(1) {
+        let warm = model.solve_from(contact, Some(&start)).unwrap();
+        let cold = model.solve(contact).unwrap();
+        let ratio = warm.operator_products as f64 / cold.operator_products as f64;
+        println!(
+            "jump {step}: {} operator products warm-started, {} cold ({ratio:.2})",
+            warm.operator_products, cold.operator_products
+        );
+        if ratio > worst.0 {
+            worst = (ratio, step, start);
+        }
+        start = warm.warm_start();
+    }
+    let (ratio, step, start) = worst;
+    println!("worst step: jump {step}, {ratio:.2} × a cold solve's operator products");
+    let mut group = c.benchmark_group("exact_theory_worst_jump_step_200x50");
+    group.sample_size(10);
+    group.bench_function("warm_started", |bencher| {
+        bencher.iter(|| model.solve_from(black_box(&contacts[step]), Some(&start)).unwrap().forces)
+    });
+    group.bench_function("cold", |bencher| bencher.iter(|| model.solve(black_box(&contacts[step])).unwrap().forces));
+    group.finish();
+}
+
+criterion_group!(benches, exact_theory_cases, exact_theory_warm_steps, exact_theory_jump_steps);
 criterion_main!(benches);

@@ -43,8 +43,8 @@
 //! ellipse; a poor start costs iterations, never accuracy (the solution is the same to the
 //! solver's tolerance). A start that has not converged after [`WARM_ALONE_PRODUCTS`] operator
 //! products is raced by a cold solve, so a step after an abrupt change costs at most about
-//! twice a cold solve (on 200 × 50: 1.0–2.4 × its products over the jumps of
-//! `tests/exact_step_cost.rs`, where the warm start alone cycled for up to 4000 products, 5 s).
+//! twice a cold solve (on 200 × 50: 1.1–2.4 × its products over 24 random jumps, `cargo bench
+//! --bench exact -- worst_jump`, where a warm start alone cycled for up to 4000 products, 5 s).
 
 mod coefficients;
 mod convolution;
