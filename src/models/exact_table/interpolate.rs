@@ -213,12 +213,10 @@ fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     // u32: its conversion to f64 is one instruction (usize's is several on x86-64).
     let index = (value(position).max(0.0) as u32).min(axis.nodes as u32 - 2);
     let fraction = position - f64::from(index);
-    let fraction = if value(fraction) < 0.0 {
-        D::from(0.0)
-    } else if value(fraction) > 1.0 {
-        D::from(1.0)
-    } else {
-        fraction
-    };
-    (index as usize, fraction)
+    // The value is kept in the cell, the rate is not dropped: at the ends of an axis (a/b at
+    // the table's edge, α = 1 where ξ = 0) the derivative is the end cell's, the one-sided
+    // derivative from inside, like the value (a constant here gave a/b's derivative of the
+    // values but not of the weights: ∂M_z/∂a 0.709 at a/b = 0.1 against 0.404 just inside).
+    let clamped = value(fraction).clamp(0.0, 1.0);
+    (index as usize, fraction + (clamped - value(fraction)))
 }
