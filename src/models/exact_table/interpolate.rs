@@ -4,7 +4,7 @@ use super::coordinates::{fold, kink_fitted, IDENTITY_END};
 use super::table::{AxisMap, Table};
 use super::zero_forces;
 use crate::models::kalker_linear::linear_forces;
-use crate::numerics::{magnitude, value, Scalar};
+use crate::numerics::{magnitude, moves_negative, value, Scalar};
 use crate::{ContactInput, CreepForces, InvalidInput};
 
 /// Exact power of two the direction is scaled by before it is formed, so that creepages up to
@@ -126,7 +126,9 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
 fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
     let length = magnitude(x, y);
     let (l, s) = (value(length), value(size));
-    if !(l > CHORD_BLEND_START * s && s > l) {
+    // s = l (every node's force parallel, e.g. pure spin, where all α rays are one contact):
+    // the branch is the side the derivative's direction moves to, consistent with the value.
+    if !(l > CHORD_BLEND_START * s && moves_negative(length - size)) {
         return (D::from(1.0), length);
     }
     if l >= CHORD_BLEND_END * s {
@@ -218,5 +220,12 @@ fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     // derivative from inside, like the value (a constant here gave a/b's derivative of the
     // values but not of the weights: ∂M_z/∂a 0.709 at a/b = 0.1 against 0.404 just inside).
     let clamped = value(fraction).clamp(0.0, 1.0);
-    (index as usize, fraction + (clamped - value(fraction)))
+    let fraction = fraction + (clamped - value(fraction));
+    // On a node the cell is the one the derivative's direction moves into (the cell above for
+    // a plain value): the same side as the folds take (`coordinates::fold`), so that where a
+    // node and a fold coincide (β = 0 and |u_φ|) the derivative is one side's, not a mix.
+    if clamped == 0.0 && index > 0 && fraction.rate() < 0.0 {
+        return (index as usize - 1, fraction + 1.0);
+    }
+    (index as usize, fraction)
 }
