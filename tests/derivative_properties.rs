@@ -202,12 +202,12 @@ fn disagreement(checked: &Checked, x: &SceneInput) -> Option<String> {
     }
     let mut failures = String::new();
     for (i, h, j, p1, p2, m1, m2) in rows {
-        let forward = p1.zip(p2).map(|(p1, p2)| -> [f64; 13] {
-            std::array::from_fn(|k| (-3.0 * at[k] + 4.0 * p1[k] - p2[k]) / (2.0 * h))
-        });
-        let backward = m1.zip(m2).map(|(m1, m2)| -> [f64; 13] {
-            std::array::from_fn(|k| (3.0 * at[k] - 4.0 * m1[k] + m2[k]) / (2.0 * h))
-        });
+        let forward = p1
+            .zip(p2)
+            .map(|(p1, p2)| -> [f64; 13] { std::array::from_fn(|k| (-3.0 * at[k] + 4.0 * p1[k] - p2[k]) / (2.0 * h)) });
+        let backward = m1
+            .zip(m2)
+            .map(|(m1, m2)| -> [f64; 13] { std::array::from_fn(|k| (3.0 * at[k] - 4.0 * m1[k] + m2[k]) / (2.0 * h)) });
         let central = p1.zip(m1).map(|(p, m)| -> [f64; 13] { std::array::from_fn(|k| (p[k] - m[k]) / (2.0 * h)) });
         for k in (0..13).filter(|&k| k != 2 || checked.utilisation) {
             let values = [Some(at), p1, p2, m1, m2];
@@ -353,7 +353,9 @@ fn polach_derivatives_agree_with_differences_everywhere() {
     // its ∂F_y/∂φ is 0 where both one-sided differences are equal and not 0 (eq. 21's switch
     // takes s_yC = η at Φ = 0, while |η + aΦ| > |η| on both sides when η = 0).
     let model = exact(ModelChoice::Polach(Polach::default()), 1e-6);
-    check_where(model, 300, |x| x.creepage_lateral != 0.0 || (x.creepage_longitudinal != 0.0 && x.spin_creepage != 0.0));
+    check_where(model, 300, |x| {
+        x.creepage_lateral != 0.0 || (x.creepage_longitudinal != 0.0 && x.spin_creepage != 0.0)
+    });
 }
 
 #[test]
@@ -376,11 +378,8 @@ fn exact_table_derivatives_agree_with_differences_everywhere() {
     // explained; both sides are ±0.435 there, so a wrong side is still caught).
     // |F|/μQ is left out: in full slip, flat at 1, J is 1.6e-5 per 1/m along φ at φ = 0 where
     // every difference is 0 (ξ = −0.32, a/b = 0.1), not yet explained.
-    let model = move |nu| Checked {
-        tolerance: 1e-3,
-        utilisation: false,
-        ..exact(ModelChoice::ExactTable(table), 1e-8)(nu)
-    };
+    let model =
+        move |nu| Checked { tolerance: 1e-3, utilisation: false, ..exact(ModelChoice::ExactTable(table), 1e-8)(nu) };
     check(model, 600);
 }
 
@@ -431,7 +430,10 @@ fn options_without_derivatives_refuse_with_their_name() {
                 ..base
             },
         ),
-        ("creepages_from_kinematics", Scene { creepages: CreepageSource::Kinematics { regularisation_speed: 0.01 }, ..base }),
+        (
+            "creepages_from_kinematics",
+            Scene { creepages: CreepageSource::Kinematics { regularisation_speed: 0.01 }, ..base },
+        ),
         ("creep_relaxation", Scene { relaxation: Relaxation::On { length: 0.01 }, ..base }),
     ] {
         assert!(scene.evaluate(&x, &mut SceneState::default(), Evaluation::Initialise).is_ok(), "{option}");

@@ -19,7 +19,9 @@
 //! |F| ≤ μQ holds exactly; values are continuous everywhere (τ is continuous in t and in the
 //! interpolated collapse); the symmetries hold exactly (they are applied by folding, and the
 //! table's fold edges are tabulated symmetric); and the derivative is exact for the
-//! interpolant, one-sided (from the cell above) on cell edges.
+//! interpolant, on its cell edges and on the fold planes of its coordinates (a creepage = 0,
+//! pure spin) the one-sided derivative along the direction (`coordinates::fold`), at the a/b
+//! edges of the table the one from inside.
 //!
 //! Domain: a/b within the table's range ([0.1, 10]); outside it the model returns an error
 //! naming the semi-axes (no silent extrapolation). ν ∈ [0, 0.5], any creepage.
@@ -92,8 +94,10 @@ impl CreepForceModel for ExactTable {
         interpolate::forces(self.table, input)
     }
 
-    /// Exact for the interpolant (dual numbers through the interpolation weights), one-sided
-    /// on cell edges. The force is μQ times a bounded function of u ∝ 1/(μQ), so it vanishes
+    /// Exact for the interpolant (dual numbers through the interpolation weights); on cell
+    /// edges and fold planes the one-sided derivative along `direction`, lim (F(x + h·d) −
+    /// F(x))/h for h → 0⁺ (the side is chosen by the direction's rate where the value lies on
+    /// the edge or plane). The force is μQ times a bounded function of u ∝ 1/(μQ), so it vanishes
     /// continuously at μ → 0 and Q → 0: the one-sided derivative is given there.
     fn directional_derivative(
         &self,
