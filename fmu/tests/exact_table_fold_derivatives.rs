@@ -110,3 +110,63 @@ fn at_the_tables_a_over_b_edge_the_derivative_is_the_inside_one() {
         assert!(near(j, inside, 1e-3), "input {k}: J {j}, inside {inside}");
     }
 }
+
+/// The generic property once through the C ABI (the core's tests/derivative_properties.rs
+/// checks it over the whole domain through the scene): at 60 deterministic points, creepages
+/// exactly 0 among them (every fold plane: ξ = 0, η = 0, φ = 0, pure spin, rest), a/b from
+/// the table's edges inwards, ∂(F_x, F_y, M_z)/∂(each contact input) from
+/// fmi2GetDirectionalDerivative agrees with the central difference of the fmi2DoStep outputs
+/// or, on a fold, with one of the one-sided ones (1e-3 relative, with a floor of 1e-6 of μQ,
+/// or μQc, over the input's step scale: derivatives that vanish by symmetry).
+#[test]
+fn derivatives_agree_with_differences_of_the_steps_outputs() {
+    let fmu = exact_table();
+    let unknowns = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::SPIN_MOMENT];
+    for n in 0..60 {
+        let t = n as f64;
+        // Each creepage is 0 at one point in three, on its own cycle, so that every
+        // combination of zeros occurs; signs alternate.
+        let pick = |cycle: usize, value: f64| if n % cycle == 0 { 0.0 } else { value };
+        let xi = pick(3, 3e-3 * (0.7 * t).sin());
+        let eta = pick(4, -2e-3 * (1.3 * t).cos());
+        let phi = pick(5, 0.8 * (0.9 * t).sin());
+        let a_over_b = [0.1, 10.0, 0.1 * (1.0 + 1e-6), 1.0 + 0.5 * (0.4 * t).sin()][n % 4];
+        let c = 6e-3;
+        let inputs = [xi, eta, phi, 60e3 + 40e3 * (0.3 * t).cos(), c * a_over_b.sqrt(), c / a_over_b.sqrt(), 0.3];
+        let saturation = inputs[6] * inputs[3] / (82e9 * c * c * 3.0);
+        let resultant = 1e-3 * (xi.abs() + eta.abs() + c * phi.abs());
+        let scales = [
+            xi.abs().max(saturation).max(resultant),
+            eta.abs().max(saturation).max(resultant),
+            phi.abs().max(saturation / c).max(resultant / c),
+            inputs[3],
+            inputs[4],
+            inputs[5],
+            inputs[6],
+        ];
+        for k in 0..7 {
+            let h = 1e-8 * scales[k];
+            for unknown in unknowns {
+                let (j, forward, backward) = derivative_and_sides(&fmu, inputs, k, unknown, h);
+                let at = |t: f64| {
+                    let mut moved = inputs;
+                    moved[k] += t;
+                    output(&fmu, &moved, unknown)
+                };
+                let (plus, minus, value) = (at(h), at(-h), at(0.0));
+                let central = (plus - minus) / (2.0 * h);
+                // The size of the output: the Coulomb limit μQ (μQc for M_z), the scale on which
+                // the interpolant's rounding is (a force that is 0 by symmetry has no size).
+                let limit = inputs[6] * inputs[3] * if unknown == vr::SPIN_MOMENT { c } else { 1.0 };
+                let size = limit.max(value.abs()).max(plus.abs()).max(minus.abs());
+                let floor = 1e-6 * size / scales[k] + 16.0 * f64::EPSILON * size / h;
+                let agrees = |d: f64| (j - d).abs() <= 1e-3 * j.abs().max(d.abs()) + floor;
+                assert!(
+                    agrees(central) || agrees(forward) || agrees(backward),
+                    "point {n} {inputs:?}, input {k}, output {unknown}: J {j}, central {central}, \
+                     forward {forward}, backward {backward}"
+                );
+            }
+        }
+    }
+}
