@@ -8,23 +8,23 @@
 //! μ = 0, Q = 0, V = 0, a cell edge of a table, a switch of Polach's eq. 21) for a known when
 //! the two one-sided differences along it disagree beyond the tolerance; there J must agree with
 //! one of them (a one-sided derivative, as documented). Where one side is outside the domain
-//! (μ < 0, a/b outside the table) only the other side exists and J must agree with it. The
-//! one-sided differences are second order (3F₀ − 4F(±h) + F(±2h))/(∓2h), so that away from a
-//! kink they agree with each other to O(h²) and a fold is not confused with curvature.
+//! (a/b outside the table) only the other side exists and J must agree with it. The one-sided
+//! differences are second order (3F₀ − 4F(±h) + F(±2h))/(∓2h), so that away from a kink they
+//! agree with each other to O(h²) and a fold is not confused with curvature; so J is accepted
+//! when it agrees with the central or with either one-sided difference.
 //!
-//! **Steps and tolerances.** Each known moves by `STEP` × its scale: the creepages by their
-//! saturation creepage μQ/(G·ab·3) (the scale of the linear range; as in
-//! `wheel_rail_contact::central_difference`) or their own size if larger, the others by their
-//! own size. Models with exact derivatives (dual numbers: Polach, the linear theory,
-//! Shen–Hedrick–Elkins, exact_table) are checked at step 1e-6 to 1e-4 relative (the README's
-//! 1e-6 is for points away from kinks; a random point may lie within a few steps of a cell edge
-//! of exact_table, whose interpolant is multilinear in curved coordinates). FASTSIM's
+//! **Steps and tolerances.** Each known moves by `step` × its scale (`scales`): a creepage by
+//! the saturation creepage μQ/(G·ab·3) (the scale of the linear range, as in
+//! `wheel_rail_contact::central_difference`), by 1e-3 of the resultant creepage, or by its own
+//! size, whichever is largest; the others by their own size. Polach, the linear theory and
+//! Shen–Hedrick–Elkins (dual numbers): step 1e-6, tolerance 1e-4 relative. exact_table (dual
+//! numbers through the interpolant): step 1e-8, tolerance 1e-3 (reasons at its test). FASTSIM's
 //! derivative is itself a central difference of step 1e-6: it is checked against a difference
 //! 100 × larger, to its documented 1e-2 (its forces are piecewise smooth on its grid). An
-//! absolute floor per output and known, `tolerance` × (the output's largest change over one
-//! scale of any known) / (this known's scale), lets a derivative that is zero by symmetry be
-//! checked against a difference that rounds near zero; the differences' rounding, 16ε|F|/h,
-//! is added.
+//! absolute floor per output and known, (`tolerance` × the output's largest change over one
+//! scale of any known + 1e-5 × the output's size) / (this known's scale), lets a derivative
+//! that is zero by symmetry be checked against a difference that rounds near zero; the
+//! differences' rounding, 16ε|F|/h (with FASTSIM's own step), is added.
 
 mod common;
 
