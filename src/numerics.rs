@@ -1,16 +1,37 @@
 //! Small numerical helpers shared by the models, and the number type they are written over.
 
-use num_dual::DualNum;
+use num_dual::{Dual64, DualNum};
 
 /// A real number for the models: `f64` for values, a dual number (`num_dual::Dual64`) for exact
-/// derivatives. Models are written once over `Scalar`; branches look at [`value`] only.
-pub trait Scalar: DualNum<Primitive = f64> + Copy {}
+/// derivatives. Models are written once over `Scalar`; branches look at [`value`] only, except
+/// on a fold of a model's coordinates, where the side is the one the direction points to
+/// ([`rate`]).
+pub trait Scalar: DualNum<Primitive = f64> + Copy {
+    /// The rate along the direction of differentiation (0 for a plain value).
+    fn rate(self) -> f64;
+}
 
-impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
+impl Scalar for f64 {
+    fn rate(self) -> f64 {
+        0.0
+    }
+}
+
+impl Scalar for Dual64 {
+    fn rate(self) -> f64 {
+        self.eps
+    }
+}
 
 /// The real part (the value without its derivative).
 pub(crate) fn value<D: Scalar>(x: D) -> f64 {
     x.re()
+}
+
+/// x < 0 at x + 0⁺·(its rate): the side of 0 a point on the fold x = 0 moves to along the
+/// direction of differentiation (the value's own side elsewhere).
+pub(crate) fn moves_negative<D: Scalar>(x: D) -> bool {
+    value(x) < 0.0 || (value(x) == 0.0 && x.rate() < 0.0)
 }
 
 /// √(x² + y²) without spurious underflow or overflow: squares are formed directly when they are

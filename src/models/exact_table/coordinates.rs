@@ -32,7 +32,7 @@
 //! F_x and M_z turn within Δs ≈ 2); with t = s/(1 + s) those got 3 of 32 intervals, errors up
 //! to 0.06 μQ.
 
-use crate::numerics::{value, Scalar};
+use crate::numerics::{moves_negative, value, Scalar};
 
 /// **Kink-fitted size coordinate τ.** Along a ray of growing creepage with spin the exact
 /// theory's adhesion zone collapses within a tiny step of t (29 % → 2.7 % of the area within
@@ -98,25 +98,40 @@ const SIZE_MAX: f64 = 1e300;
 /// Folds a contact into (α, β, t) and the signs that undo the folding. `direction` is the
 /// scaled creepage u up to a positive factor (finite components), `size_factor` that factor,
 /// u = direction × size_factor (may be +∞: full sliding).
+///
+/// On a fold plane (u_x = 0, u_y = 0 or u_φ = 0, where a symmetry or the L1 size |u_φ| has a
+/// kink) the side is the one the derivative's direction moves to ([`moves_negative`]), so the
+/// derivative is the one-sided derivative of the interpolant along the direction,
+/// lim (F(u + h·du) − F(u))/h for h → 0⁺, consistent with the value (which is the same from
+/// both sides). At pure spin (u_x = u_y = 0) α is undefined at the point but constant along
+/// the ray u + h·du: du_y/(du_x + du_y) after the folding; taking it with no rate keeps the
+/// planar creepage's rate, which moves β off ±1 (a constant α there, as before, gave the
+/// derivative of the creepage direction α = 0 whatever the direction's).
 pub(crate) fn fold<D: Scalar>(direction: [D; 3], size_factor: D) -> Folded<D> {
     let [mut ux, mut uy, mut uphi] = direction;
     let mut sign_all = 1.0;
-    if value(ux) < 0.0 {
+    if moves_negative(ux) {
         (ux, uy, uphi) = (-ux, -uy, -uphi);
         sign_all = -1.0;
     }
     let mut sign_lateral = 1.0;
-    if value(uy) < 0.0 {
+    if moves_negative(uy) {
         (uy, uphi) = (-uy, -uphi);
         sign_lateral = -1.0;
     }
     let planar = ux + uy;
-    let length = planar + if value(uphi) < 0.0 { -uphi } else { uphi };
+    let length = planar + if moves_negative(uphi) { -uphi } else { uphi };
     if value(length) == 0.0 {
         let zero = D::from(0.0);
         return Folded { alpha: zero, beta: zero, t: zero, sign_all, sign_lateral };
     }
-    let alpha = if value(planar) > 0.0 { uy / planar } else { D::from(0.0) };
+    let alpha = if value(planar) > 0.0 {
+        uy / planar
+    } else if planar.rate() > 0.0 {
+        D::from(uy.rate() / planar.rate())
+    } else {
+        D::from(0.0)
+    };
     let beta = uphi / length;
     let size = length * size_factor;
     let size = if value(size) <= SIZE_MAX { size } else { D::from(SIZE_MAX) };

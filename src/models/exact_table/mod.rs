@@ -19,7 +19,9 @@
 //! |F| ≤ μQ holds exactly; values are continuous everywhere (τ is continuous in t and in the
 //! interpolated collapse); the symmetries hold exactly (they are applied by folding, and the
 //! table's fold edges are tabulated symmetric); and the derivative is exact for the
-//! interpolant, one-sided (from the cell above) on cell edges.
+//! interpolant, on its cell edges and on the fold planes of its coordinates (a creepage = 0,
+//! pure spin) the one-sided derivative along the direction (`coordinates::fold`), at the a/b
+//! edges of the table the one from inside.
 //!
 //! Domain: a/b within the table's range ([0.1, 10]); outside it the model returns an error
 //! naming the semi-axes (no silent extrapolation). ν ∈ [0, 0.5], any creepage.
@@ -92,57 +94,22 @@ impl CreepForceModel for ExactTable {
         interpolate::forces(self.table, input)
     }
 
-    /// Exact for the interpolant (dual numbers through the interpolation weights), one-sided
-    /// on cell edges. The force is μQ times a bounded function of u ∝ 1/(μQ), so it vanishes
+    /// Exact for the interpolant (dual numbers through the interpolation weights); on cell
+    /// edges and fold planes the one-sided derivative along `direction`, lim (F(x + h·d) −
+    /// F(x))/h for h → 0⁺ (the side is chosen by the direction's rate where the value lies on
+    /// the edge or plane). The force is μQ times a bounded function of u ∝ 1/(μQ), so it vanishes
     /// continuously at μ → 0 and Q → 0: the one-sided derivative is given there.
-    ///
-    /// On the fold planes of the symmetries — a creepage 0, pure spin — and on the table's node
-    /// planes the forces kink (F_y and M_z are even in ξ at ξ = 0; the creepage direction α is
-    /// undefined at pure spin), so the derivative is the one-sided one in `direction`: each
-    /// creepage within [`FOLD_STEP`] of 0 is taken that far along its rate, to the side the
-    /// direction moves it to, where the fold puts it in the table's cell of that side. At the
-    /// table's a/b and ν edges it is the inside cell's.
     fn directional_derivative(
         &self,
         input: &ContactInput,
         direction: &ContactInput,
     ) -> Result<CreepForces, InvalidInput> {
         self.creep_forces(input)?;
-        // The step, relative to the creepages' size (spin in units of the contact's size c): far
-        // enough from the fold that no coordinate of the table rounds back onto it, close enough
-        // that the derivative is the cell's to FOLD_STEP (at rest, `dual_derivative` steps along
-        // the direction itself).
-        let c = (input.semi_axis_a * input.semi_axis_b).sqrt();
-        let size =
-            |x: &ContactInput| x.creepage_longitudinal.abs() + x.creepage_lateral.abs() + (x.spin_creepage * c).abs();
-        let (size, rate) = (size(input), size(direction));
-        let step = if rate > 0.0 { FOLD_STEP * size / rate } else { 0.0 };
-        // A creepage within rounding of 0 (the table's coordinates cannot tell it from 0) counts
-        // as on the fold.
-        let off_fold = |creepage: f64, rate: f64| {
-            if creepage.abs() <= FOLD_STEP * size {
-                creepage + step * rate
-            } else {
-                creepage
-            }
-        };
-        let input = ContactInput {
-            creepage_longitudinal: off_fold(input.creepage_longitudinal, direction.creepage_longitudinal),
-            creepage_lateral: off_fold(input.creepage_lateral, direction.creepage_lateral),
-            spin_creepage: off_fold(input.spin_creepage, direction.spin_creepage),
-            ..*input
-        };
-        dual_derivative(&input, direction, NoForceBoundary::Continuous, |seeded| {
+        dual_derivative(input, direction, NoForceBoundary::Continuous, |seeded| {
             interpolate::forces(self.table, seeded).unwrap_or_else(|_| zero_forces())
         })
     }
 }
-
-/// How far a zero creepage is taken along its rate for the one-sided derivative on a fold
-/// plane, relative to the size of the creepages ([`ExactTable::directional_derivative`]): far
-/// above the rounding of the table's coordinates (1e-16), far below a cell (the interpolant is
-/// linear in its cell; the fold's maps bend by that fraction, the derivative's error).
-const FOLD_STEP: f64 = 1e-9;
 
 /// Zero forces with a zero moment (unreachable after the value's own evaluation succeeded).
 fn zero_forces<D: Scalar>() -> CreepForces<D> {
