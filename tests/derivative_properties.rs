@@ -32,31 +32,12 @@ use common::fastsim;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, RngAlgorithm, TestRng, TestRunner};
 use wheel_rail_contact::scene::{
-    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneOutput,
-    SceneState, TractionLaw,
+    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneState,
+    TractionLaw,
 };
 use wheel_rail_contact::{ExactTable, KalkerLinear, ModelChoice, Polach, Polach2005, ShenHedrickElkins, TractionBound};
 
 const SHEAR_MODULUS: f64 = 82e9;
-
-/// The scene's outputs as one vector (every field the FMU outputs).
-fn outputs(o: &SceneOutput) -> [f64; 13] {
-    [
-        o.force_longitudinal,
-        o.force_lateral,
-        o.adhesion_utilisation,
-        o.spin_moment,
-        o.current_friction_coefficient,
-        o.slip_velocity,
-        o.effective_creepage_longitudinal,
-        o.effective_creepage_lateral,
-        o.effective_spin_creepage,
-        o.contact_semi_axis_a,
-        o.contact_semi_axis_b,
-        o.max_pressure,
-        o.approach,
-    ]
-}
 
 const OUTPUT_NAMES: [&str; 13] = [
     "force_longitudinal",
@@ -175,7 +156,7 @@ fn disagreement(checked: &Checked, x: &SceneInput) -> Option<String> {
             .ok()
             .map(|(output, _)| output)
     };
-    let at = outputs(&evaluate(x).expect("a valid point"));
+    let at = common::scene_outputs(&evaluate(x).expect("a valid point"));
     let point = knowns(x);
     let scale = scales(x);
     let mut rows = Vec::new();
@@ -184,11 +165,13 @@ fn disagreement(checked: &Checked, x: &SceneInput) -> Option<String> {
         let moved = |t: f64| {
             let mut k = point;
             k[i] += t;
-            evaluate(&from_knowns(k)).map(|o| outputs(&o))
+            evaluate(&from_knowns(k)).map(|o| common::scene_outputs(&o))
         };
         let mut seed = [0.0; 12];
         seed[i] = 1.0;
-        let j = outputs(&checked.scene.directional_derivative(x, &from_knowns(seed)).expect("derivatives are on"));
+        let j = common::scene_outputs(
+            &checked.scene.directional_derivative(x, &from_knowns(seed)).expect("derivatives are on"),
+        );
         let (p1, p2, m1, m2) = (moved(h), moved(2.0 * h), moved(-h), moved(-2.0 * h));
         rows.push((i, h, j, p1, p2, m1, m2));
     }

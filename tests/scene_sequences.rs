@@ -157,27 +157,7 @@ fn run(
 }
 
 fn bits(outputs: &[SceneOutput]) -> Vec<[u64; 13]> {
-    outputs
-        .iter()
-        .map(|o| {
-            [
-                o.force_longitudinal,
-                o.force_lateral,
-                o.adhesion_utilisation,
-                o.spin_moment,
-                o.current_friction_coefficient,
-                o.slip_velocity,
-                o.effective_creepage_longitudinal,
-                o.effective_creepage_lateral,
-                o.effective_spin_creepage,
-                o.contact_semi_axis_a,
-                o.contact_semi_axis_b,
-                o.max_pressure,
-                o.approach,
-            ]
-            .map(f64::to_bits)
-        })
-        .collect()
+    outputs.iter().map(|o| common::scene_outputs(o).map(f64::to_bits)).collect()
 }
 
 fn check_step(model: &ModelChoice, input: &SceneInput, output: &SceneOutput) -> Result<(), TestCaseError> {

@@ -149,4 +149,3 @@ fn max_pressure_derivative_in_initialisation_mode() {
     let per_newton = 3.0 / (2.0 * PI * 7.2e-3 * 5.4e-3);
     assert!((rates[0] / per_newton - 1.0).abs() < 1e-12, "{}", rates[0]);
 }
-

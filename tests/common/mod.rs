@@ -1,6 +1,7 @@
 //! Shared fixtures for the integration tests.
 #![allow(dead_code)] // each test crate uses its own subset
 
+use wheel_rail_contact::scene::SceneOutput;
 use wheel_rail_contact::{ContactInput, ExactTable, Fastsim, Flexibility, ModelChoice, Polach, TractionBound};
 use wheel_rail_contact::{KalkerLinear, ShenHedrickElkins};
 
@@ -104,4 +105,23 @@ pub fn moved(x: &ContactInput, d: &ContactInput, t: f64) -> ContactInput {
         shear_modulus: x.shear_modulus + t * d.shear_modulus,
         poisson_ratio: x.poisson_ratio,
     }
+}
+
+/// A scene's outputs as one vector: every field the FMU outputs, in its order.
+pub fn scene_outputs(o: &SceneOutput) -> [f64; 13] {
+    [
+        o.force_longitudinal,
+        o.force_lateral,
+        o.adhesion_utilisation,
+        o.spin_moment,
+        o.current_friction_coefficient,
+        o.slip_velocity,
+        o.effective_creepage_longitudinal,
+        o.effective_creepage_lateral,
+        o.effective_spin_creepage,
+        o.contact_semi_axis_a,
+        o.contact_semi_axis_b,
+        o.max_pressure,
+        o.approach,
+    ]
 }
