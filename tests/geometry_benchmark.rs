@@ -3,9 +3,15 @@
 //! solution (`tests/data/mbench_a22_contact_ref_out.csv`, copied from CONTACT rev. 2707's
 //! `examples/mbench_a22_right.ref_out`; inputs `tests/data/manchester_a22_inputs.csv`).
 
-use wheel_rail_contact::geometry::{builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelsetPosition};
+use wheel_rail_contact::geometry::{
+    builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
+};
 
 fn benchmark_pair() -> WheelOnRail {
+    side_pair(WheelSide::Right)
+}
+
+fn side_pair(side: WheelSide) -> WheelOnRail {
     let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
     // The benchmark's track: gauge 1435 mm at 14 mm below the top, flange backs 1360 mm apart
     // at −70 mm in the wheel profile, r0 = 460 mm; G = 82 GPa, ν = 0.28.
@@ -16,14 +22,18 @@ fn benchmark_pair() -> WheelOnRail {
         flange_back_position: -0.070,
         nominal_radius: 0.460,
     };
-    WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, 82e9, 0.28).unwrap()
+    WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, side, 82e9, 0.28).unwrap()
 }
 
 /// (case, y_ws, yaw, roll, F_z) of the right wheel [m, rad, N].
 fn inputs() -> Vec<(u32, f64, f64, f64, f64)> {
+    side_inputs("right,")
+}
+
+fn side_inputs(side: &str) -> Vec<(u32, f64, f64, f64, f64)> {
     include_str!("data/manchester_a22_inputs.csv")
         .lines()
-        .filter(|l| l.starts_with("right,"))
+        .filter(|l| l.starts_with(side))
         .map(|l| {
             let f: Vec<f64> = l.split(',').skip(1).map(|v| v.parse().unwrap()).collect();
             (f[0] as u32, f[1] * 1e-3, f[2], f[3], f[4])
@@ -33,9 +43,13 @@ fn inputs() -> Vec<(u32, f64, f64, f64, f64)> {
 
 /// (case, z_ws, track y, rail y, contact angle, F_N) of the right wheel [m, rad, N].
 fn reference() -> Vec<(u32, f64, f64, f64, f64, f64)> {
+    side_reference("right,")
+}
+
+fn side_reference(side: &str) -> Vec<(u32, f64, f64, f64, f64, f64)> {
     include_str!("data/mbench_a22_contact_ref_out.csv")
         .lines()
-        .filter(|l| l.starts_with("right,"))
+        .filter(|l| l.starts_with(side))
         .map(|l| {
             let f: Vec<f64> = l.split(',').skip(1).map(|v| v.parse().unwrap()).collect();
             (f[0] as u32, f[1] * 1e-3, f[2] * 1e-3, f[3] * 1e-3, f[5], f[6])
@@ -150,4 +164,81 @@ fn bad_positions_are_errors_naming_the_variable() {
     let away = WheelsetPosition { lateral: 0.5, vertical: 0.0, roll: 0.0 };
     let error = pair.contact_points(&away).unwrap_err().to_string();
     assert!(error.contains("do not overlap laterally at wheelset_lateral_displacement = 0.5 m"), "{error}");
+}
+
+#[test]
+fn the_left_wheel_matches_contact_on_a22() {
+    // The left wheel of the same wheelsets (moving right, it runs on its tread, away from the
+    // flange): CONTACT mirrors the profiles; so do we. Same tolerances as the right wheel.
+    // Case 1 is the right wheel's mirror image, excluded for the same flat gap.
+    let pair = side_pair(WheelSide::Left);
+    for ((case, y, _yaw, roll, force), (_, z_ref, track_ref, rail_ref, angle_ref, _)) in
+        side_inputs("left,").into_iter().zip(side_reference("left,")).skip(1)
+    {
+        let (z, patches) =
+            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll }).unwrap();
+        assert_eq!(patches.len(), 1, "case {case}");
+        let point = patches[0].point;
+        println!(
+            "case {case:2}: rail y {:.3}/{:.3} mm, angle {:.4}/{angle_ref:.4}",
+            point.rail_lateral * 1e3,
+            rail_ref * 1e3,
+            point.contact_angle
+        );
+        assert!(
+            (point.rail_lateral - rail_ref).abs() < 1e-3,
+            "case {case}: rail y {} vs {rail_ref}",
+            point.rail_lateral
+        );
+        assert!(
+            (point.track_lateral - track_ref).abs() < 1e-3,
+            "case {case}: track y {} vs {track_ref}",
+            point.track_lateral
+        );
+        assert!(
+            (point.contact_angle - angle_ref).abs() < 0.01,
+            "case {case}: angle {} vs {angle_ref}",
+            point.contact_angle
+        );
+        assert!((z - z_ref).abs() < 0.03e-3, "case {case}: z_ws {z} vs {z_ref}");
+    }
+}
+
+#[test]
+fn left_and_right_are_mirror_images() {
+    let (right, left) = (side_pair(WheelSide::Right), side_pair(WheelSide::Left));
+    for (lateral, roll) in [(0.0, 0.0), (0.004, 1e-4), (-0.003, -2e-4), (0.0085, 3e-4)] {
+        let position = WheelsetPosition { lateral, vertical: 0.0, roll };
+        let mirrored = WheelsetPosition { lateral: -lateral, vertical: 0.0, roll: -roll };
+        let (z_right, on_right) = right.patches_for_force(10e3, &position).unwrap();
+        let (z_left, on_left) = left.patches_for_force(10e3, &mirrored).unwrap();
+        assert_eq!(z_right, z_left);
+        assert_eq!(on_right.len(), on_left.len());
+        for (r, l) in on_right.iter().zip(&on_left) {
+            assert_eq!(
+                (r.point.track_lateral, r.point.contact_angle),
+                (-l.point.track_lateral, -l.point.contact_angle)
+            );
+            assert_eq!((r.normal_force, r.ellipse), (l.normal_force, l.ellipse));
+        }
+    }
+}
+
+#[test]
+fn patches_are_ordered_tread_first() {
+    // At the tread-to-flange jump (case 11's y_ws) two patches: the tread's (rail y > −30 mm)
+    // first, then the flange root's.
+    for side in [WheelSide::Right, WheelSide::Left] {
+        let pair = side_pair(side);
+        let lateral = if side == WheelSide::Right { 0.005 } else { -0.005 };
+        let (_, patches) =
+            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 }).unwrap();
+        assert_eq!(patches.len(), 2, "{side:?}");
+        let sign = if side == WheelSide::Right { 1.0 } else { -1.0 };
+        assert!(
+            sign * patches[0].point.rail_lateral > -0.030 && sign * patches[1].point.rail_lateral < -0.030,
+            "{side:?}"
+        );
+        assert!(patches[0].point.contact_angle.abs() < patches[1].point.contact_angle.abs());
+    }
 }

@@ -1,4 +1,4 @@
-//! The right wheel on the right rail: placement on the track, the undeformed gap, the contact
+//! A wheel on its rail: placement on the track, the undeformed gap, the contact
 //! points (tread and flange, each a local minimum of the gap) and the normal problem with a
 //! Hertz ellipse per patch.
 //!
@@ -31,14 +31,54 @@
 //! what the benchmark check measures. Normal force from the normal penetration δ_n by Hertz's
 //! Q ∝ δ_n^{3/2} (the same ellipse solution at 1 N gives the constant).
 //!
+//! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll; reported
+//! positions and contact angles mirrored back), as CONTACT does.
+//!
 //! Not here yet: yaw (the contact point's shift ahead of the axle and its effect on the
-//! curvatures), rail cant other than the profile's own (refused), the left side (mirror), the
-//! creepages and forces.
+//! curvatures), rail cant other than the profile's own, the creepages and forces.
 
 use super::profile_file::ProfileError;
 use super::smooth_profile::{ProfilePoint, SmoothProfile};
 use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use crate::InvalidInput;
+
+/// Which wheel of the wheelset, on which rail.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WheelSide {
+    /// y > 0: the profiles as given.
+    Right,
+    /// y < 0: the profiles mirrored in y, as CONTACT does.
+    Left,
+}
+
+impl WheelSide {
+    /// The right wheel's position that mirrors this side's: y_ws and roll change sign.
+    fn mirror_position(self, position: &WheelsetPosition) -> WheelsetPosition {
+        match self {
+            Self::Right => *position,
+            Self::Left => WheelsetPosition { lateral: -position.lateral, roll: -position.roll, ..*position },
+        }
+    }
+
+    /// A right-side point seen on this side: lateral positions (track and both profiles', as
+    /// CONTACT reports them for the left side) and the contact angle change sign.
+    fn mirror_point(self, point: &ContactPoint) -> ContactPoint {
+        match self {
+            Self::Right => *point,
+            Self::Left => ContactPoint {
+                track_lateral: -point.track_lateral,
+                rail_lateral: -point.rail_lateral,
+                wheel_lateral: -point.wheel_lateral,
+                contact_angle: -point.contact_angle,
+                ..*point
+            },
+        }
+    }
+
+    fn mirror_patches(self, patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
+        patches.into_iter().map(|patch| ContactPatch { point: self.mirror_point(&patch.point), ..patch }).collect()
+    }
+}
 
 /// The track and wheelset dimensions the placement needs [m].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -111,6 +151,7 @@ pub struct WheelOnRail {
     wheel: SmoothProfile,
     rail: SmoothProfile,
     dimensions: TrackDimensions,
+    side: WheelSide,
     /// Track y of the rail profile's origin.
     rail_offset: f64,
     /// Wheelset y of the wheel profile's origin.
@@ -119,11 +160,13 @@ pub struct WheelOnRail {
 }
 
 impl WheelOnRail {
-    /// Places the profiles (module doc); G, ν for the Hertz ellipses.
+    /// Places the profiles (given for the right side) on `side` (module doc); G, ν for the
+    /// Hertz ellipses.
     pub fn new(
         wheel: SmoothProfile,
         rail: SmoothProfile,
         dimensions: TrackDimensions,
+        side: WheelSide,
         shear_modulus: f64,
         poisson_ratio: f64,
     ) -> Result<Self, ProfileError> {
@@ -152,6 +195,7 @@ impl WheelOnRail {
             wheel,
             rail,
             dimensions,
+            side,
             contact_modulus: modulus,
         })
     }
@@ -181,9 +225,16 @@ impl WheelOnRail {
     }
 
     /// The candidate contact points (module doc) for the wheelset's lateral position and roll,
-    /// ordered by track y; the vertical position is not used.
+    /// tread first (ordered from the rail's field side to its gauge side); the vertical position
+    /// is not used.
     pub fn contact_points(&self, position: &WheelsetPosition) -> Result<Vec<ContactPoint>, ProfileError> {
         check_position(position)?;
+        let points = self.right_points(&self.side.mirror_position(position))?;
+        Ok(points.iter().map(|p| self.side.mirror_point(p)).collect())
+    }
+
+    /// [`Self::contact_points`] for the right side's position.
+    fn right_points(&self, position: &WheelsetPosition) -> Result<Vec<ContactPoint>, ProfileError> {
         let (rail_first, rail_last) = self.rail.lateral_range();
         let (wheel_first, wheel_last) = self.wheel.lateral_range();
         let wheel_shift = position.lateral + self.wheel_offset;
@@ -213,6 +264,8 @@ impl WheelOnRail {
                 position.lateral
             )));
         }
+        // Tread first: from the rail's field side (large y) to its gauge side.
+        points.reverse();
         Ok(points)
     }
 
@@ -260,8 +313,10 @@ impl WheelOnRail {
     /// The loaded patches at the wheelset's vertical position (prescribed position): every
     /// candidate the wheel penetrates, merged where their interpenetration joins.
     pub fn patches_at(&self, position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
-        let points = self.contact_points(position)?;
-        self.load(&points, position)
+        check_position(position)?;
+        let position = self.side.mirror_position(position);
+        let points = self.right_points(&position)?;
+        Ok(self.side.mirror_patches(self.load(&points, &position)?))
     }
 
     fn load(&self, points: &[ContactPoint], position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
@@ -283,7 +338,7 @@ impl WheelOnRail {
 
     /// Whether the gap stays below −z_ws everywhere between two track positions.
     fn interpenetration_joins(&self, from: f64, to: f64, vertical: f64, position: &WheelsetPosition) -> bool {
-        let steps = ((to - from) / SAMPLE_STEP).ceil().max(1.0) as usize;
+        let steps = ((to - from).abs() / SAMPLE_STEP).ceil().max(1.0) as usize;
         (0..=steps).all(|i| {
             let y = from + (to - from) * i as f64 / steps as f64;
             self.gap(y, position).is_some_and(|(g, _, _)| g < vertical)
@@ -317,7 +372,9 @@ impl WheelOnRail {
         if !vertical_force.is_finite() {
             return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
         }
-        let points = self.contact_points(position)?;
+        check_position(position)?;
+        let position = &self.side.mirror_position(position);
+        let points = self.right_points(position)?;
         let touch = points.iter().map(|p| p.gap_at_zero).fold(f64::INFINITY, f64::min);
         if vertical_force <= 0.0 {
             return Ok((touch, Vec::new()));
@@ -345,7 +402,7 @@ impl WheelOnRail {
             }
         }
         let z = 0.5 * (low + high);
-        Ok((z, carried(z)?.1))
+        Ok((z, self.side.mirror_patches(carried(z)?.1)))
     }
 }
 

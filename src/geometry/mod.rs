@@ -7,14 +7,14 @@
 //!   their provenance);
 //! - [`smooth_profile`]: a profile's smooth representation (parametric cubic spline) with its
 //!   slope and curvature;
-//! - [`contact`]: the right wheel placed on the right rail (gauge, flange back, roll), its contact
+//! - [`contact`]: a wheel placed on its rail, right or left (gauge, flange back, roll), its contact
 //!   points (tread and flange), the normal problem in both modes (prescribed vertical position or
 //!   force) with a Hertz ellipse per patch.
 //!
 //! Conventions are CONTACT's module 1: profile coordinates y lateral, z downward, in metres; the
 //! profiles are given for the right side (a left wheel and rail use them mirrored).
 //!
-//! Not here yet: yaw, rail cant beyond the profile's own, the left side (mirroring), the
+//! Not here yet: yaw, rail cant beyond the profile's own, the
 //! per-patch creepages and forces and their sum on the wheelset, a precomputed contact table.
 
 pub mod builtin;
@@ -23,6 +23,6 @@ pub mod profile_file;
 pub mod smooth_profile;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
-pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelsetPosition};
+pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
 pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
 pub use smooth_profile::{ProfilePoint, SmoothProfile};
