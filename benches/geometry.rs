@@ -12,13 +12,7 @@ use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 
 fn geometry(c: &mut Criterion) {
     let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    let dimensions = TrackDimensions {
-        gauge: 1.435,
-        gauge_measuring_height: 0.014,
-        flange_back_distance: 1.360,
-        flange_back_position: -0.070,
-        nominal_radius: 0.460,
-    };
+    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
     let pair =
         WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, WheelSide::Right, 82e9, 0.28)
             .unwrap();

@@ -13,15 +13,9 @@ fn benchmark_pair() -> WheelOnRail {
 
 fn side_pair(side: WheelSide) -> WheelOnRail {
     let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    // The benchmark's track: gauge 1435 mm at 14 mm below the top, flange backs 1360 mm apart
-    // at −70 mm in the wheel profile, r0 = 460 mm; G = 82 GPa, ν = 0.28.
-    let dimensions = TrackDimensions {
-        gauge: 1.435,
-        gauge_measuring_height: 0.014,
-        flange_back_distance: 1.360,
-        flange_back_position: -0.070,
-        nominal_radius: 0.460,
-    };
+    // The benchmark's track (gauge 1435 mm at 14 mm below the top, flange backs 1360 mm apart
+    // at −70 mm in the wheel profile, r0 = 460 mm); G = 82 GPa, ν = 0.28.
+    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
     WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, side, 82e9, 0.28).unwrap()
 }
 

@@ -95,6 +95,19 @@ pub struct TrackDimensions {
     pub nominal_radius: f64,
 }
 
+impl TrackDimensions {
+    /// The Manchester contact benchmark's track and wheelset (case as CONTACT's example
+    /// decks state it): gauge 1435 mm measured 14 mm below the rail top, flange backs 1360 mm
+    /// apart at −70 mm in the S1002 profile's coordinates, nominal radius 460 mm.
+    pub const MANCHESTER_BENCHMARK: Self = Self {
+        gauge: 1.435,
+        gauge_measuring_height: 0.014,
+        flange_back_distance: 1.360,
+        flange_back_position: -0.070,
+        nominal_radius: 0.460,
+    };
+}
+
 /// The wheelset's position relative to the track (yaw is not supported yet).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelsetPosition {
