@@ -80,7 +80,7 @@ impl WheelSide {
     }
 }
 
-/// The track and wheelset dimensions the placement needs [m].
+/// The track and wheelset dimensions the placement needs \[m\].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrackDimensions {
     /// Gauge between the rails' gauge faces.
@@ -111,34 +111,34 @@ impl TrackDimensions {
 /// The wheelset's position relative to the track (yaw is not supported yet).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelsetPosition {
-    /// y_ws [m], positive to the right.
+    /// y_ws \[m\], positive to the right.
     pub lateral: f64,
-    /// z_ws [m], downward (module doc).
+    /// z_ws \[m\], downward (module doc).
     pub vertical: f64,
-    /// φ_ws [rad], about x.
+    /// φ_ws \[rad\], about x.
     pub roll: f64,
 }
 
 /// One contact point's geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
-    /// Track y [m].
+    /// Track y \[m\].
     pub track_lateral: f64,
-    /// Track z of the rail surface [m].
+    /// Track z of the rail surface \[m\].
     pub track_vertical: f64,
-    /// y in the rail profile's coordinates [m].
+    /// y in the rail profile's coordinates \[m\].
     pub rail_lateral: f64,
-    /// y in the wheel profile's coordinates [m].
+    /// y in the wheel profile's coordinates \[m\].
     pub wheel_lateral: f64,
-    /// The surfaces' inclination atan(dz/dy) in track coordinates [rad] (CONTACT's DELTCP).
+    /// The surfaces' inclination atan(dz/dy) in track coordinates \[rad\] (CONTACT's DELTCP).
     pub contact_angle: f64,
-    /// The wheel's radius at the contact point [m].
+    /// The wheel's radius at the contact point \[m\].
     pub rolling_radius: f64,
-    /// The undeformed vertical gap at the contact point with z_ws = 0 [m].
+    /// The undeformed vertical gap at the contact point with z_ws = 0 \[m\].
     pub gap_at_zero: f64,
-    /// Relative curvature along x, A = cos δ/(2 r) [1/m].
+    /// Relative curvature along x, A = cos δ/(2 r) \[1/m\].
     pub curvature_rolling: f64,
-    /// Relative curvature along y, B = (κ_rail − κ_wheel)/2 [1/m].
+    /// Relative curvature along y, B = (κ_rail − κ_wheel)/2 \[1/m\].
     pub curvature_lateral: f64,
 }
 
@@ -147,15 +147,15 @@ pub struct ContactPoint {
 pub struct ContactPatch {
     /// Where it is.
     pub point: ContactPoint,
-    /// Penetration along the contact normal [m].
+    /// Penetration along the contact normal \[m\].
     pub penetration: f64,
-    /// Normal force [N].
+    /// Normal force \[N\].
     pub normal_force: f64,
     /// Hertz's ellipse for that force.
     pub ellipse: HertzContact,
 }
 
-/// Sampling step of the gap [m]: finer than the profiles' point spacing (≈ 0.35 mm).
+/// Sampling step of the gap \[m\]: finer than the profiles' point spacing (≈ 0.35 mm).
 const SAMPLE_STEP: f64 = 1e-4;
 
 /// A wheel profile and a rail profile placed on a track.
@@ -373,7 +373,7 @@ impl WheelOnRail {
         Ok(ContactPatch { point, penetration, normal_force, ellipse })
     }
 
-    /// Prescribed vertical force on the wheel [N]: the wheelset's vertical position at which
+    /// Prescribed vertical force on the wheel \[N\]: the wheelset's vertical position at which
     /// the patches' normal forces carry it (Σ Q_i cos δ_i = F_z; the tangential forces' vertical
     /// share is neglected), found by bisection; returns it with the patches. F_z ≤ 0 is lift-off:
     /// no patch, the position where the wheel just touches.

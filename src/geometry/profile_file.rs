@@ -10,7 +10,7 @@
 //! SIMPACK: the `spline.begin … spline.end` block's processing options are applied in SIMPACK's
 //! order, as CONTACT's `read_simpack.m` documents them — shift (`shift.y`, `shift.z`), rotation
 //! about x (`rotate`, in `units.ang.f` angle units), removal of points outside
-//! [`bound.y.min`, `bound.y.max`] and clipping of z to [`bound.z.min`, `bound.z.max`] (each only
+//! \[`bound.y.min`, `bound.y.max`\] and clipping of z to \[`bound.z.min`, `bound.z.max`\] (each only
 //! when min < max), mirroring (`mirror.y`, `mirror.z`), inversion of the order (`inversion`), then
 //! the length unit (`units.len.f` = file units per metre, 1 when absent). Everything after `!`
 //! is a comment. The optional third column (a smoothing weight) is read and not used: the
@@ -76,12 +76,12 @@ impl fmt::Display for ProfileError {
 
 impl std::error::Error for ProfileError {}
 
-/// A profile's points [m]: y lateral, z downward, y strictly increasing.
+/// A profile's points \[m\]: y lateral, z downward, y strictly increasing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProfilePoints {
-    /// y [m], strictly increasing.
+    /// y \[m\], strictly increasing.
     pub lateral: Vec<f64>,
-    /// z [m], downward.
+    /// z \[m\], downward.
     pub vertical: Vec<f64>,
 }
 

@@ -71,13 +71,13 @@ impl CubicSpline {
 /// A point of a smooth profile with its derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProfilePoint {
-    /// y [m].
+    /// y \[m\].
     pub lateral: f64,
-    /// z [m], downward.
+    /// z \[m\], downward.
     pub vertical: f64,
-    /// The surface's inclination: atan(dz/dy) [rad], positive where z grows with y.
+    /// The surface's inclination: atan(dz/dy) \[rad\], positive where z grows with y.
     pub slope_angle: f64,
-    /// κ [1/m], positive bending towards +z (module doc).
+    /// κ \[1/m\], positive bending towards +z (module doc).
     pub curvature: f64,
 }
 
@@ -111,12 +111,12 @@ impl SmoothProfile {
         Ok(Self { lateral: CubicSpline::natural(&knots, y), vertical: CubicSpline::natural(&knots, z), knots })
     }
 
-    /// The profile's lateral extent [m]: its first and last point's y.
+    /// The profile's lateral extent \[m\]: its first and last point's y.
     pub fn lateral_range(&self) -> (f64, f64) {
         (self.lateral.values[0], self.lateral.values[self.lateral.values.len() - 1])
     }
 
-    /// The profile's length along its points [m] (the largest s).
+    /// The profile's length along its points \[m\] (the largest s).
     pub fn length(&self) -> f64 {
         self.knots[self.knots.len() - 1]
     }
