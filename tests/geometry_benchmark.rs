@@ -236,3 +236,46 @@ fn patches_are_ordered_tread_first() {
         assert!(patches[0].point.contact_angle.abs() < patches[1].point.contact_angle.abs());
     }
 }
+
+#[test]
+fn patches_move_continuously_in_y_except_at_the_two_documented_jumps() {
+    // y_ws from 0 to 10 mm in 0.02 mm steps at 10 kN. A patch's contact point moves by less
+    // than 0.5 mm per step (the fastest smooth move, ≈ 5 mm per mm of y_ws, is 0.1 mm per step)
+    // and its normal force by less than 10 % of F_z (the load passes from the tread to the flange
+    // root within 0.3 mm: up to 0.77 kN per step), except where two minima of the gap inside one
+    // interpenetration region swap which is deeper (the module doc): for S1002 on UIC60 at
+    // y_ws ≈ 0.22 mm on the tread (−8.1 → −18.4 mm on the rail) and ≈ 6.62 mm from the flange
+    // root to the flange (−37.6 → −42.3 mm; the contact angle, and with it Q = F_z/cos δ, jumps).
+    // CONTACT's solution moves between the same places between its cases 1 and 2 (−8.66 →
+    // −16.03 mm) and 13 and 14 (−35.40 → −42.04 mm). The tread-to-flange-root transfer (near
+    // y_ws = 5 mm) goes through a range of two patches, without a jump.
+    let pair = benchmark_pair();
+    let mut previous: Option<Vec<(f64, f64)>> = None;
+    let (mut two_patch_steps, mut jumps) = (0, Vec::new());
+    for step in 0..=500 {
+        let lateral = f64::from(step) * 0.02e-3;
+        let (_, patches) =
+            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 }).unwrap();
+        let now: Vec<(f64, f64)> = patches.iter().map(|p| (p.point.rail_lateral, p.normal_force)).collect();
+        if now.len() == 2 {
+            two_patch_steps += 1;
+        }
+        if let Some(before) = &previous {
+            if before.len() == now.len() {
+                for (&(y0, q0), &(y1, q1)) in before.iter().zip(&now) {
+                    if (y1 - y0).abs() >= 0.5e-3 || (q1 - q0).abs() >= 0.1 * 10e3 {
+                        jumps.push((lateral, y0, y1));
+                    }
+                }
+            }
+        }
+        previous = Some(now);
+    }
+    assert!(two_patch_steps >= 5, "{two_patch_steps} steps with two patches");
+    assert_eq!(jumps.len(), 2, "{jumps:?}");
+    let expected = [(0.22e-3, -8.1e-3, -18.4e-3), (6.62e-3, -37.6e-3, -42.3e-3)];
+    for ((at, from, to), (expected_at, expected_from, expected_to)) in jumps.into_iter().zip(expected) {
+        assert!((at - expected_at).abs() < 0.03e-3, "jump at y_ws = {at}");
+        assert!((from - expected_from).abs() < 0.1e-3 && (to - expected_to).abs() < 0.1e-3, "jump {from} → {to}");
+    }
+}

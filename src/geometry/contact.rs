@@ -21,6 +21,11 @@
 //! the gap uniformly, so the candidates do not depend on it: a candidate with g_i < z_ws is in
 //! contact, penetrating vertically by z_ws − g_i, along its normal by (z_ws − g_i) cos δ.
 //! Two candidates whose interpenetration regions join are one patch (the deeper one kept).
+//! Where two such minima swap which is deeper, the patch's point jumps between them: for S1002
+//! on UIC60 at y_ws ≈ 0.22 mm on the tread and ≈ 6.62 mm from the flange root to the flange
+//! (`tests/geometry_benchmark.rs`); CONTACT, which solves the non-Hertzian patch, moves its
+//! contact reference between the same places between its cases. Elsewhere the points move
+//! continuously with y_ws, and the load passes between separate patches continuously.
 //!
 //! Ellipse: Hertz per patch (the scene's [`HertzContact`]) from the relative curvatures at the
 //! contact point: rolling A = cos δ/(2 r) (the wheel's normal-section curvature along its
