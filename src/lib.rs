@@ -33,6 +33,7 @@
 mod contact_input;
 mod creep_force_model;
 mod creep_forces;
+pub mod geometry;
 mod invalid_input;
 mod kalker_coefficients;
 pub mod models;

@@ -1,0 +1,41 @@
+//! One wheel's contact geometry and normal problem from profiles, by the direct search (no
+//! precomputed table yet): the Manchester right wheel at y_ws = 2 mm (tread) and 7 mm
+//! (flange), 10 kN prescribed, against one Polach evaluation in the same run for scale.
+//! The goal for a whole wheel step is ≤ 5 µs; the direct search is far from it.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use wheel_rail_contact::geometry::{
+    builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
+};
+use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+
+fn geometry(c: &mut Criterion) {
+    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
+    let pair =
+        WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, WheelSide::Right, 82e9, 0.28)
+            .unwrap();
+    for (name, lateral) in [("geometry_direct_tread", 0.002), ("geometry_direct_flange", 0.007)] {
+        let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 };
+        c.bench_function(name, |bencher| {
+            bencher.iter(|| pair.patches_for_force(black_box(10e3), black_box(&position)))
+        });
+    }
+    let input = ContactInput {
+        creepage_longitudinal: 1e-3,
+        creepage_lateral: 0.0,
+        spin_creepage: 0.0,
+        normal_force: 10e3,
+        semi_axis_a: 3.7e-3,
+        semi_axis_b: 1.7e-3,
+        friction_coefficient: 0.3,
+        shear_modulus: 82e9,
+        poisson_ratio: 0.28,
+    };
+    let model = Polach::default();
+    c.bench_function("geometry_polach_scale", |bencher| bencher.iter(|| model.creep_forces(black_box(&input))));
+}
+
+criterion_group!(benches, geometry);
+criterion_main!(benches);

@@ -1,0 +1,466 @@
+//! A wheel on its rail: placement on the track, the undeformed gap, the contact
+//! points (tread and flange, each a local minimum of the gap) and the normal problem with a
+//! Hertz ellipse per patch.
+//!
+//! Conventions (CONTACT's module 1): track coordinates x along the track in the rolling
+//! direction, y lateral positive to the right, z downward; roll about x. The profiles are the
+//! right side's, in their own coordinates (y lateral, z downward, metres).
+//!
+//! Placement. The rail: its gauge face — the point on its inner (y < 0) flank at the gauge
+//! measuring height below its top — lies at y = gauge/2. The wheel: its profile's flange back
+//! (y = `flange_back_position`) lies at y = `flange_back_distance`/2 in wheelset coordinates,
+//! the profile's z = 0 on the nominal radius r0 below the axle. The wheelset at (y_ws, z_ws,
+//! roll): a wheel point (Y, Z) of the wheelset frame (origin on the axle centre line at the
+//! wheel datum's height) goes to (y_ws + Y cos φ − (Z + r0) sin φ, z_ws − r0 + Y sin φ + (Z + r0)
+//! cos φ), a rotation about the axle centre. With φ = 0, z_ws = 0 the wheel's datum is at the
+//! rail top's level (as CONTACT's Z_WS; its case deck reports z_ws = 0.198 mm on y_ws = 0).
+//!
+//! Contact points. The gap g(y) = z_rail(y) − z_wheel(y) (vertical, undeformed) is sampled every
+//! 0.1 mm over the profiles' common lateral range; each interior local minimum, refined by
+//! golden-section search, is a candidate contact point. The wheelset's vertical position shifts
+//! the gap uniformly, so the candidates do not depend on it: a candidate with g_i < z_ws is in
+//! contact, penetrating vertically by z_ws − g_i, along its normal by (z_ws − g_i) cos δ.
+//! Two candidates whose interpenetration regions join are one patch (the deeper one kept).
+//! Where two such minima swap which is deeper, the patch's point jumps between them: for S1002
+//! on UIC60 at y_ws ≈ 0.22 mm on the tread and ≈ 6.62 mm from the flange root to the flange
+//! (`tests/geometry_benchmark.rs`); CONTACT, which solves the non-Hertzian patch, moves its
+//! contact reference between the same places between its cases. Elsewhere the points move
+//! continuously with y_ws, and the load passes between separate patches continuously.
+//!
+//! Ellipse: Hertz per patch (the scene's [`HertzContact`]) from the relative curvatures at the
+//! contact point: rolling A = cos δ/(2 r) (the wheel's normal-section curvature along its
+//! parallel, Meusnier's theorem; a straight rail), lateral B = (κ_rail − κ_wheel)/2 with the
+//! profiles' curvatures (positive bending downward; the rail's convex crown and the wheel's
+//! concave throat). Hertz because it is what multibody codes use online, needs one evaluation
+//! per patch, and its error where the curvature changes across the patch (the flange root) is
+//! what the benchmark check measures. Normal force from the normal penetration δ_n by Hertz's
+//! Q ∝ δ_n^{3/2} (the same ellipse solution at 1 N gives the constant).
+//!
+//! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll; reported
+//! positions and contact angles mirrored back), as CONTACT does.
+//!
+//! Not here yet: yaw (the contact point's shift ahead of the axle and its effect on the
+//! curvatures), rail cant other than the profile's own, the creepages and forces.
+
+use super::profile_file::ProfileError;
+use super::smooth_profile::{ProfilePoint, SmoothProfile};
+use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use crate::InvalidInput;
+
+/// Which wheel of the wheelset, on which rail.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WheelSide {
+    /// y > 0: the profiles as given.
+    Right,
+    /// y < 0: the profiles mirrored in y, as CONTACT does.
+    Left,
+}
+
+impl WheelSide {
+    /// The right wheel's position that mirrors this side's: y_ws and roll change sign.
+    fn mirror_position(self, position: &WheelsetPosition) -> WheelsetPosition {
+        match self {
+            Self::Right => *position,
+            Self::Left => WheelsetPosition { lateral: -position.lateral, roll: -position.roll, ..*position },
+        }
+    }
+
+    /// A right-side point seen on this side: lateral positions (track and both profiles', as
+    /// CONTACT reports them for the left side) and the contact angle change sign.
+    fn mirror_point(self, point: &ContactPoint) -> ContactPoint {
+        match self {
+            Self::Right => *point,
+            Self::Left => ContactPoint {
+                track_lateral: -point.track_lateral,
+                rail_lateral: -point.rail_lateral,
+                wheel_lateral: -point.wheel_lateral,
+                contact_angle: -point.contact_angle,
+                ..*point
+            },
+        }
+    }
+
+    fn mirror_patches(self, patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
+        patches.into_iter().map(|patch| ContactPatch { point: self.mirror_point(&patch.point), ..patch }).collect()
+    }
+}
+
+/// The track and wheelset dimensions the placement needs \[m\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackDimensions {
+    /// Gauge between the rails' gauge faces.
+    pub gauge: f64,
+    /// How far below the rail top the gauge is measured (14 mm in EN 13848-1).
+    pub gauge_measuring_height: f64,
+    /// Distance between the wheels' flange backs.
+    pub flange_back_distance: f64,
+    /// The flange back's lateral position in the wheel profile's coordinates.
+    pub flange_back_position: f64,
+    /// The wheel's radius at its profile's z = 0.
+    pub nominal_radius: f64,
+}
+
+impl TrackDimensions {
+    /// The Manchester contact benchmark's track and wheelset (case as CONTACT's example
+    /// decks state it): gauge 1435 mm measured 14 mm below the rail top, flange backs 1360 mm
+    /// apart at −70 mm in the S1002 profile's coordinates, nominal radius 460 mm.
+    pub const MANCHESTER_BENCHMARK: Self = Self {
+        gauge: 1.435,
+        gauge_measuring_height: 0.014,
+        flange_back_distance: 1.360,
+        flange_back_position: -0.070,
+        nominal_radius: 0.460,
+    };
+}
+
+/// The wheelset's position relative to the track (yaw is not supported yet).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelsetPosition {
+    /// y_ws \[m\], positive to the right.
+    pub lateral: f64,
+    /// z_ws \[m\], downward (module doc).
+    pub vertical: f64,
+    /// φ_ws \[rad\], about x.
+    pub roll: f64,
+}
+
+/// One contact point's geometry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactPoint {
+    /// Track y \[m\].
+    pub track_lateral: f64,
+    /// Track z of the rail surface \[m\].
+    pub track_vertical: f64,
+    /// y in the rail profile's coordinates \[m\].
+    pub rail_lateral: f64,
+    /// y in the wheel profile's coordinates \[m\].
+    pub wheel_lateral: f64,
+    /// The surfaces' inclination atan(dz/dy) in track coordinates \[rad\] (CONTACT's DELTCP).
+    pub contact_angle: f64,
+    /// The wheel's radius at the contact point \[m\].
+    pub rolling_radius: f64,
+    /// The undeformed vertical gap at the contact point with z_ws = 0 \[m\].
+    pub gap_at_zero: f64,
+    /// Relative curvature along x, A = cos δ/(2 r) \[1/m\].
+    pub curvature_rolling: f64,
+    /// Relative curvature along y, B = (κ_rail − κ_wheel)/2 \[1/m\].
+    pub curvature_lateral: f64,
+}
+
+/// A loaded patch: its contact point, normal penetration, normal force and Hertz ellipse.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactPatch {
+    /// Where it is.
+    pub point: ContactPoint,
+    /// Penetration along the contact normal \[m\].
+    pub penetration: f64,
+    /// Normal force \[N\].
+    pub normal_force: f64,
+    /// Hertz's ellipse for that force.
+    pub ellipse: HertzContact,
+}
+
+/// Sampling step of the gap \[m\]: finer than the profiles' point spacing (≈ 0.35 mm).
+const SAMPLE_STEP: f64 = 1e-4;
+
+/// A wheel profile and a rail profile placed on a track.
+#[derive(Debug, Clone)]
+pub struct WheelOnRail {
+    wheel: SmoothProfile,
+    rail: SmoothProfile,
+    dimensions: TrackDimensions,
+    side: WheelSide,
+    /// Track y of the rail profile's origin.
+    rail_offset: f64,
+    /// Wheelset y of the wheel profile's origin.
+    wheel_offset: f64,
+    contact_modulus: f64,
+}
+
+impl WheelOnRail {
+    /// Places the profiles (given for the right side) on `side` (module doc); G, ν for the
+    /// Hertz ellipses.
+    pub fn new(
+        wheel: SmoothProfile,
+        rail: SmoothProfile,
+        dimensions: TrackDimensions,
+        side: WheelSide,
+        shear_modulus: f64,
+        poisson_ratio: f64,
+    ) -> Result<Self, ProfileError> {
+        let named = |e: InvalidInput| ProfileError::whole(e.to_string());
+        let modulus = contact_modulus(shear_modulus, poisson_ratio).map_err(named)?;
+        for (name, value) in [
+            ("track_gauge", dimensions.gauge),
+            ("gauge_measuring_height", dimensions.gauge_measuring_height),
+            ("flange_back_distance", dimensions.flange_back_distance),
+            ("wheel_nominal_radius", dimensions.nominal_radius),
+        ] {
+            if !(value > 0.0 && value.is_finite()) {
+                return Err(ProfileError::whole(format!("{name} = {value} must be finite and > 0")));
+            }
+        }
+        if !dimensions.flange_back_position.is_finite() {
+            return Err(ProfileError::whole(format!(
+                "flange_back_position = {} must be finite",
+                dimensions.flange_back_position
+            )));
+        }
+        let gauge_face = gauge_face(&rail, dimensions.gauge_measuring_height)?;
+        Ok(Self {
+            rail_offset: 0.5 * dimensions.gauge - gauge_face,
+            wheel_offset: 0.5 * dimensions.flange_back_distance - dimensions.flange_back_position,
+            wheel,
+            rail,
+            dimensions,
+            side,
+            contact_modulus: modulus,
+        })
+    }
+
+    /// The wheel surface's point at track y (rotated by the roll), `None` off the profile.
+    fn wheel_at(&self, y: f64, position: &WheelsetPosition) -> Option<(ProfilePoint, f64)> {
+        let r0 = self.dimensions.nominal_radius;
+        let (sin, cos) = position.roll.sin_cos();
+        // Y cos φ − (Z(Y) + r0) sin φ = y − y_ws: a fixed point in Y, contracting where
+        // |Z′ tan φ| < 1 (everywhere but near-vertical flanks for realistic rolls).
+        let mut wheelset_y = (y - position.lateral + r0 * sin) / cos;
+        let mut point = self.wheel.at_lateral(wheelset_y - self.wheel_offset)?;
+        for _ in 0..4 {
+            wheelset_y = (y - position.lateral + (point.vertical + r0) * sin) / cos;
+            point = self.wheel.at_lateral(wheelset_y - self.wheel_offset)?;
+        }
+        let z = position.vertical - r0 + wheelset_y * sin + (point.vertical + r0) * cos;
+        Some((point, z))
+    }
+
+    /// The vertical gap at track y with z_ws = 0, and the two surface points.
+    fn gap(&self, y: f64, position: &WheelsetPosition) -> Option<(f64, ProfilePoint, ProfilePoint)> {
+        let at_zero = WheelsetPosition { vertical: 0.0, ..*position };
+        let (wheel, wheel_z) = self.wheel_at(y, &at_zero)?;
+        let rail = self.rail.at_lateral(y - self.rail_offset)?;
+        Some((rail.vertical - wheel_z, wheel, rail))
+    }
+
+    /// The candidate contact points (module doc) for the wheelset's lateral position and roll,
+    /// tread first (ordered from the rail's field side to its gauge side); the vertical position
+    /// is not used.
+    pub fn contact_points(&self, position: &WheelsetPosition) -> Result<Vec<ContactPoint>, ProfileError> {
+        check_position(position)?;
+        let points = self.right_points(&self.side.mirror_position(position))?;
+        Ok(points.iter().map(|p| self.side.mirror_point(p)).collect())
+    }
+
+    /// [`Self::contact_points`] for the right side's position.
+    fn right_points(&self, position: &WheelsetPosition) -> Result<Vec<ContactPoint>, ProfileError> {
+        let (rail_first, rail_last) = self.rail.lateral_range();
+        let (wheel_first, wheel_last) = self.wheel.lateral_range();
+        let wheel_shift = position.lateral + self.wheel_offset;
+        let from = (rail_first + self.rail_offset).max(wheel_first + wheel_shift) + SAMPLE_STEP;
+        let to = (rail_last + self.rail_offset).min(wheel_last + wheel_shift) - SAMPLE_STEP;
+        let samples: Vec<(f64, f64)> = (0..)
+            .map(|i| from + f64::from(i) * SAMPLE_STEP)
+            .take_while(|&y| y <= to)
+            .filter_map(|y| self.gap(y, position).map(|(g, _, _)| (y, g)))
+            .collect();
+        if samples.len() < 3 {
+            return Err(ProfileError::whole(format!(
+                "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
+                position.lateral
+            )));
+        }
+        let mut points = Vec::new();
+        for window in samples.windows(3) {
+            if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
+                let y = self.refine_minimum(window[0].0, window[2].0, position);
+                points.push(self.contact_point(y, position)?);
+            }
+        }
+        if points.is_empty() {
+            return Err(ProfileError::whole(format!(
+                "the profiles never touch at wheelset_lateral_displacement = {} m: the gap has no minimum inside their common range",
+                position.lateral
+            )));
+        }
+        // Tread first: from the rail's field side (large y) to its gauge side.
+        points.reverse();
+        Ok(points)
+    }
+
+    /// Golden-section search for the gap's minimum in [low, high].
+    fn refine_minimum(&self, mut low: f64, mut high: f64, position: &WheelsetPosition) -> f64 {
+        let gap = |y: f64| self.gap(y, position).map_or(f64::INFINITY, |(g, _, _)| g);
+        let ratio = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut left, mut right) = (high - ratio * (high - low), low + ratio * (high - low));
+        let (mut g_left, mut g_right) = (gap(left), gap(right));
+        while high - low > 1e-9 {
+            if g_left < g_right {
+                high = right;
+                (right, g_right) = (left, g_left);
+                left = high - ratio * (high - low);
+                g_left = gap(left);
+            } else {
+                low = left;
+                (left, g_left) = (right, g_right);
+                right = low + ratio * (high - low);
+                g_right = gap(right);
+            }
+        }
+        0.5 * (low + high)
+    }
+
+    fn contact_point(&self, y: f64, position: &WheelsetPosition) -> Result<ContactPoint, ProfileError> {
+        let (gap, wheel, rail) = self
+            .gap(y, position)
+            .ok_or_else(|| ProfileError::whole(format!("contact point y = {y} m off the profiles")))?;
+        let rolling_radius = self.dimensions.nominal_radius + wheel.vertical;
+        let contact_angle = rail.slope_angle;
+        Ok(ContactPoint {
+            track_lateral: y,
+            track_vertical: rail.vertical,
+            rail_lateral: rail.lateral,
+            wheel_lateral: wheel.lateral,
+            contact_angle,
+            rolling_radius,
+            gap_at_zero: gap,
+            curvature_rolling: 0.5 * contact_angle.cos() / rolling_radius,
+            curvature_lateral: 0.5 * (rail.curvature - wheel.curvature),
+        })
+    }
+
+    /// The loaded patches at the wheelset's vertical position (prescribed position): every
+    /// candidate the wheel penetrates, merged where their interpenetration joins.
+    pub fn patches_at(&self, position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
+        check_position(position)?;
+        let position = self.side.mirror_position(position);
+        let points = self.right_points(&position)?;
+        Ok(self.side.mirror_patches(self.load(&points, &position)?))
+    }
+
+    fn load(&self, points: &[ContactPoint], position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
+        let z = position.vertical;
+        let mut active: Vec<ContactPoint> = Vec::new();
+        for point in points.iter().filter(|p| p.gap_at_zero < z) {
+            if let Some(last) = active.last_mut() {
+                if self.interpenetration_joins(last.track_lateral, point.track_lateral, z, position) {
+                    if point.gap_at_zero < last.gap_at_zero {
+                        *last = *point;
+                    }
+                    continue;
+                }
+            }
+            active.push(*point);
+        }
+        active.iter().map(|point| self.patch(*point, (z - point.gap_at_zero) * point.contact_angle.cos())).collect()
+    }
+
+    /// Whether the gap stays below −z_ws everywhere between two track positions.
+    fn interpenetration_joins(&self, from: f64, to: f64, vertical: f64, position: &WheelsetPosition) -> bool {
+        let steps = ((to - from).abs() / SAMPLE_STEP).ceil().max(1.0) as usize;
+        (0..=steps).all(|i| {
+            let y = from + (to - from) * i as f64 / steps as f64;
+            self.gap(y, position).is_some_and(|(g, _, _)| g < vertical)
+        })
+    }
+
+    fn patch(&self, point: ContactPoint, penetration: f64) -> Result<ContactPatch, ProfileError> {
+        let named = |e: InvalidInput| {
+            ProfileError::whole(format!(
+                "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
+                point.rail_lateral * 1e3
+            ))
+        };
+        let curvature = RelativeCurvature::new(point.curvature_rolling, point.curvature_lateral).map_err(named)?;
+        // Hertz: δ ∝ Q^{2/3}, so Q = (δ/δ₁)^{3/2} with δ₁ the approach under 1 N.
+        let unit = HertzContact::solve(1.0, &curvature, self.contact_modulus).map_err(named)?;
+        let normal_force = (penetration / unit.approach).powf(1.5);
+        let ellipse = HertzContact::solve(normal_force, &curvature, self.contact_modulus).map_err(named)?;
+        Ok(ContactPatch { point, penetration, normal_force, ellipse })
+    }
+
+    /// Prescribed vertical force on the wheel \[N\]: the wheelset's vertical position at which
+    /// the patches' normal forces carry it (Σ Q_i cos δ_i = F_z; the tangential forces' vertical
+    /// share is neglected), found by bisection; returns it with the patches. F_z ≤ 0 is lift-off:
+    /// no patch, the position where the wheel just touches.
+    pub fn patches_for_force(
+        &self,
+        vertical_force: f64,
+        position: &WheelsetPosition,
+    ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
+        if !vertical_force.is_finite() {
+            return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
+        }
+        check_position(position)?;
+        let position = &self.side.mirror_position(position);
+        let points = self.right_points(position)?;
+        let touch = points.iter().map(|p| p.gap_at_zero).fold(f64::INFINITY, f64::min);
+        if vertical_force <= 0.0 {
+            return Ok((touch, Vec::new()));
+        }
+        let carried = |z: f64| -> Result<(f64, Vec<ContactPatch>), ProfileError> {
+            let patches = self.load(&points, &WheelsetPosition { vertical: z, ..*position })?;
+            Ok((patches.iter().map(|p| p.normal_force * p.point.contact_angle.cos()).sum(), patches))
+        };
+        let (mut low, mut high) = (touch, touch + 1e-5);
+        while carried(high)?.0 < vertical_force {
+            low = high;
+            high = touch + 2.0 * (high - touch);
+            if high - touch > 0.1 {
+                return Err(ProfileError::whole(format!(
+                    "vertical_force = {vertical_force} N is not carried within 0.1 m of penetration"
+                )));
+            }
+        }
+        while high - low > 1e-13 {
+            let middle = 0.5 * (low + high);
+            if carried(middle)?.0 < vertical_force {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        let z = 0.5 * (low + high);
+        Ok((z, self.side.mirror_patches(carried(z)?.1)))
+    }
+}
+
+fn check_position(position: &WheelsetPosition) -> Result<(), ProfileError> {
+    for (name, value) in [
+        ("wheelset_lateral_displacement", position.lateral),
+        ("wheelset_vertical_position", position.vertical),
+        ("wheelset_roll_angle", position.roll),
+    ] {
+        if !value.is_finite() {
+            return Err(ProfileError::whole(format!("{name} = {value} must be finite")));
+        }
+    }
+    if position.roll.abs() > 0.1 {
+        return Err(ProfileError::whole(format!("wheelset_roll_angle = {} rad must be within ±0.1", position.roll)));
+    }
+    Ok(())
+}
+
+/// The rail profile's gauge face: y of its inner (y < 0 side) flank at `height` below its top.
+fn gauge_face(rail: &SmoothProfile, height: f64) -> Result<f64, ProfileError> {
+    let (first, last) = rail.lateral_range();
+    let samples: Vec<ProfilePoint> =
+        (0..=10_000).filter_map(|i| rail.at_lateral(first + (last - first) * f64::from(i) / 10_000.0)).collect();
+    let top = samples.iter().map(|p| p.vertical).fold(f64::INFINITY, f64::min);
+    let level = top + height;
+    // From the top towards the inner end, the first crossing of the measuring level.
+    let top_index = samples.iter().position(|p| p.vertical == top).unwrap_or(0);
+    let crossing = samples[..=top_index].windows(2).rev().find(|w| w[0].vertical >= level && w[1].vertical < level);
+    let [outer, inner] = crossing.map(|w| [w[0], w[1]]).ok_or_else(|| {
+        ProfileError::whole(format!("the rail profile does not reach {height} m below its top on its inner side"))
+    })?;
+    // Bisection between the two samples.
+    let (mut low, mut high) = (outer.lateral, inner.lateral);
+    for _ in 0..60 {
+        let middle = 0.5 * (low + high);
+        match rail.at_lateral(middle) {
+            Some(p) if p.vertical >= level => low = middle,
+            _ => high = middle,
+        }
+    }
+    Ok(0.5 * (low + high))
+}

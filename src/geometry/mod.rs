@@ -1,0 +1,28 @@
+//! Wheel–rail contact geometry from profiles (issue 25, core part): what is here so far.
+//!
+//! - [`profile_file`]: the SIMPACK (`.prw`, `.prr`) and MiniProf (`.whl`, `.ban`) readers, with
+//!   errors naming the line and the reason;
+//! - [`builtin`]: the Manchester contact benchmark's S1002 wheel and UIC60 rail profiles, compiled
+//!   in and selectable by name (`MBench_S1002`, `MBench_UIC60`; `data/profiles/README.md` gives
+//!   their provenance);
+//! - [`smooth_profile`]: a profile's smooth representation (parametric cubic spline) with its
+//!   slope and curvature;
+//! - [`contact`]: a wheel placed on its rail, right or left (gauge, flange back, roll), its contact
+//!   points (tread and flange), the normal problem in both modes (prescribed vertical position or
+//!   force) with a Hertz ellipse per patch.
+//!
+//! Conventions are CONTACT's module 1: profile coordinates y lateral, z downward, in metres; the
+//! profiles are given for the right side (a left wheel and rail use them mirrored).
+//!
+//! Not here yet: yaw, rail cant beyond the profile's own, the
+//! per-patch creepages and forces and their sum on the wheelset, a precomputed contact table.
+
+pub mod builtin;
+pub mod contact;
+pub mod profile_file;
+pub mod smooth_profile;
+
+pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
+pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
+pub use smooth_profile::{ProfilePoint, SmoothProfile};

@@ -1,0 +1,327 @@
+//! Reading wheel and rail profile files: SIMPACK (`.prw` wheel, `.prr` rail) and MiniProf
+//! (`.whl` wheel, `.ban` rail). The text is parsed here; opening the file is the caller's
+//! business (the core does no I/O).
+//!
+//! Both readers return the profile's points in metres, y lateral, z downward (CONTACT's profile
+//! coordinates), ordered by increasing y, y strictly increasing. A file whose points reverse
+//! direction in y, repeat a point, hold fewer than four points, a non-number or a non-finite
+//! value is refused with the line and the reason.
+//!
+//! SIMPACK: the `spline.begin … spline.end` block's processing options are applied in SIMPACK's
+//! order, as CONTACT's `read_simpack.m` documents them — shift (`shift.y`, `shift.z`), rotation
+//! about x (`rotate`, in `units.ang.f` angle units), removal of points outside
+//! \[`bound.y.min`, `bound.y.max`\] and clipping of z to \[`bound.z.min`, `bound.z.max`\] (each only
+//! when min < max), mirroring (`mirror.y`, `mirror.z`), inversion of the order (`inversion`), then
+//! the length unit (`units.len.f` = file units per metre, 1 when absent). Everything after `!`
+//! is a comment. The optional third column (a smoothing weight) is read and not used: the
+//! smooth representation interpolates.
+//!
+//! MiniProf: `Key=Value` header lines, then one point per line, columns as `ColumnDef` names
+//! them (`X,Y` when absent: X lateral, Y vertical, both in mm); everything after `"`, `!` or `%`
+//! is a comment (MiniProf comments out points with a leading `"`, as CONTACT's
+//! `read_miniprof.m` reads them).
+
+use std::fmt;
+
+/// A profile file's format, chosen by its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProfileFormat {
+    /// SIMPACK `.prw` (wheel) / `.prr` (rail).
+    Simpack,
+    /// MiniProf `.whl` (wheel) / `.ban` (rail).
+    MiniProf,
+}
+
+impl ProfileFormat {
+    /// The format of a file by its extension (case-insensitive), `None` for any other.
+    pub fn from_file_name(name: &str) -> Option<Self> {
+        let extension = name.rsplit_once('.')?.1.to_ascii_lowercase();
+        match extension.as_str() {
+            "prw" | "prr" => Some(Self::Simpack),
+            "whl" | "ban" => Some(Self::MiniProf),
+            _ => None,
+        }
+    }
+}
+
+/// Why a profile cannot be read: the line (1-based, when one is to blame) and the reason.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ProfileError {
+    /// The file's line the error was found on, 1-based.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub reason: String,
+}
+
+impl ProfileError {
+    #[cold]
+    pub(crate) fn at(line: usize, reason: impl Into<String>) -> Self {
+        Self { line: Some(line), reason: reason.into() }
+    }
+
+    #[cold]
+    pub(crate) fn whole(reason: impl Into<String>) -> Self {
+        Self { line: None, reason: reason.into() }
+    }
+}
+
+impl fmt::Display for ProfileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "line {line}: {}", self.reason),
+            None => f.write_str(&self.reason),
+        }
+    }
+}
+
+impl std::error::Error for ProfileError {}
+
+/// A profile's points \[m\]: y lateral, z downward, y strictly increasing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProfilePoints {
+    /// y \[m\], strictly increasing.
+    pub lateral: Vec<f64>,
+    /// z \[m\], downward.
+    pub vertical: Vec<f64>,
+}
+
+/// The fewest points the smooth representation (a cubic spline) accepts.
+const MIN_POINTS: usize = 4;
+
+/// Reads a profile file's text in the given format.
+pub fn parse_profile(text: &str, format: ProfileFormat) -> Result<ProfilePoints, ProfileError> {
+    match format {
+        ProfileFormat::Simpack => parse_simpack(text),
+        ProfileFormat::MiniProf => parse_miniprof(text),
+    }
+}
+
+/// A point as read, with its line for the errors found later.
+#[derive(Debug, Clone, Copy)]
+struct RawPoint {
+    y: f64,
+    z: f64,
+    line: usize,
+}
+
+/// SIMPACK's processing options (see the module doc), with SIMPACK's defaults.
+struct SimpackOptions {
+    shift: (f64, f64),
+    rotate: f64,
+    bound_y: (f64, f64),
+    bound_z: (f64, f64),
+    mirror_y: bool,
+    mirror_z: bool,
+    inversion: bool,
+    length_per_metre: f64,
+    angle_per_radian: f64,
+}
+
+impl Default for SimpackOptions {
+    fn default() -> Self {
+        Self {
+            shift: (0.0, 0.0),
+            rotate: 0.0,
+            bound_y: (1.0, 0.0),
+            bound_z: (1.0, 0.0),
+            mirror_y: false,
+            mirror_z: false,
+            inversion: false,
+            length_per_metre: 1.0,
+            angle_per_radian: 1.0,
+        }
+    }
+}
+
+fn parse_simpack(text: &str) -> Result<ProfilePoints, ProfileError> {
+    let mut options = SimpackOptions::default();
+    let mut points = Vec::new();
+    let mut in_points = false;
+    let mut seen_points = false;
+    for (index, raw_line) in text.lines().enumerate() {
+        let line = index + 1;
+        let content = raw_line.split('!').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        match content {
+            "point.begin" => {
+                in_points = true;
+                seen_points = true;
+                continue;
+            }
+            "point.end" => {
+                in_points = false;
+                continue;
+            }
+            _ => {}
+        }
+        if in_points {
+            points.push(parse_point(content, line, (0, 1))?);
+        } else if let Some((key, value)) = content.split_once('=') {
+            apply_simpack_option(&mut options, key.trim(), value.trim(), line)?;
+        }
+    }
+    if !seen_points {
+        return Err(ProfileError::whole("no `point.begin` block: not a SIMPACK profile"));
+    }
+    if in_points {
+        return Err(ProfileError::at(text.lines().count(), "`point.begin` without `point.end`"));
+    }
+    let points = process_simpack(points, &options);
+    finish(points)
+}
+
+fn apply_simpack_option(options: &mut SimpackOptions, key: &str, value: &str, line: usize) -> Result<(), ProfileError> {
+    let number = || -> Result<f64, ProfileError> {
+        value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| ProfileError::at(line, format!("`{key}` must be a finite number, found `{value}`")))
+    };
+    let flag = || -> Result<bool, ProfileError> {
+        match value {
+            "0" => Ok(false),
+            "1" => Ok(true),
+            _ => Err(ProfileError::at(line, format!("`{key}` must be 0 or 1, found `{value}`"))),
+        }
+    };
+    match key {
+        "shift.y" => options.shift.0 = number()?,
+        "shift.z" => options.shift.1 = number()?,
+        "rotate" => options.rotate = number()?,
+        "bound.y.min" => options.bound_y.0 = number()?,
+        "bound.y.max" => options.bound_y.1 = number()?,
+        "bound.z.min" => options.bound_z.0 = number()?,
+        "bound.z.max" => options.bound_z.1 = number()?,
+        "mirror.y" => options.mirror_y = flag()?,
+        "mirror.z" => options.mirror_z = flag()?,
+        "inversion" => options.inversion = flag()?,
+        "units.len.f" | "units.ang.f" => {
+            let factor = number()?;
+            if factor <= 0.0 {
+                return Err(ProfileError::at(line, format!("`{key}` must be > 0, found `{value}`")));
+            }
+            if key == "units.len.f" {
+                options.length_per_metre = factor;
+            } else {
+                options.angle_per_radian = factor;
+            }
+        }
+        // Other header data (version, type, file names, comments) does not change the points.
+        _ => {}
+    }
+    Ok(())
+}
+
+/// SIMPACK's modifications in its order (module doc), the result in metres.
+fn process_simpack(mut points: Vec<RawPoint>, options: &SimpackOptions) -> Vec<RawPoint> {
+    let (sin, cos) = (options.rotate / options.angle_per_radian).sin_cos();
+    for p in &mut points {
+        let (y, z) = (p.y + options.shift.0, p.z + options.shift.1);
+        (p.y, p.z) = (cos * y - sin * z, sin * y + cos * z);
+    }
+    let (y_min, y_max) = options.bound_y;
+    if y_min < y_max {
+        points.retain(|p| (y_min..=y_max).contains(&p.y));
+    }
+    let (z_min, z_max) = options.bound_z;
+    for p in &mut points {
+        if z_min < z_max {
+            p.z = p.z.clamp(z_min, z_max);
+        }
+        if options.mirror_y {
+            p.y = -p.y;
+        }
+        if options.mirror_z {
+            p.z = -p.z;
+        }
+        p.y /= options.length_per_metre;
+        p.z /= options.length_per_metre;
+    }
+    if options.inversion {
+        points.reverse();
+    }
+    points
+}
+
+fn parse_miniprof(text: &str) -> Result<ProfilePoints, ProfileError> {
+    let mut columns = (0, 1);
+    let mut points = Vec::new();
+    for (index, raw_line) in text.lines().enumerate() {
+        let line = index + 1;
+        let content = raw_line.split(['"', '!', '%']).next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        if let Some((key, value)) = content.split_once('=') {
+            if key.trim() == "ColumnDef" {
+                columns = miniprof_columns(value, line)?;
+            }
+            continue;
+        }
+        let mut point = parse_point(content, line, columns)?;
+        // MiniProf writes millimetres.
+        point.y *= 1e-3;
+        point.z *= 1e-3;
+        points.push(point);
+    }
+    finish(points)
+}
+
+/// The positions of the X (lateral) and Y (vertical) columns in a MiniProf `ColumnDef`.
+fn miniprof_columns(definition: &str, line: usize) -> Result<(usize, usize), ProfileError> {
+    let names: Vec<&str> = definition.split(',').map(str::trim).collect();
+    let find = |name: &str| names.iter().position(|n| n.eq_ignore_ascii_case(name));
+    match (find("X"), find("Y")) {
+        (Some(x), Some(y)) => Ok((x, y)),
+        _ => Err(ProfileError::at(line, format!("`ColumnDef={definition}` names no X and Y columns"))),
+    }
+}
+
+/// One data line: numbers separated by white space or commas; `columns` are (y, z)'s positions.
+fn parse_point(content: &str, line: usize, columns: (usize, usize)) -> Result<RawPoint, ProfileError> {
+    let fields: Vec<&str> = content.split(|c: char| c.is_whitespace() || c == ',').filter(|f| !f.is_empty()).collect();
+    let value = |column: usize| -> Result<f64, ProfileError> {
+        let field = fields.get(column).ok_or_else(|| {
+            ProfileError::at(line, format!("expected a point (y z), found `{content}`: too few columns"))
+        })?;
+        let number = field
+            .parse::<f64>()
+            .map_err(|_| ProfileError::at(line, format!("expected a number, found `{field}` in `{content}`")))?;
+        if number.is_finite() {
+            Ok(number)
+        } else {
+            Err(ProfileError::at(line, format!("the value `{field}` is not finite")))
+        }
+    };
+    Ok(RawPoint { y: value(columns.0)?, z: value(columns.1)?, line })
+}
+
+/// Orders the points by increasing y and checks that y is strictly monotonic.
+fn finish(mut points: Vec<RawPoint>) -> Result<ProfilePoints, ProfileError> {
+    if points.len() < MIN_POINTS {
+        return Err(ProfileError::whole(format!(
+            "{} profile points; a profile needs at least {MIN_POINTS}",
+            points.len()
+        )));
+    }
+    if points[points.len() - 1].y < points[0].y {
+        points.reverse();
+    }
+    for pair in points.windows(2) {
+        if pair[1].y <= pair[0].y {
+            return Err(ProfileError::at(
+                pair[1].line,
+                format!(
+                    "the profile is not monotonic in y: y = {} mm follows y = {} mm (line {})",
+                    pair[1].y * 1e3,
+                    pair[0].y * 1e3,
+                    pair[0].line
+                ),
+            ));
+        }
+    }
+    Ok(ProfilePoints { lateral: points.iter().map(|p| p.y).collect(), vertical: points.iter().map(|p| p.z).collect() })
+}
