@@ -79,6 +79,12 @@ fn the_compiled_in_table_says_how_it_was_made_and_fits_in_20_mb() {
     let bytes = table.to_bytes();
     assert!(bytes.len() <= 20_000_000, "{} bytes", bytes.len());
     assert_eq!(Table::from_bytes(&bytes).as_ref(), Ok(table));
+    // The writer's bytes are the file's, whose value coding was made by an independent converter
+    // from the v2 file (every count identical) and is decoded here independently of the reader.
+    let file = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/data/exact_table.bin")).unwrap();
+    assert!(bytes == file, "the table writer's bytes differ from data/exact_table.bin");
+    let counts = file_counts(&table.axes, &file[file.len() - 4 - 6 * table.axes.len()..file.len() - 4]);
+    assert_eq!(file_value_bytes(&table.axes, &counts), file[file.len() - 4 - 6 * table.axes.len()..file.len() - 4]);
 }
 
 /// Random held-out points (never nodes) from the linear range to full sliding, spin included,
@@ -385,9 +391,10 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
         bytes[body..].copy_from_slice(&checksum.to_le_bytes());
         refused(&bytes)
     };
-    // Node 5's F_x and F_y at full scale: |F| = √2 μQ.
-    let full_scale = [i16::MAX.to_le_bytes(), i16::MAX.to_le_bytes()].concat();
-    let outside = rewritten(2 * 3 * 5, &full_scale);
+    // Node 5's F_x and F_y at full scale: |F| = √2 μQ (the values re-encoded as the format says).
+    let mut counts = file_counts(&table.axes, &bytes[bytes.len() - 4 - 2 * 3 * table.axes.len()..bytes.len() - 4]);
+    counts[3 * 5..3 * 5 + 2].copy_from_slice(&[i16::MAX; 2]);
+    let outside = rewritten(0, &file_value_bytes(&table.axes, &counts));
     assert!(outside.contains("node 5") && outside.contains("|F| > μQ"), "{outside}");
     // The last τ node's force unit (just before the values, then its moment unit) at 2/32767:
     // 32767 counts would be 2 μQ.
@@ -421,6 +428,57 @@ fn tables_over_other_ranges_are_refused() {
 }
 
 /// CRC-32 (IEEE), bit by bit: the test's own, independent of the library's crate.
+/// The value counts of a table file (node-major, 3 per node), decoded as its format states
+/// (`table.rs`), independently of the reader: per component, the low-byte plane then the
+/// high-byte plane of the differences along τ and then ν; summed back along ν, then τ.
+fn file_counts(axes: &TableAxes, values: &[u8]) -> Vec<i16> {
+    let n = axes.len();
+    let [_, n_nu, n_beta, n_alpha, n_t] = axes.counts;
+    let mut counts = vec![0i16; 3 * n];
+    for c in 0..3 {
+        let mut v: Vec<i16> =
+            (0..n).map(|i| i16::from_le_bytes([values[2 * c * n + i], values[(2 * c + 1) * n + i]])).collect();
+        let nu_stride = n_beta * n_alpha * n_t;
+        for i in (0..n).filter(|i| (i / nu_stride) % n_nu != 0) {
+            v[i] = v[i].wrapping_add(v[i - nu_stride]);
+        }
+        for i in 0..n {
+            if i % n_t != 0 {
+                v[i] = v[i].wrapping_add(v[i - 1]);
+            }
+            counts[3 * i + c] = v[i];
+        }
+    }
+    counts
+}
+
+/// The inverse of `file_counts`.
+fn file_value_bytes(axes: &TableAxes, counts: &[i16]) -> Vec<u8> {
+    let n = axes.len();
+    let [_, n_nu, n_beta, n_alpha, n_t] = axes.counts;
+    let nu_stride = n_beta * n_alpha * n_t;
+    let mut bytes = vec![0u8; 6 * n];
+    for c in 0..3 {
+        let tau_difference = |i: usize| {
+            if i % n_t != 0 {
+                counts[3 * i + c].wrapping_sub(counts[3 * (i - 1) + c])
+            } else {
+                counts[3 * i + c]
+            }
+        };
+        for i in 0..n {
+            let d = if (i / nu_stride) % n_nu != 0 {
+                tau_difference(i).wrapping_sub(tau_difference(i - nu_stride))
+            } else {
+                tau_difference(i)
+            };
+            bytes[2 * c * n + i] = d.to_le_bytes()[0];
+            bytes[(2 * c + 1) * n + i] = d.to_le_bytes()[1];
+        }
+    }
+    bytes
+}
+
 fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = !0u32;
     for &byte in bytes {
