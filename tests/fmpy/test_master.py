@@ -88,7 +88,8 @@ def test_corrupted_truncated_and_foreign_blobs_give_fmi2error_and_change_nothing
         (bytes(flipped), "corrupted: the CRC-32 checksum does not match"),
         (b"PK\x03\x04" + blob[4:], "not a serialized state of this FMU"),
         (blob + b"\x00", "trailing bytes"),
-        (blob[:8] + b"\x07\x00" + blob[10:], "format version 7; this FMU reads version 2"),
+        (blob[:8] + b"\x07\x00" + blob[10:],
+         f"format version 7; this FMU reads version {int.from_bytes(blob[8:10], 'little')}"),
         (blob[:10] + bytes([blob[10] ^ 1]) + blob[11:], "variable-layout tag 0x"),
     ]
     for bad, reason in cases:
