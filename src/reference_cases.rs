@@ -1,6 +1,6 @@
 //! CONTACT's published reference cases as data, in SI units, to check a model choice against:
 //! the one definition the tests, the exact theory's benchmark and the lab's trade report use.
-//! Source and the full tables: `tests/data/contact_published_cases.md` (open-source CONTACT, https://github.com/eve70a/CONTACT, `examples/tractcurv`
+//! Source and the full tables: `tests/data/contact_published_cases.md` (open-source CONTACT, <https://github.com/eve70a/CONTACT>, `examples/tractcurv`
 //! and `examples/fastsim`, Apache-2.0).
 
 use crate::{ContactInput, TractionBound};

@@ -2,11 +2,11 @@
 //! direction and size in units of the characteristic creepage.
 use wheel_rail_contact::{ContactInput, KalkerCoefficients};
 
-/// Q [N], μ, G [Pa] of every random contact.
+/// Q \[N\], μ, G \[Pa\] of every random contact.
 pub const NORMAL_FORCE: f64 = 80e3;
 pub const FRICTION: f64 = 0.3;
 pub const SHEAR_MODULUS: f64 = 82e9;
-/// c = √(ab) of every random contact [m]; a/b varies around it.
+/// c = √(ab) of every random contact \[m\]; a/b varies around it.
 pub const MEAN_SEMI_AXIS: f64 = 5e-3;
 
 /// A seeded stream of uniform numbers in [0, 1): a 64-bit linear congruential generator
@@ -27,7 +27,7 @@ impl Uniform {
 
 /// The contact at a/b (c = [`MEAN_SEMI_AXIS`]) and ν whose creepages are `level` × the
 /// characteristic creepage (Kalker's linear force = μQ) along the unit direction of
-/// (ξ/ξ*, η/η*, φ/φ*) with spin component `z` and planar angle `angle` [rad] (φ* with C23).
+/// (ξ/ξ*, η/η*, φ/φ*) with spin component `z` and planar angle `angle` \[rad\] (φ* with C23).
 pub fn contact_along(a_over_b: f64, poisson_ratio: f64, level: f64, z: f64, angle: f64) -> ContactInput {
     let planar = (1.0 - z * z).sqrt();
     let k = KalkerCoefficients::new(a_over_b, poisson_ratio);
