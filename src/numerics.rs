@@ -50,7 +50,20 @@ pub(crate) fn magnitude<D: Scalar>(x: D, y: D) -> D {
 
 #[cfg(test)]
 mod tests {
-    use super::magnitude;
+    use num_dual::Dual64;
+
+    use super::{magnitude, moves_negative};
+
+    /// On the fold x = 0 the direction's rate picks the side; elsewhere the value's sign, and a
+    /// plain value at 0 is on the positive side.
+    #[test]
+    fn the_side_of_zero_is_the_directions() {
+        assert!(!moves_negative(Dual64::new(0.0, 1.0)));
+        assert!(moves_negative(Dual64::new(0.0, -1.0)));
+        assert!(moves_negative(Dual64::new(-1e-300, 1.0)));
+        assert!(!moves_negative(Dual64::new(1e-300, -1.0)));
+        assert!(!moves_negative(0.0_f64) && !moves_negative(-0.0_f64) && moves_negative(-1e-300_f64));
+    }
 
     #[test]
     fn exact_across_the_whole_range() {

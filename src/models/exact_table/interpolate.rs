@@ -229,3 +229,43 @@ fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     }
     (index as usize, fraction)
 }
+
+#[cfg(test)]
+mod tests {
+    use num_dual::Dual64;
+
+    use super::*;
+
+    /// The chord correction works at every size of the interpolated lengths, not only in full
+    /// slip (s = 1): nearly parallel forces (l ≥ 0.99 s) get the interpolated length, opposing
+    /// ones (l ≤ 0.95 s) are left alone, and between, the blend is continuous.
+    #[test]
+    fn the_chord_correction_restores_the_interpolated_length_at_any_size() {
+        for size in [0.2, 0.5, 1.0] {
+            let (x, y) = (0.6 * 0.995 * size, 0.8 * 0.995 * size); // l = 0.995 s
+            assert_eq!(chord_correction(x, y, size), (size / (0.995 * size), size));
+            let (x, y) = (0.6 * 0.9 * size, 0.8 * 0.9 * size); // l = 0.9 s
+            assert_eq!(chord_correction(x, y, size), (1.0, 0.9 * size));
+            for (at, weight) in [(0.95, 0.0), (0.97, 0.5), (0.99, 1.0)] {
+                let l = at * size;
+                let (factor, length) = chord_correction(0.6 * l, 0.8 * l, size);
+                let expected = l + (size - l) * weight;
+                assert!((length - expected).abs() < 1e-12 && (factor * l - expected).abs() < 1e-12, "{size} {at}");
+            }
+        }
+    }
+
+    /// On a node the cell is the one the direction moves into: the rate decides, the value
+    /// stays on the node.
+    #[test]
+    fn on_a_node_the_direction_picks_the_cell() {
+        let axis = AxisMap { origin: 0.0, inverse_step: 4.0, nodes: 5 };
+        let (up, fraction_up) = cell(Dual64::new(0.5, 1.0), axis);
+        let (down, fraction_down) = cell(Dual64::new(0.5, -1.0), axis);
+        assert_eq!((up, fraction_up.re, fraction_up.eps), (2, 0.0, 4.0));
+        assert_eq!((down, fraction_down.re, fraction_down.eps), (1, 1.0, -4.0));
+        // A value a rounding below the axis stays in the first cell at 0, its rate kept.
+        let (first, fraction) = cell(Dual64::new(-1e-17, 1.0), axis);
+        assert_eq!((first, fraction.re, fraction.eps), (0, 0.0, 4.0));
+    }
+}
