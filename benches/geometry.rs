@@ -17,7 +17,7 @@ fn geometry(c: &mut Criterion) {
         WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, WheelSide::Right, 82e9, 0.28)
             .unwrap();
     for (name, lateral) in [("geometry_direct_tread", 0.002), ("geometry_direct_flange", 0.007)] {
-        let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 };
+        let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 };
         c.bench_function(name, |bencher| {
             bencher.iter(|| pair.patches_for_force(black_box(10e3), black_box(&position)))
         });

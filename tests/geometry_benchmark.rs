@@ -1,6 +1,6 @@
 //! The Manchester contact benchmark, case A-2.2 (S1002 on UIC60 1:40, 10 kN per wheel), both
 //! wheels: contact positions, contact angle, rolling radius and wheelset height against
-//! CONTACT's published solution (`tests/data/mbench_a22_contact_ref_out.csv`, copied from CONTACT
+//! CONTACT's published solution (`tests/data/mbench_a22_contact_ref_out.csv`, extracted from CONTACT
 //! rev. 2707's `examples/mbench_a22_{right,left}.ref_out`; inputs
 //! `tests/data/manchester_a22_inputs.csv`); the normal problem's invariants, mirror symmetry,
 //! continuity in y_ws, lift-off and bad input.
@@ -40,7 +40,7 @@ fn side_reference(prefix: &str) -> Vec<(u32, f64, f64, f64, f64, f64, f64)> {
         .filter(|l| l.starts_with(prefix))
         .map(|l| {
             let f: Vec<f64> = l.split(',').skip(1).map(|v| v.parse().unwrap()).collect();
-            (f[0] as u32, f[1] * 1e-3, f[2] * 1e-3, f[3] * 1e-3, f[7], f[5] * 1e-3, f[6] * 1e-3)
+            (f[0] as u32, f[2] * 1e-3, f[9] * 1e-3, f[12] * 1e-3, f[11], f[15] * 1e-3, f[16] * 1e-3)
         })
         .collect()
 }
@@ -73,7 +73,7 @@ fn check_against_contact(side: WheelSide, prefix: &str, excluded: &[u32]) -> usi
     {
         assert_eq!(case, ref_case);
         let (z, patches) =
-            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll }).unwrap();
+            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll, yaw: 0.0 }).unwrap();
         for p in &patches {
             println!(
                 "{prefix} case {case:2}: z_ws {:.4}/{:.4} mm, rail y {:.3}/{:.3} mm, wheel y {:.3}/{:.3} mm, \
@@ -132,7 +132,7 @@ fn the_left_wheel_matches_contact_on_a22() {
 fn the_load_sums_to_the_prescribed_force_and_both_modes_agree() {
     let pair = benchmark_pair();
     for (lateral, force) in [(0.0, 10e3), (0.003, 50e3), (0.006, 10e3), (0.0065, 100.0), (0.008, 80e3)] {
-        let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 };
+        let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 };
         let (z, patches) = pair.patches_for_force(force, &position).unwrap();
         let sum: f64 = patches.iter().map(|p| p.normal_force * p.point.contact_angle.cos()).sum();
         assert!((sum / force - 1.0).abs() < 1e-6, "y {lateral}: {sum} vs {force}");
@@ -149,7 +149,7 @@ fn the_load_sums_to_the_prescribed_force_and_both_modes_agree() {
 #[test]
 fn lift_off_gives_no_patch() {
     let pair = benchmark_pair();
-    let position = WheelsetPosition { lateral: 0.002, vertical: 0.0, roll: 0.0 };
+    let position = WheelsetPosition { lateral: 0.002, vertical: 0.0, roll: 0.0, yaw: 0.0 };
     let (touch, patches) = pair.patches_for_force(0.0, &position).unwrap();
     assert!(patches.is_empty());
     assert!(pair.patches_at(&WheelsetPosition { vertical: touch - 1e-6, ..position }).unwrap().is_empty());
@@ -160,18 +160,18 @@ fn lift_off_gives_no_patch() {
 #[test]
 fn bad_positions_are_errors_naming_the_variable() {
     let pair = benchmark_pair();
-    let nan = WheelsetPosition { lateral: f64::NAN, vertical: 0.0, roll: 0.0 };
+    let nan = WheelsetPosition { lateral: f64::NAN, vertical: 0.0, roll: 0.0, yaw: 0.0 };
     assert_eq!(
         pair.contact_points(&nan).unwrap_err().to_string(),
         "wheelset_lateral_displacement = NaN must be finite"
     );
-    let nan = WheelsetPosition { lateral: 0.0, vertical: 0.0, roll: f64::INFINITY };
+    let nan = WheelsetPosition { lateral: 0.0, vertical: 0.0, roll: f64::INFINITY, yaw: 0.0 };
     assert_eq!(pair.contact_points(&nan).unwrap_err().to_string(), "wheelset_roll_angle = inf must be finite");
-    let position = WheelsetPosition { lateral: 0.0, vertical: 0.0, roll: 0.0 };
+    let position = WheelsetPosition { lateral: 0.0, vertical: 0.0, roll: 0.0, yaw: 0.0 };
     let error = pair.patches_for_force(f64::NAN, &position).unwrap_err();
     assert_eq!(error.to_string(), "vertical_force = NaN must be finite");
     // So far off that the profiles share no lateral range: they never touch.
-    let away = WheelsetPosition { lateral: 0.5, vertical: 0.0, roll: 0.0 };
+    let away = WheelsetPosition { lateral: 0.5, vertical: 0.0, roll: 0.0, yaw: 0.0 };
     let error = pair.contact_points(&away).unwrap_err().to_string();
     assert!(error.contains("do not overlap laterally at wheelset_lateral_displacement = 0.5 m"), "{error}");
 }
@@ -180,8 +180,8 @@ fn bad_positions_are_errors_naming_the_variable() {
 fn left_and_right_are_mirror_images() {
     let (right, left) = (side_pair(WheelSide::Right), side_pair(WheelSide::Left));
     for (lateral, roll) in [(0.0, 0.0), (0.004, 1e-4), (-0.003, -2e-4), (0.0085, 3e-4)] {
-        let position = WheelsetPosition { lateral, vertical: 0.0, roll };
-        let mirrored = WheelsetPosition { lateral: -lateral, vertical: 0.0, roll: -roll };
+        let position = WheelsetPosition { lateral, vertical: 0.0, roll, yaw: 0.0 };
+        let mirrored = WheelsetPosition { lateral: -lateral, vertical: 0.0, roll: -roll, yaw: 0.0 };
         let (z_right, on_right) = right.patches_for_force(10e3, &position).unwrap();
         let (z_left, on_left) = left.patches_for_force(10e3, &mirrored).unwrap();
         assert_eq!(z_right, z_left);
@@ -204,7 +204,7 @@ fn patches_are_ordered_tread_first() {
         let pair = side_pair(side);
         let lateral = if side == WheelSide::Right { 0.005 } else { -0.005 };
         let (_, patches) =
-            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 }).unwrap();
+            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 }).unwrap();
         assert_eq!(patches.len(), 2, "{side:?}");
         let sign = if side == WheelSide::Right { 1.0 } else { -1.0 };
         assert!(
@@ -233,7 +233,7 @@ fn patches_move_continuously_in_y_except_at_the_two_documented_jumps() {
     for step in 0..=500 {
         let lateral = f64::from(step) * 0.02e-3;
         let (_, patches) =
-            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0 }).unwrap();
+            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 }).unwrap();
         let now: Vec<(f64, f64)> = patches.iter().map(|p| (p.point.rail_lateral, p.normal_force)).collect();
         if now.len() == 2 {
             two_patch_steps += 1;

@@ -61,7 +61,9 @@ impl WheelSide {
     fn mirror_position(self, position: &WheelsetPosition) -> WheelsetPosition {
         match self {
             Self::Right => *position,
-            Self::Left => WheelsetPosition { lateral: -position.lateral, roll: -position.roll, ..*position },
+            Self::Left => {
+                WheelsetPosition { lateral: -position.lateral, roll: -position.roll, yaw: -position.yaw, ..*position }
+            }
         }
     }
 
@@ -113,8 +115,8 @@ impl TrackDimensions {
     };
 }
 
-/// The wheelset's position relative to the track (yaw is not supported yet).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The wheelset's position relative to the track.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct WheelsetPosition {
     /// y_ws \[m\], positive to the right.
     pub lateral: f64,
@@ -122,6 +124,8 @@ pub struct WheelsetPosition {
     pub vertical: f64,
     /// φ_ws \[rad\], about x.
     pub roll: f64,
+    /// ψ_ws \[rad\], about z (positive turns the wheelset's heading towards +y).
+    pub yaw: f64,
 }
 
 /// One contact point's geometry.
