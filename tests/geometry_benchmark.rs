@@ -68,12 +68,12 @@ const FLAT_GAP_CASES: [u32; 3] = [1, 2, 11];
 fn check_against_contact(side: WheelSide, prefix: &str, excluded: &[u32]) -> usize {
     let pair = side_pair(side);
     let mut checked = 0;
-    for ((case, y, _yaw, roll, force), (ref_case, z_ref, track_ref, rail_ref, angle_ref, wheel_ref, wheel_z_ref)) in
+    for ((case, y, yaw, roll, force), (ref_case, z_ref, track_ref, rail_ref, angle_ref, wheel_ref, wheel_z_ref)) in
         side_inputs(prefix).into_iter().zip(side_reference(prefix))
     {
         assert_eq!(case, ref_case);
         let (z, patches) =
-            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll, yaw: 0.0 }).unwrap();
+            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll, yaw }).unwrap();
         for p in &patches {
             println!(
                 "{prefix} case {case:2}: z_ws {:.4}/{:.4} mm, rail y {:.3}/{:.3} mm, wheel y {:.3}/{:.3} mm, \

@@ -128,9 +128,32 @@ pub struct WheelsetPosition {
     pub yaw: f64,
 }
 
+/// A point of the wheel's contact locus (module doc, "Yaw").
+#[derive(Debug, Clone, Copy)]
+struct WheelLocusPoint {
+    /// The wheel profile's point.
+    profile: ProfilePoint,
+    /// The wheel's radius there, r0 + z_wheel.
+    radius: f64,
+    /// The point's depth below the axle in the wheel's plane x = 0, r cos θ: the radius that
+    /// turns the wheel's angular speed into its circumferential speed along x.
+    rolling_radius: f64,
+    /// Track x, y, z of the point.
+    longitudinal: f64,
+    lateral: f64,
+    vertical: f64,
+    /// cos of the angle between the wheel's circumferential direction there and track x.
+    circumferential_x: f64,
+}
+
+/// Iterations of the locus point's fixed point in y (each gains ≈ 1.5 digits on the flange).
+const LOCUS_ITERATIONS: usize = 12;
+
 /// One contact point's geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
+    /// Track x \[m\]: ahead of the wheelset's centre (non-zero with yaw).
+    pub track_longitudinal: f64,
     /// Track y \[m\].
     pub track_lateral: f64,
     /// Track z of the rail surface \[m\].
@@ -141,13 +164,16 @@ pub struct ContactPoint {
     pub wheel_lateral: f64,
     /// The surfaces' inclination atan(dz/dy) in track coordinates \[rad\] (CONTACT's DELTCP).
     pub contact_angle: f64,
-    /// The wheel's radius at the contact point \[m\].
+    /// The wheel's rolling radius at the contact point \[m\]: its depth below the axle in the
+    /// wheel's plane (r0 + z_wheel without yaw; with yaw the point lies ahead of or behind the
+    /// axle, and this is r cos θ, as CONTACT's r0 + ZCP(W)).
     pub rolling_radius: f64,
     /// The undeformed vertical gap at the contact point with z_ws = 0 \[m\].
     pub gap_at_zero: f64,
-    /// Relative curvature along x, A = cos δ/(2 r) \[1/m\].
+    /// Relative curvature along x, A \[1/m\] (module doc, "Ellipse"; cos γ/(2 r) without yaw).
     pub curvature_rolling: f64,
-    /// Relative curvature along y, B = (κ_rail − κ_wheel)/2 \[1/m\].
+    /// Relative curvature along the patch's lateral axis, B \[1/m\] ((κ_rail − κ_wheel)/2 without
+    /// yaw).
     pub curvature_lateral: f64,
 }
 
@@ -222,28 +248,68 @@ impl WheelOnRail {
         })
     }
 
-    /// The wheel surface's point at track y (rotated by the roll), `None` off the profile.
-    fn wheel_at(&self, y: f64, position: &WheelsetPosition) -> Option<(ProfilePoint, f64)> {
-        let r0 = self.dimensions.nominal_radius;
-        let (sin, cos) = position.roll.sin_cos();
-        // Y cos φ − (Z(Y) + r0) sin φ = y − y_ws: a fixed point in Y, contracting where
-        // |Z′ tan φ| < 1 (everywhere but near-vertical flanks for realistic rolls).
-        let mut wheelset_y = (y - position.lateral + r0 * sin) / cos;
-        let mut point = self.wheel.at_lateral(wheelset_y - self.wheel_offset)?;
-        for _ in 0..4 {
-            wheelset_y = (y - position.lateral + (point.vertical + r0) * sin) / cos;
-            point = self.wheel.at_lateral(wheelset_y - self.wheel_offset)?;
+    /// The wheel's contact locus at wheel profile y `profile_y` (module doc, "Yaw"): the point
+    /// of the wheel's circle there whose surface normal has no x component in track
+    /// coordinates, with its track position (x, y, z at z_ws = `position.vertical`) and the
+    /// cosine between the wheel's circumferential direction there and the track's x axis.
+    fn locus_at(&self, profile_y: f64, position: &WheelsetPosition) -> Option<WheelLocusPoint> {
+        let profile = self.wheel.at_lateral(profile_y)?;
+        let radius = self.dimensions.nominal_radius + profile.vertical;
+        let (sin_roll, cos_roll) = position.roll.sin_cos();
+        let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
+        let (sin_slope, cos_slope) = profile.slope_angle.sin_cos();
+        // Normal (sin θ cos γ, −sin γ, cos θ cos γ) in wheelset axes, turned by R_z(ψ)R_x(φ):
+        // its x component A sin θ + B cos θ − C vanishes, A sin θ + B cos θ = C.
+        let (a, b) = (cos_slope * cos_yaw, cos_slope * sin_roll * sin_yaw);
+        let c = -sin_slope * cos_roll * sin_yaw;
+        let amplitude = a.hypot(b);
+        let ratio = c / amplitude;
+        if !(ratio.abs() < 1.0) {
+            return None;
         }
-        let z = position.vertical - r0 + wheelset_y * sin + (point.vertical + r0) * cos;
-        Some((point, z))
+        // The branch near the bottom of the wheel (θ = 0 without yaw).
+        let angle = ratio.asin() - b.atan2(a);
+        let (sin_angle, cos_angle) = angle.sin_cos();
+        let wheelset_y = profile_y + self.wheel_offset;
+        // The point (r sin θ, Y, r cos θ) from the axle centre, turned by R_x(φ), then R_z(ψ).
+        let (qx, qy, qz) = (radius * sin_angle, wheelset_y, radius * cos_angle);
+        let (ry, rz) = (qy * cos_roll - qz * sin_roll, qy * sin_roll + qz * cos_roll);
+        Some(WheelLocusPoint {
+            profile,
+            radius,
+            rolling_radius: qz,
+            longitudinal: qx * cos_yaw - ry * sin_yaw,
+            lateral: position.lateral + qx * sin_yaw + ry * cos_yaw,
+            vertical: position.vertical - self.dimensions.nominal_radius + rz,
+            // The circumferential tangent (cos θ, 0, −sin θ) turned the same way, its x.
+            circumferential_x: cos_angle * cos_yaw - sin_angle * sin_roll * sin_yaw,
+        })
+    }
+
+    /// The wheel's contact locus point at track y (fixed-point iteration on the profile's y:
+    /// the locus' track y moves with the profile's y at a rate within a few per cent of
+    /// cos φ cos ψ), `None` off the profile.
+    fn wheel_at(&self, y: f64, position: &WheelsetPosition) -> Option<WheelLocusPoint> {
+        let rate = position.roll.cos() * position.yaw.cos();
+        let mut profile_y = (y - position.lateral) / rate - self.wheel_offset;
+        let mut point = self.locus_at(profile_y, position)?;
+        for _ in 0..LOCUS_ITERATIONS {
+            let miss = y - point.lateral;
+            if miss.abs() < 1e-12 {
+                break;
+            }
+            profile_y += miss / rate;
+            point = self.locus_at(profile_y, position)?;
+        }
+        Some(point)
     }
 
     /// The vertical gap at track y with z_ws = 0, and the two surface points.
-    fn gap(&self, y: f64, position: &WheelsetPosition) -> Option<(f64, ProfilePoint, ProfilePoint)> {
+    fn gap(&self, y: f64, position: &WheelsetPosition) -> Option<(f64, WheelLocusPoint, ProfilePoint)> {
         let at_zero = WheelsetPosition { vertical: 0.0, ..*position };
-        let (wheel, wheel_z) = self.wheel_at(y, &at_zero)?;
+        let wheel = self.wheel_at(y, &at_zero)?;
         let rail = self.rail.at_lateral(y - self.rail_offset)?;
-        Some((rail.vertical - wheel_z, wheel, rail))
+        Some((rail.vertical - wheel.vertical, wheel, rail))
     }
 
     /// The candidate contact points (module doc) for the wheelset's lateral position and roll,
@@ -317,18 +383,24 @@ impl WheelOnRail {
         let (gap, wheel, rail) = self
             .gap(y, position)
             .ok_or_else(|| ProfileError::whole(format!("contact point y = {y} m off the profiles")))?;
-        let rolling_radius = self.dimensions.nominal_radius + wheel.vertical;
-        let contact_angle = rail.slope_angle;
+        // Relative curvatures (module doc, "Ellipse"): the wheel's principal curvatures are
+        // cos γ/r along its circumference and −κ_wheel along its profile; seen along the track's
+        // x axis, at cos² = c² of the circumference's angle to it (Euler's theorem), and along
+        // the patch's lateral axis at 1 − c². The straight rail bends only laterally.
+        let circumferential = wheel.profile.slope_angle.cos() / wheel.radius;
+        let along_x = wheel.circumferential_x * wheel.circumferential_x;
         Ok(ContactPoint {
+            track_longitudinal: wheel.longitudinal,
             track_lateral: y,
             track_vertical: rail.vertical,
             rail_lateral: rail.lateral,
-            wheel_lateral: wheel.lateral,
-            contact_angle,
-            rolling_radius,
+            wheel_lateral: wheel.profile.lateral,
+            contact_angle: rail.slope_angle,
+            rolling_radius: wheel.rolling_radius,
             gap_at_zero: gap,
-            curvature_rolling: 0.5 * contact_angle.cos() / rolling_radius,
-            curvature_lateral: 0.5 * (rail.curvature - wheel.curvature),
+            curvature_rolling: 0.5 * (along_x * circumferential - (1.0 - along_x) * wheel.profile.curvature),
+            curvature_lateral: 0.5
+                * (rail.curvature + (1.0 - along_x) * circumferential - along_x * wheel.profile.curvature),
         })
     }
 
@@ -433,13 +505,16 @@ fn check_position(position: &WheelsetPosition) -> Result<(), ProfileError> {
         ("wheelset_lateral_displacement", position.lateral),
         ("wheelset_vertical_position", position.vertical),
         ("wheelset_roll_angle", position.roll),
+        ("wheelset_yaw_angle", position.yaw),
     ] {
         if !value.is_finite() {
             return Err(ProfileError::whole(format!("{name} = {value} must be finite")));
         }
     }
-    if position.roll.abs() > 0.1 {
-        return Err(ProfileError::whole(format!("wheelset_roll_angle = {} rad must be within ±0.1", position.roll)));
+    for (name, value) in [("wheelset_roll_angle", position.roll), ("wheelset_yaw_angle", position.yaw)] {
+        if value.abs() > 0.1 {
+            return Err(ProfileError::whole(format!("{name} = {value} rad must be within ±0.1")));
+        }
     }
     Ok(())
 }
