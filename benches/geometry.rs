@@ -6,9 +6,14 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::geometry::{
-    builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
+    builtin_profile, ContactPoint, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
 };
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+
+/// A patch's vertical share per newton of normal force without tangential forces: cos δ.
+fn cosine(point: &ContactPoint) -> f64 {
+    point.contact_angle.cos()
+}
 
 fn geometry(c: &mut Criterion) {
     let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
@@ -19,7 +24,7 @@ fn geometry(c: &mut Criterion) {
     for (name, lateral) in [("geometry_direct_tread", 0.002), ("geometry_direct_flange", 0.007)] {
         let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 };
         c.bench_function(name, |bencher| {
-            bencher.iter(|| pair.patches_for_force(black_box(10e3), black_box(&position)))
+            bencher.iter(|| pair.patches_for_force(black_box(10e3), black_box(&position), cosine))
         });
     }
     let input = ContactInput {

@@ -6,8 +6,13 @@
 //! continuity in y_ws, lift-off and bad input.
 
 use wheel_rail_contact::geometry::{
-    builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
+    builtin_profile, ContactPoint, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
 };
+
+/// A patch's vertical share per newton of normal force without tangential forces: cos δ.
+fn cosine(point: &ContactPoint) -> f64 {
+    point.contact_angle.cos()
+}
 
 fn benchmark_pair() -> WheelOnRail {
     side_pair(WheelSide::Right)
@@ -73,7 +78,7 @@ fn check_against_contact(side: WheelSide, prefix: &str, excluded: &[u32]) -> usi
     {
         assert_eq!(case, ref_case);
         let (z, patches) =
-            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll, yaw }).unwrap();
+            pair.patches_for_force(force, &WheelsetPosition { lateral: y, vertical: 0.0, roll, yaw }, cosine).unwrap();
         for p in &patches {
             println!(
                 "{prefix} case {case:2}: z_ws {:.4}/{:.4} mm, rail y {:.3}/{:.3} mm, wheel y {:.3}/{:.3} mm, \
@@ -133,7 +138,7 @@ fn the_load_sums_to_the_prescribed_force_and_both_modes_agree() {
     let pair = benchmark_pair();
     for (lateral, force) in [(0.0, 10e3), (0.003, 50e3), (0.006, 10e3), (0.0065, 100.0), (0.008, 80e3)] {
         let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 };
-        let (z, patches) = pair.patches_for_force(force, &position).unwrap();
+        let (z, patches) = pair.patches_for_force(force, &position, cosine).unwrap();
         let sum: f64 = patches.iter().map(|p| p.normal_force * p.point.contact_angle.cos()).sum();
         assert!((sum / force - 1.0).abs() < 1e-6, "y {lateral}: {sum} vs {force}");
         // Prescribed position: the same height gives the same patches and forces.
@@ -150,11 +155,11 @@ fn the_load_sums_to_the_prescribed_force_and_both_modes_agree() {
 fn lift_off_gives_no_patch() {
     let pair = benchmark_pair();
     let position = WheelsetPosition { lateral: 0.002, vertical: 0.0, roll: 0.0, yaw: 0.0 };
-    let (touch, patches) = pair.patches_for_force(0.0, &position).unwrap();
+    let (touch, patches) = pair.patches_for_force(0.0, &position, cosine).unwrap();
     assert!(patches.is_empty());
     assert!(pair.patches_at(&WheelsetPosition { vertical: touch - 1e-6, ..position }).unwrap().is_empty());
     assert_eq!(pair.patches_at(&WheelsetPosition { vertical: touch + 1e-6, ..position }).unwrap().len(), 1);
-    assert!(pair.patches_for_force(-5.0, &position).unwrap().1.is_empty());
+    assert!(pair.patches_for_force(-5.0, &position, cosine).unwrap().1.is_empty());
 }
 
 #[test]
@@ -168,7 +173,7 @@ fn bad_positions_are_errors_naming_the_variable() {
     let nan = WheelsetPosition { lateral: 0.0, vertical: 0.0, roll: f64::INFINITY, yaw: 0.0 };
     assert_eq!(pair.contact_points(&nan).unwrap_err().to_string(), "wheelset_roll_angle = inf must be finite");
     let position = WheelsetPosition { lateral: 0.0, vertical: 0.0, roll: 0.0, yaw: 0.0 };
-    let error = pair.patches_for_force(f64::NAN, &position).unwrap_err();
+    let error = pair.patches_for_force(f64::NAN, &position, cosine).unwrap_err();
     assert_eq!(error.to_string(), "vertical_force = NaN must be finite");
     // So far off that the profiles share no lateral range: they never touch.
     let away = WheelsetPosition { lateral: 0.5, vertical: 0.0, roll: 0.0, yaw: 0.0 };
@@ -182,8 +187,8 @@ fn left_and_right_are_mirror_images() {
     for (lateral, roll) in [(0.0, 0.0), (0.004, 1e-4), (-0.003, -2e-4), (0.0085, 3e-4)] {
         let position = WheelsetPosition { lateral, vertical: 0.0, roll, yaw: 0.0 };
         let mirrored = WheelsetPosition { lateral: -lateral, vertical: 0.0, roll: -roll, yaw: 0.0 };
-        let (z_right, on_right) = right.patches_for_force(10e3, &position).unwrap();
-        let (z_left, on_left) = left.patches_for_force(10e3, &mirrored).unwrap();
+        let (z_right, on_right) = right.patches_for_force(10e3, &position, cosine).unwrap();
+        let (z_left, on_left) = left.patches_for_force(10e3, &mirrored, cosine).unwrap();
         assert_eq!(z_right, z_left);
         assert_eq!(on_right.len(), on_left.len());
         for (r, l) in on_right.iter().zip(&on_left) {
@@ -203,8 +208,9 @@ fn patches_are_ordered_tread_first() {
     for side in [WheelSide::Right, WheelSide::Left] {
         let pair = side_pair(side);
         let lateral = if side == WheelSide::Right { 0.005 } else { -0.005 };
-        let (_, patches) =
-            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 }).unwrap();
+        let (_, patches) = pair
+            .patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 }, cosine)
+            .unwrap();
         assert_eq!(patches.len(), 2, "{side:?}");
         let sign = if side == WheelSide::Right { 1.0 } else { -1.0 };
         assert!(
@@ -232,8 +238,9 @@ fn patches_move_continuously_in_y_except_at_the_two_documented_jumps() {
     let (mut two_patch_steps, mut jumps) = (0, Vec::new());
     for step in 0..=500 {
         let lateral = f64::from(step) * 0.02e-3;
-        let (_, patches) =
-            pair.patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 }).unwrap();
+        let (_, patches) = pair
+            .patches_for_force(10e3, &WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 }, cosine)
+            .unwrap();
         let now: Vec<(f64, f64)> = patches.iter().map(|p| (p.point.rail_lateral, p.normal_force)).collect();
         if now.len() == 2 {
             two_patch_steps += 1;

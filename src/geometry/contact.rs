@@ -312,6 +312,11 @@ impl WheelOnRail {
         Some((rail.vertical - wheel.vertical, wheel, rail))
     }
 
+    /// The wheelset's centre on its axle, (0, y_ws, z_ws − r0) in track axes \[m\].
+    pub fn wheelset_centre(&self, position: &WheelsetPosition) -> [f64; 3] {
+        [0.0, position.lateral, position.vertical - self.dimensions.nominal_radius]
+    }
+
     /// The candidate contact points (module doc) for the wheelset's lateral position and roll,
     /// tread first (ordered from the rail's field side to its gauge side); the vertical position
     /// is not used.
@@ -455,13 +460,15 @@ impl WheelOnRail {
     }
 
     /// Prescribed vertical force on the wheel \[N\]: the wheelset's vertical position at which
-    /// the patches' normal forces carry it (Σ Q_i cos δ_i = F_z; the tangential forces' vertical
-    /// share is neglected), found by bisection; returns it with the patches. F_z ≤ 0 is lift-off:
-    /// no patch, the position where the wheel just touches.
+    /// the patches carry it, Σ Q_i·s_i = F_z with `vertical_share` s_i the vertical force a patch
+    /// carries per newton of normal force (cos δ alone; [`super::wheel_forces`] adds its
+    /// tangential force's share), found by bisection; returns it with the patches. F_z ≤ 0 is
+    /// lift-off: no patch, the position where the wheel just touches.
     pub fn patches_for_force(
         &self,
         vertical_force: f64,
         position: &WheelsetPosition,
+        vertical_share: impl Fn(&ContactPoint) -> f64,
     ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
         if !vertical_force.is_finite() {
             return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
@@ -475,7 +482,8 @@ impl WheelOnRail {
         }
         let carried = |z: f64| -> Result<(f64, Vec<ContactPatch>), ProfileError> {
             let patches = self.load(&points, &WheelsetPosition { vertical: z, ..*position })?;
-            Ok((patches.iter().map(|p| p.normal_force * p.point.contact_angle.cos()).sum(), patches))
+            let carried = patches.iter().map(|p| p.normal_force * vertical_share(&self.side.mirror_point(&p.point)));
+            Ok((carried.sum(), patches))
         };
         let (mut low, mut high) = (touch, touch + 1e-5);
         while carried(high)?.0 < vertical_force {

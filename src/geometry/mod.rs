@@ -21,8 +21,13 @@ pub mod builtin;
 pub mod contact;
 pub mod profile_file;
 pub mod smooth_profile;
+pub mod wheel_forces;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
 pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
 pub use smooth_profile::{ProfilePoint, SmoothProfile};
+pub use wheel_forces::{
+    PatchForces, PatchState, VerticalContact, WheelCache, WheelContactError, WheelInput, WheelOutput, WheelRailContact,
+    WheelState, WheelsetVelocity,
+};

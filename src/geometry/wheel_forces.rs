@@ -1,0 +1,387 @@
+//! A wheel on its rail, from profiles to forces: the contact patches of [`WheelOnRail`], each
+//! patch's creepages from the wheelset's motion, its creep forces by any rung of the ladder (one
+//! [`Scene`] evaluation per patch), and their sum on the wheel in track coordinates.
+//!
+//! Frames (CONTACT's module 1): track x along the track in the rolling direction, y lateral to
+//! the right, z down. A patch at contact angle δ has its own axes x (the track's), s = (0, cos δ,
+//! sin δ) along the surfaces and n = (0, −sin δ, cos δ) into the rail. The wheelset's centre c
+//! is on its axle at (0, y_ws, z_ws − r0); it moves at (V, ẏ_ws, 0) and turns at ω = ψ̇·e_z −
+//! Ω·a, with a = R_z(ψ)R_x(φ)·e_y its axle (Ω > 0 rolls forward; CONTACT's VPITCH is −Ω).
+//!
+//! Creepages. The rail is at rest, so the slip of the wheel's point at the patch centre p is its
+//! velocity v = v_c + ω × (p − c): ξ, η from v·e_x and v·s, φ from ω·n, each over the rolling
+//! speed regularised through standstill ([`crate::scene::kinematics`]) — the wheel minus the
+//! rail, as every creepage of this crate (CONTACT's CKSI, CETA, CPHI are the rail minus the
+//! wheel, over its VELOC). The scene evaluates each patch with its creepages from these slip
+//! velocities and its ellipse from the geometry (Hertz, [`WheelOnRail`]).
+//!
+//! Forces. A patch's creep forces F_x, F_s act on the wheel in its tangent plane (the negative of
+//! CONTACT's FX, FS on the rail), its normal force N on the wheel along −n: in track axes
+//! F = F_x·e_x + F_s·s − N·n. The wheel's totals are their sums, with the moments about c
+//! (including each patch's spin moment M_z about n).
+//!
+//! Vertical balance. With a prescribed vertical force F_z, the rail carries the wheel through
+//! both the normal and the creep forces: Σ (N cos δ − F_s sin δ) = F_z. On the flange (δ ≈ −1)
+//! the creep force carries a third of the load. The normal problem is solved for the shares
+//! s_i = cos δ_i − (F_s/N)_i sin δ_i of the last creep forces, the creep forces again for its
+//! patches, until z_ws settles (two to four rounds; [`VERTICAL_ROUNDS`] at most).
+//!
+//! Creep relaxation and the exact theory's warm start carry over per patch: a patch takes the
+//! state of the last evaluation's patch nearest to it on the rail within [`PATCH_MATCH_DISTANCE`];
+//! a new patch (a flange that comes into contact) starts from rest.
+
+use std::fmt;
+
+use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
+use super::profile_file::ProfileError;
+use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
+use crate::scene::{
+    CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
+};
+use crate::InvalidInput;
+
+/// How many rounds of normal problem and creep forces settle the vertical balance at most.
+pub const VERTICAL_ROUNDS: usize = 12;
+
+/// A patch inherits the state of the last evaluation's patch within this distance on the rail
+/// \[m\]: beyond a patch's half-width, closer than tread and flange are to each other.
+pub const PATCH_MATCH_DISTANCE: f64 = 5e-3;
+
+/// The wheelset's velocities in track axes.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WheelsetVelocity {
+    /// V [m/s]: the wheelset centre's speed along the track.
+    pub rolling_speed: f64,
+    /// Ω [rad/s]: about the axle, positive when rolling forward (Ω r = V in pure rolling).
+    pub wheel_angular_speed: f64,
+    /// ẏ_ws [m/s].
+    pub lateral_velocity: f64,
+    /// ψ̇ [rad/s].
+    pub yaw_rate: f64,
+}
+
+/// How the wheel's vertical contact is set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VerticalContact {
+    /// The wheel carries this vertical force \[N\]; the wheelset's vertical position is solved
+    /// for (the position's `vertical` is not read). ≤ 0 lifts the wheel off.
+    PrescribedForce(f64),
+    /// The wheelset is at its position's `vertical`; the forces follow from the penetration.
+    PrescribedPosition,
+}
+
+/// What a wheel's evaluation reads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelInput {
+    pub position: WheelsetPosition,
+    pub velocity: WheelsetVelocity,
+    pub vertical: VerticalContact,
+    /// μ \[1\] (μ₀ under Polach 2005).
+    pub friction_coefficient: f64,
+}
+
+/// One loaded patch: its geometry, normal force and ellipse, and the scene's outputs (its creep
+/// forces on the wheel in the patch's tangent plane, creepages, spin moment).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchForces {
+    pub patch: ContactPatch,
+    pub output: SceneOutput,
+}
+
+impl PatchForces {
+    /// The patch's force on the wheel in track axes \[N\] (module doc).
+    pub fn track_force(&self) -> [f64; 3] {
+        let (sin, cos) = self.patch.point.contact_angle.sin_cos();
+        let (lateral, normal) = (self.output.force_lateral, self.patch.normal_force);
+        [self.output.force_longitudinal, lateral * cos + normal * sin, lateral * sin - normal * cos]
+    }
+}
+
+/// What a wheel's evaluation gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WheelOutput {
+    /// The loaded patches, tread first (from the rail's field side to its gauge side).
+    pub patches: Vec<PatchForces>,
+    /// z_ws \[m\]: the prescribed one, or the one that carries the prescribed force.
+    pub wheelset_vertical_position: f64,
+    /// The sum of the patches' forces on the wheel, track axes \[N\].
+    pub track_force: [f64; 3],
+    /// Their moment about the wheelset's centre, track axes [N·m].
+    pub track_moment: [f64; 3],
+}
+
+/// What a patch carries to the next evaluation.
+#[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PatchState {
+    /// Where the patch was, y in the rail profile's coordinates \[m\].
+    pub rail_lateral: f64,
+    pub scene: SceneState,
+}
+
+/// What a wheel carries to the next evaluation: its patches' states.
+#[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct WheelState {
+    pub patches: Vec<PatchState>,
+}
+
+impl WheelState {
+    /// Checks a state read back from a saved one.
+    pub fn validate(&self) -> Result<(), InvalidInput> {
+        for patch in &self.patches {
+            if !patch.rail_lateral.is_finite() {
+                return Err(InvalidInput::new("patch_rail_lateral_position", patch.rail_lateral, "must be finite"));
+            }
+            patch.scene.validate()?;
+        }
+        Ok(())
+    }
+}
+
+/// Derived data for speed only, one scene cache per patch.
+#[derive(Debug, Clone, Default)]
+pub struct WheelCache {
+    patches: Vec<SceneCache>,
+}
+
+/// Why a wheel cannot be evaluated.
+#[derive(Debug, Clone, PartialEq)]
+pub enum WheelContactError {
+    /// The geometry: the profiles, the position, the normal problem.
+    Geometry(ProfileError),
+    /// A patch's creep forces.
+    Scene(SceneError),
+}
+
+impl fmt::Display for WheelContactError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Geometry(error) => error.fmt(f),
+            Self::Scene(error) => error.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for WheelContactError {}
+
+impl From<ProfileError> for WheelContactError {
+    fn from(error: ProfileError) -> Self {
+        Self::Geometry(error)
+    }
+}
+
+impl From<SceneError> for WheelContactError {
+    fn from(error: SceneError) -> Self {
+        Self::Scene(error)
+    }
+}
+
+impl From<InvalidInput> for WheelContactError {
+    fn from(error: InvalidInput) -> Self {
+        Self::Scene(SceneError::Invalid(error))
+    }
+}
+
+/// A wheel on its rail with the scene that gives each patch's creep forces.
+#[derive(Debug, Clone)]
+pub struct WheelRailContact {
+    geometry: WheelOnRail,
+    scene: Scene,
+}
+
+impl WheelRailContact {
+    /// `scene` gives the model, the traction law, the relaxation and the material; its
+    /// creepages come from the patch's slip velocities (with its regularisation speed, or the
+    /// default one) and its ellipse from the geometry, whatever it selects.
+    pub fn new(geometry: WheelOnRail, scene: Scene) -> Self {
+        let regularisation_speed = match scene.creepages {
+            CreepageSource::Kinematics { regularisation_speed } => regularisation_speed,
+            CreepageSource::Inputs => DEFAULT_REGULARISATION_SPEED,
+        };
+        let scene = Scene {
+            creepages: CreepageSource::Kinematics { regularisation_speed },
+            ellipse: EllipseSource::Inputs,
+            ..scene
+        };
+        Self { geometry, scene }
+    }
+
+    /// The wheel's placed profiles.
+    pub fn geometry(&self) -> &WheelOnRail {
+        &self.geometry
+    }
+
+    /// The forces for `input` from `state`, and the state after this evaluation (as
+    /// [`Scene::evaluate`]).
+    pub fn evaluate(
+        &self,
+        input: &WheelInput,
+        state: &WheelState,
+        cache: &mut WheelCache,
+        evaluation: Evaluation,
+    ) -> Result<(WheelOutput, WheelState), WheelContactError> {
+        check_velocity(&input.velocity)?;
+        let (vertical, patches, states) = match input.vertical {
+            VerticalContact::PrescribedPosition => {
+                let patches = self.geometry.patches_at(&input.position)?;
+                let (forces, states) = self.patch_forces(input, &input.position, &patches, state, cache, evaluation)?;
+                (input.position.vertical, forces, states)
+            }
+            VerticalContact::PrescribedForce(force) => {
+                self.balance_vertical_force(force, input, state, cache, evaluation)?
+            }
+        };
+        let centre = self.geometry.wheelset_centre(&WheelsetPosition { vertical, ..input.position });
+        let mut track_force = [0.0; 3];
+        let mut track_moment = [0.0; 3];
+        for patch in &patches {
+            let force = patch.track_force();
+            let point = &patch.patch.point;
+            let arm = [
+                point.track_longitudinal - centre[0],
+                point.track_lateral - centre[1],
+                point.track_vertical - centre[2],
+            ];
+            let moment = cross(arm, force);
+            let normal = patch_normal(point);
+            for axis in 0..3 {
+                track_force[axis] += force[axis];
+                track_moment[axis] += moment[axis] + patch.output.spin_moment * normal[axis];
+            }
+        }
+        Ok((WheelOutput { patches, wheelset_vertical_position: vertical, track_force, track_moment }, states))
+    }
+
+    /// Prescribed vertical force: rounds of normal problem and creep forces (module doc).
+    fn balance_vertical_force(
+        &self,
+        force: f64,
+        input: &WheelInput,
+        state: &WheelState,
+        cache: &mut WheelCache,
+        evaluation: Evaluation,
+    ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
+        let mut previous: Vec<PatchForces> = Vec::new();
+        let mut last_vertical = f64::NAN;
+        for _ in 0..VERTICAL_ROUNDS {
+            let share = |point: &ContactPoint| {
+                let (sin, cos) = point.contact_angle.sin_cos();
+                let traction = previous
+                    .iter()
+                    .find(|p| p.patch.point.track_lateral == point.track_lateral)
+                    .map_or(0.0, |p| p.output.force_lateral / p.patch.normal_force);
+                cos - traction * sin
+            };
+            let (vertical, patches) = self.geometry.patches_for_force(force, &input.position, share)?;
+            let position = WheelsetPosition { vertical, ..input.position };
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, cache, evaluation)?;
+            let settled = (vertical - last_vertical).abs() < 1e-12;
+            if settled || forces.is_empty() {
+                return Ok((vertical, forces, states));
+            }
+            (previous, last_vertical) = (forces, vertical);
+        }
+        Err(ProfileError::whole(format!(
+            "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
+             {VERTICAL_ROUNDS} rounds"
+        ))
+        .into())
+    }
+
+    /// Each patch's creep forces (module doc), with the state of the nearest last patch.
+    fn patch_forces(
+        &self,
+        input: &WheelInput,
+        position: &WheelsetPosition,
+        patches: &[ContactPatch],
+        state: &WheelState,
+        cache: &mut WheelCache,
+        evaluation: Evaluation,
+    ) -> Result<(Vec<PatchForces>, WheelState), WheelContactError> {
+        cache.patches.resize_with(patches.len().max(cache.patches.len()), SceneCache::default);
+        let centre = self.geometry.wheelset_centre(position);
+        let mut forces = Vec::with_capacity(patches.len());
+        let mut states = Vec::with_capacity(patches.len());
+        for (patch, patch_cache) in patches.iter().zip(&mut cache.patches) {
+            let scene_input = patch_scene_input(patch, &centre, position, &input.velocity, input.friction_coefficient);
+            let last = state
+                .patches
+                .iter()
+                .filter(|last| (last.rail_lateral - patch.point.rail_lateral).abs() < PATCH_MATCH_DISTANCE)
+                .min_by(|a, b| {
+                    let distance = |s: &PatchState| (s.rail_lateral - patch.point.rail_lateral).abs();
+                    distance(a).total_cmp(&distance(b))
+                })
+                .map(|last| last.scene.clone())
+                .unwrap_or_default();
+            let (output, scene_state) = self.scene.evaluate(&scene_input, &last, patch_cache, evaluation)?;
+            forces.push(PatchForces { patch: *patch, output });
+            states.push(PatchState { rail_lateral: patch.point.rail_lateral, scene: scene_state });
+        }
+        Ok((forces, WheelState { patches: states }))
+    }
+}
+
+/// The scene's input for one patch: its slip velocities (module doc) as the kinematics option
+/// reads them — the circumferential speed Ω_eff·r that leaves V − Ω_eff·r = v·e_x, the lateral
+/// slip v·s and the spin ω·n — with its load and ellipse.
+fn patch_scene_input(
+    patch: &ContactPatch,
+    centre: &[f64; 3],
+    position: &WheelsetPosition,
+    velocity: &WheelsetVelocity,
+    friction_coefficient: f64,
+) -> SceneInput {
+    let point = &patch.point;
+    let (sin_roll, cos_roll) = position.roll.sin_cos();
+    let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
+    let axle = [-cos_roll * sin_yaw, cos_roll * cos_yaw, sin_roll];
+    let spin = velocity.wheel_angular_speed;
+    let angular = [-spin * axle[0], -spin * axle[1], velocity.yaw_rate - spin * axle[2]];
+    let arm = [point.track_longitudinal - centre[0], point.track_lateral - centre[1], point.track_vertical - centre[2]];
+    let turning = cross(angular, arm);
+    let slip = [velocity.rolling_speed + turning[0], velocity.lateral_velocity + turning[1], turning[2]];
+    let (sin, cos) = point.contact_angle.sin_cos();
+    let normal = patch_normal(point);
+    SceneInput {
+        normal_force: patch.normal_force,
+        semi_axis_a: patch.ellipse.semi_axis_a,
+        semi_axis_b: patch.ellipse.semi_axis_b,
+        friction_coefficient,
+        rolling_speed: velocity.rolling_speed,
+        wheel_angular_speed: (velocity.rolling_speed - slip[0]) / point.rolling_radius,
+        wheel_rolling_radius: point.rolling_radius,
+        lateral_slip_velocity: slip[1] * cos + slip[2] * sin,
+        spin_angular_velocity: dot(angular, normal),
+        ..SceneInput::default()
+    }
+}
+
+/// The patch's normal n = (0, −sin δ, cos δ), into the rail.
+fn patch_normal(point: &ContactPoint) -> [f64; 3] {
+    let (sin, cos) = point.contact_angle.sin_cos();
+    [0.0, -sin, cos]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn check_velocity(velocity: &WheelsetVelocity) -> Result<(), InvalidInput> {
+    for (variable, value) in [
+        ("rolling_speed", velocity.rolling_speed),
+        ("wheel_angular_speed", velocity.wheel_angular_speed),
+        ("wheelset_lateral_velocity", velocity.lateral_velocity),
+        ("wheelset_yaw_rate", velocity.yaw_rate),
+    ] {
+        if !value.is_finite() {
+            return Err(InvalidInput::new(variable, value, "must be finite"));
+        }
+    }
+    Ok(())
+}
