@@ -100,6 +100,10 @@ pub struct TrackDimensions {
     pub flange_back_position: f64,
     /// The wheel's radius at its profile's z = 0.
     pub nominal_radius: f64,
+    /// The rail's cant \[rad\]: the rail profile turned by this angle about its own origin,
+    /// towards the track's centre (as CONTACT's CANT), on top of any inclination its points
+    /// already have (UIC60 1:40 as shipped is "already canted": 0 here).
+    pub rail_cant: f64,
 }
 
 impl TrackDimensions {
@@ -112,6 +116,7 @@ impl TrackDimensions {
         flange_back_distance: 1.360,
         flange_back_position: -0.070,
         nominal_radius: 0.460,
+        rail_cant: 0.0,
     };
 }
 
@@ -234,6 +239,12 @@ impl WheelOnRail {
             return Err(ProfileError::whole(format!(
                 "flange_back_position = {} must be finite",
                 dimensions.flange_back_position
+            )));
+        }
+        if dimensions.rail_cant != 0.0 {
+            return Err(ProfileError::whole(format!(
+                "rail_cant = {} rad: only 0 is modelled yet (give the cant in the rail profile's points)",
+                dimensions.rail_cant
             )));
         }
         let gauge_face = gauge_face(&rail, dimensions.gauge_measuring_height)?;
