@@ -34,11 +34,12 @@ use std::fmt;
 
 use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
 use super::profile_file::ProfileError;
+use crate::models::exact_table::A_OVER_B_RANGE;
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
     CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
 };
-use crate::InvalidInput;
+use crate::{ExactTheory, InvalidInput, ModelChoice};
 
 /// How many rounds of normal problem and creep forces settle the vertical balance at most.
 pub const VERTICAL_ROUNDS: usize = 12;
@@ -315,11 +316,29 @@ impl WheelRailContact {
                 })
                 .map(|last| last.scene.clone())
                 .unwrap_or_default();
-            let (output, scene_state) = self.scene.evaluate(&scene_input, &last, patch_cache, evaluation)?;
+            let scene = self.patch_scene(patch);
+            let (output, scene_state) = scene.evaluate(&scene_input, &last, patch_cache, evaluation)?;
             forces.push(PatchForces { patch: *patch, output });
             states.push(PatchState { rail_lateral: patch.point.rail_lateral, scene: scene_state });
         }
         Ok((forces, WheelState { patches: states }))
+    }
+}
+
+impl WheelRailContact {
+    /// The scene for one patch: the wheel's, but beyond exact_table's a/b range
+    /// ([`A_OVER_B_RANGE`]) — a flange's Hertz ellipse is often longer, a/b = 16–22 on —
+    /// the exact theory on CONTACT's grid, the theory the table interpolates, solves it instead
+    /// (slower, as accurate).
+    fn patch_scene(&self, patch: &ContactPatch) -> Scene {
+        let ratio = patch.ellipse.semi_axis_a / patch.ellipse.semi_axis_b;
+        let outside = !(A_OVER_B_RANGE.0..=A_OVER_B_RANGE.1).contains(&ratio);
+        match self.scene.model {
+            ModelChoice::ExactTable(_) if outside => {
+                Scene { model: ModelChoice::Exact(ExactTheory::default()), ..self.scene }
+            }
+            _ => self.scene,
+        }
     }
 }
 
