@@ -5,11 +5,11 @@
 //! creepages, normal and creep forces per patch, totals on the wheel; invariants.
 
 use wheel_rail_contact::geometry::{
-    builtin_profile, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelOutput,
-    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    builtin_profile, PatchState, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
+    WheelOutput, WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
 };
 use wheel_rail_contact::models::fastsim::{Flexibility, TractionBound};
-use wheel_rail_contact::scene::{Evaluation, Scene};
+use wheel_rail_contact::scene::{Evaluation, Relaxation, Scene, SceneState};
 use wheel_rail_contact::{ExactTable, ExactTheory, Fastsim, ModelChoice, Polach};
 
 /// CONTACT's values of one wheel and case (its units and signs: mm, rail minus wheel, on the rail).
@@ -227,4 +227,161 @@ fn polach_on_the_flange_falls_short_of_full_slip_under_large_spin() {
     // 5–11 % high. On the tread it stays within 0.05 μN.
     let (creep, normal, total, height) = worst_differences(ModelChoice::Polach(Polach::default()));
     assert!(creep > 0.12 && creep < 0.16 && normal > 0.05 && normal < 0.12, "{creep} {normal} {total} {height}");
+}
+
+fn rolling(lateral: f64, yaw: f64) -> WheelInput {
+    WheelInput {
+        position: WheelsetPosition { lateral, yaw, ..WheelsetPosition::default() },
+        velocity: WheelsetVelocity {
+            rolling_speed: 20.0,
+            wheel_angular_speed: 20.0 / 0.46,
+            ..WheelsetVelocity::default()
+        },
+        vertical: VerticalContact::PrescribedForce(50e3),
+        friction_coefficient: 0.3,
+    }
+}
+
+fn evaluate(contact: &WheelRailContact, input: &WheelInput) -> WheelOutput {
+    contact.evaluate(input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise).unwrap().0
+}
+
+#[test]
+fn the_left_wheel_mirrors_the_right() {
+    // The left wheel at (−y, −ψ) is the right wheel at (y, ψ) seen in a mirror y → −y: F_y,
+    // M_x and M_z change sign, F_x, F_z and M_y do not.
+    let model = ModelChoice::Polach(Polach::default());
+    let (right, left) = (wheel(WheelSide::Right, model), wheel(WheelSide::Left, model));
+    for (lateral, yaw) in [(0.0, 0.0), (0.003, 0.002), (0.007, -0.004), (-0.004, 0.001)] {
+        let on_right = evaluate(&right, &rolling(lateral, yaw));
+        let on_left = evaluate(&left, &rolling(-lateral, -yaw));
+        let signs = [1.0, -1.0, 1.0];
+        for axis in 0..3 {
+            let (r, l) = (on_right.track_force[axis], signs[axis] * on_left.track_force[axis]);
+            assert!((r - l).abs() < 1e-6 * 50e3, "y {lateral}: force {axis} {r} vs {l}");
+            let (r, l) = (on_right.track_moment[axis], -signs[axis] * on_left.track_moment[axis]);
+            assert!((r - l).abs() < 1e-6 * 50e3, "y {lateral}: moment {axis} {r} vs {l}");
+        }
+    }
+}
+
+#[test]
+fn a_centred_wheelset_has_equal_and_opposite_lateral_forces() {
+    // Centred and unyawed: the two wheels alike, mirrored.
+    let model = ModelChoice::ExactTable(ExactTable::new().unwrap());
+    let right = evaluate(&wheel(WheelSide::Right, model), &rolling(0.0, 0.0));
+    let left = evaluate(&wheel(WheelSide::Left, model), &rolling(0.0, 0.0));
+    assert!(right.track_force[1].abs() > 100.0, "{:?}", right.track_force);
+    assert!((right.track_force[1] + left.track_force[1]).abs() < 1e-6 * right.track_force[1].abs());
+    assert!((right.track_force[2] / -50e3 - 1.0).abs() < 1e-8);
+}
+
+#[test]
+fn forces_move_continuously_through_the_tread_to_flange_transition() {
+    // From the tread (y = 5 mm) into the flange (8 mm) at 10 kN: wherever the total on the wheel
+    // changes by more than 0.02 μF_z over a 20 µm step, the step is halved 12 times (to 5 nm);
+    // a continuous force's change shrinks with it, a jump's does not. One jump, where the
+    // contact point moves between the gap's two minima at y ≈ 6.62 mm
+    // (tests/geometry_benchmark.rs): the load moves from the flange root to the flange, and the
+    // lateral total with it, by 1.9 F_z. (Where it lies depends on the load: at 50 kN the two
+    // interpenetrations join, and the patch moves to the deeper one, at y ≈ 5.03 mm.)
+    let contact = wheel(WheelSide::Right, ModelChoice::Polach(Polach::default()));
+    let total = |lateral: f64| {
+        let input = WheelInput { vertical: VerticalContact::PrescribedForce(10e3), ..rolling(lateral, 0.0) };
+        evaluate(&contact, &input).track_force
+    };
+    let change = |a: [f64; 3], b: [f64; 3]| (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max);
+    let threshold = 0.02 * 3e3;
+    let mut jumps = Vec::new();
+    let (mut y, mut last) = (0.005, total(0.005));
+    while y < 0.008 {
+        let next = total(y + 20e-6);
+        if change(last, next) > threshold {
+            let (mut low, mut high, mut at_low, mut at_high) = (y, y + 20e-6, last, next);
+            for _ in 0..12 {
+                let middle = 0.5 * (low + high);
+                let at_middle = total(middle);
+                if change(at_low, at_middle) >= change(at_middle, at_high) {
+                    (high, at_high) = (middle, at_middle);
+                } else {
+                    (low, at_low) = (middle, at_middle);
+                }
+            }
+            if change(at_low, at_high) > threshold {
+                jumps.push((low, change(at_low, at_high)));
+            }
+        }
+        (y, last) = (y + 20e-6, next);
+    }
+    assert_eq!(jumps.len(), 1, "{jumps:?}");
+    let (at, size) = jumps[0];
+    assert!((at - 0.00662).abs() < 0.05e-3 && size < 2.0 * 10e3, "{jumps:?}");
+}
+
+#[test]
+fn both_vertical_modes_agree_and_lift_off_gives_zero_forces() {
+    let contact = wheel(WheelSide::Right, ModelChoice::Polach(Polach::default()));
+    let by_force = evaluate(&contact, &rolling(0.004, 0.003));
+    // Prescribed position: the height the force mode found gives the same wheel (to the
+    // balance's 1 pm).
+    let mut at_height = rolling(0.004, 0.003);
+    at_height.position.vertical = by_force.wheelset_vertical_position;
+    at_height.vertical = VerticalContact::PrescribedPosition;
+    let by_position = evaluate(&contact, &at_height);
+    for axis in 0..3 {
+        assert!((by_force.track_force[axis] - by_position.track_force[axis]).abs() < 1e-3);
+    }
+    // Lifted off: no patch, no force.
+    for input in [
+        WheelInput { vertical: VerticalContact::PrescribedForce(0.0), ..at_height },
+        WheelInput {
+            position: WheelsetPosition { vertical: by_force.wheelset_vertical_position - 1e-3, ..at_height.position },
+            ..at_height
+        },
+    ] {
+        let lifted = evaluate(&contact, &input);
+        assert!(lifted.patches.is_empty());
+        assert_eq!((lifted.track_force, lifted.track_moment), ([0.0; 3], [0.0; 3]));
+    }
+}
+
+#[test]
+fn bad_motion_is_an_error_naming_the_variable() {
+    let contact = wheel(WheelSide::Right, ModelChoice::Polach(Polach::default()));
+    let mut input = rolling(0.002, 0.0);
+    input.velocity.yaw_rate = f64::NAN;
+    let error = contact.evaluate(&input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise);
+    assert!(error.unwrap_err().to_string().contains("wheelset_yaw_rate"));
+    let mut input = rolling(0.002, 0.0);
+    input.position.yaw = 0.5;
+    let error = contact.evaluate(&input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise);
+    assert!(error.unwrap_err().to_string().contains("wheelset_yaw_angle"));
+}
+
+#[test]
+fn creep_relaxation_carries_over_per_patch() {
+    // With creep relaxation the patch's force builds up from its last state: after one step of
+    // 1 ms at 20 m/s over a relaxation length of 10 mm, 1 − e⁻² of the steady force.
+    let model = ModelChoice::KalkerLinear(wheel_rail_contact::KalkerLinear);
+    let scene = Scene { relaxation: Relaxation::On { length: 0.01 }, ..Scene::of_model(model, 82e9, 0.28) };
+    let contact = WheelRailContact::new(wheel(WheelSide::Right, model).geometry().clone(), scene);
+    // At a prescribed height, so that the normal force does not follow the relaxing force.
+    let loaded = evaluate(&wheel(WheelSide::Right, model), &rolling(0.003, 0.002));
+    let input = WheelInput {
+        position: WheelsetPosition { vertical: loaded.wheelset_vertical_position, ..rolling(0.003, 0.002).position },
+        vertical: VerticalContact::PrescribedPosition,
+        ..rolling(0.003, 0.002)
+    };
+    let steady = evaluate(&wheel(WheelSide::Right, model), &input);
+    let at_rest = WheelState {
+        patches: vec![PatchState {
+            rail_lateral: steady.patches[0].patch.point.rail_lateral,
+            scene: SceneState::default(),
+        }],
+    };
+    let (step, next) = contact.evaluate(&input, &at_rest, &mut WheelCache::default(), Evaluation::Step(1e-3)).unwrap();
+    let expected = steady.patches[0].output.force_lateral * -(-2.0f64).exp_m1();
+    assert!((step.patches[0].output.force_lateral / expected - 1.0).abs() < 1e-3);
+    assert_eq!(next.patches.len(), 1);
+    assert_eq!(next.patches[0].scene.relaxed_forces[1], step.patches[0].output.force_lateral);
 }
