@@ -10,10 +10,22 @@
 //! measuring height below its top — lies at y = gauge/2. The wheel: its profile's flange back
 //! (y = `flange_back_position`) lies at y = `flange_back_distance`/2 in wheelset coordinates,
 //! the profile's z = 0 on the nominal radius r0 below the axle. The wheelset at (y_ws, z_ws,
-//! roll): a wheel point (Y, Z) of the wheelset frame (origin on the axle centre line at the
-//! wheel datum's height) goes to (y_ws + Y cos φ − (Z + r0) sin φ, z_ws − r0 + Y sin φ + (Z + r0)
-//! cos φ), a rotation about the axle centre. With φ = 0, z_ws = 0 the wheel's datum is at the
-//! rail top's level (as CONTACT's Z_WS; its case deck reports z_ws = 0.198 mm on y_ws = 0).
+//! roll φ, yaw ψ): the wheel is the surface of revolution of its profile about the axle; its
+//! point at profile y, angle θ from the bottom, (r sin θ, Y, r cos θ) from the axle centre
+//! (Y = profile y + the flange back's offset, r = r0 + z_wheel), goes to c + R_z(ψ)R_x(φ)·(that),
+//! c = (0, y_ws, z_ws − r0). With φ = ψ = 0, z_ws = 0 the wheel's datum is at the rail top's
+//! level (as CONTACT's Z_WS; its case deck reports z_ws = 0.198 mm on y_ws = 0).
+//!
+//! Yaw. The rail is straight along x, so its normal has no x component, and at a contact
+//! point the wheel's normal must not have one either: per profile point, the angle θ where the
+//! turned normal (sin θ cos γ, −sin γ, cos θ cos γ) (γ the profile's slope) has no x component
+//! solves A sin θ + B cos θ = C in closed form (A = cos γ cos ψ, B = cos γ sin φ sin ψ, C = −sin γ
+//! cos φ sin ψ). These points form the wheel's contact locus; θ ≈ −tan γ tan ψ puts a flange
+//! contact (tan γ ≈ 2) 20–30 mm ahead of or behind the axle at ψ = 10–24 mrad, and shifts it
+//! 0.1–0.7 mm laterally. The gap is taken between the rail and the locus, whose track y follows
+//! the profile's y by a fixed-point iteration. On the contact positions agree with
+//! CONTACT's within 0.004 mm on the flange, 0.03 mm in x (0.07–0.1 mm on the flange without
+//! yaw).
 //!
 //! Contact points. The gap g(y) = z_rail(y) − z_wheel(y) (vertical, undeformed) is sampled every
 //! 0.1 mm over the profiles' common lateral range; each interior local minimum, refined by
@@ -28,19 +40,24 @@
 //! continuously with y_ws, and the load passes between separate patches continuously.
 //!
 //! Ellipse: Hertz per patch (the scene's [`HertzContact`]) from the relative curvatures at the
-//! contact point: rolling A = cos δ/(2 r) (the wheel's normal-section curvature along its
-//! parallel, Meusnier's theorem; a straight rail), lateral B = (κ_rail − κ_wheel)/2 with the
-//! profiles' curvatures (positive bending downward; the rail's convex crown and the wheel's
-//! concave throat). Hertz because it is what multibody codes use online, needs one evaluation
-//! per patch, and its error where the curvature changes across the patch (the flange root) is
-//! what the benchmark check measures. Normal force from the normal penetration δ_n by Hertz's
+//! contact point. The wheel's principal curvatures are cos γ/r along its parallel (Meusnier's
+//! theorem) and −κ_wheel along its profile; the rail bends only laterally (κ_rail; curvatures
+//! positive bending downward: the rail's convex crown, the wheel's concave throat). Without yaw
+//! the parallel runs along x: A = cos γ/(2 r), B = (κ_rail − κ_wheel)/2. With yaw it is turned
+//! from x by the angle whose cosine c is the locus' `circumferential_x`, and Euler's theorem
+//! gives the curvatures along x and across: A = (c² cos γ/r − (1 − c²) κ_wheel)/2, B = (κ_rail +
+//! (1 − c²) cos γ/r − c² κ_wheel)/2 (the twist term is dropped: the ellipse stays aligned with
+//! x). Hertz because it is what multibody codes use online and needs one evaluation per patch;
+//! on its patches give, with the exact theory, creep forces within 0.041 μN of CONTACT's
+//! non-Hertzian solution (`tests/geometry_wheel_forces.rs`), inside the 0.12 μN of CONTACT's
+//! own fast methods. Normal force from the normal penetration δ_n by Hertz's
 //! Q ∝ δ_n^{3/2} (the same ellipse solution at 1 N gives the constant).
 //!
-//! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll; reported
+//! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll, yaw → −yaw; reported
 //! positions and contact angles mirrored back), as CONTACT does.
 //!
-//! Not here yet: yaw (the contact point's shift ahead of the axle and its effect on the
-//! curvatures), rail cant other than the profile's own, the creepages and forces.
+//! The creepages and forces of the patches: [`super::wheel_forces`]. Not here yet: rail cant
+//! other than the profile's own.
 
 use super::profile_file::ProfileError;
 use super::smooth_profile::{ProfilePoint, SmoothProfile};
