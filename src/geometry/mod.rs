@@ -22,12 +22,15 @@
 
 pub mod builtin;
 pub mod contact;
+pub mod normal_problem;
 pub mod profile_file;
+mod sampled_profile;
 pub mod smooth_profile;
 pub mod wheel_forces;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+pub use normal_problem::ContactCandidates;
 pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
 pub use smooth_profile::{ProfilePoint, SmoothProfile};
 pub use wheel_forces::{

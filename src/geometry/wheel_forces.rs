@@ -225,7 +225,7 @@ impl WheelRailContact {
         check_velocity(&input.velocity)?;
         let (vertical, patches, states) = match input.vertical {
             VerticalContact::PrescribedPosition => {
-                let patches = self.geometry.patches_at(&input.position)?;
+                let patches = self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?;
                 let (forces, states) = self.patch_forces(input, &input.position, &patches, state, cache, evaluation)?;
                 (input.position.vertical, forces, states)
             }
@@ -263,6 +263,7 @@ impl WheelRailContact {
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
+        let candidates = self.geometry.candidates(&input.position)?;
         let mut previous: Vec<PatchForces> = Vec::new();
         let mut last_vertical = f64::NAN;
         for _ in 0..VERTICAL_ROUNDS {
@@ -274,7 +275,7 @@ impl WheelRailContact {
                     .map_or(0.0, |p| p.output.force_lateral / p.patch.normal_force);
                 cos - traction * sin
             };
-            let (vertical, patches) = self.geometry.patches_for_force(force, &input.position, share)?;
+            let (vertical, patches) = candidates.patches_for_force(force, share)?;
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, cache, evaluation)?;
             let settled = (vertical - last_vertical).abs() < 1e-12;
