@@ -299,7 +299,7 @@ impl WheelOnRail {
         let c = -sin_slope * cos_roll * sin_yaw;
         let amplitude = a.hypot(b);
         let ratio = c / amplitude;
-        if !(ratio.abs() < 1.0) {
+        if ratio.is_nan() || ratio.abs() >= 1.0 {
             return None;
         }
         // The branch near the bottom of the wheel (θ = 0 without yaw).
@@ -458,8 +458,9 @@ struct LocusFrame {
     cos_roll: f64,
     sin_yaw: f64,
     cos_yaw: f64,
-    /// atan2(B, A).
-    phase: f64,
+    /// sin β, cos β of β = atan2(B, A).
+    sin_phase: f64,
+    cos_phase: f64,
     /// −cos φ sin ψ / √(A² + B²) (per unit tan γ, cos γ divided out).
     ratio_per_slope: f64,
     lateral: f64,
@@ -470,13 +471,15 @@ impl LocusFrame {
         let (sin_roll, cos_roll) = position.roll.sin_cos();
         let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
         let (a, b) = (cos_yaw, sin_roll * sin_yaw);
+        let amplitude = a.hypot(b);
         Self {
             sin_roll,
             cos_roll,
             sin_yaw,
             cos_yaw,
-            phase: b.atan2(a),
-            ratio_per_slope: -cos_roll * sin_yaw / a.hypot(b),
+            sin_phase: b / amplitude,
+            cos_phase: a / amplitude,
+            ratio_per_slope: -cos_roll * sin_yaw / amplitude,
             lateral: position.lateral,
         }
     }
@@ -485,10 +488,13 @@ impl LocusFrame {
     /// slope tan γ; `None` where the locus has no point (|sin θ + β| would exceed 1).
     fn track_position(&self, wheel: &WheelOnRail, profile_y: f64, height: f64, slope: f64) -> Option<(f64, f64)> {
         let ratio = self.ratio_per_slope * slope;
-        if !(ratio.abs() < 1.0) {
+        if ratio.is_nan() || ratio.abs() >= 1.0 {
             return None;
         }
-        let (sin_angle, cos_angle) = (ratio.asin() - self.phase).sin_cos();
+        // θ = asin(ratio) − β without trigonometry: sin θ = ratio cos β − √(1 − ratio²) sin β.
+        let root = (1.0 - ratio * ratio).sqrt();
+        let sin_angle = ratio * self.cos_phase - root * self.sin_phase;
+        let cos_angle = root * self.cos_phase + ratio * self.sin_phase;
         let radius = wheel.dimensions.nominal_radius + height;
         let (qx, qy, qz) = (radius * sin_angle, profile_y + wheel.wheel_offset, radius * cos_angle);
         let (ry, rz) = (qy * self.cos_roll - qz * self.sin_roll, qy * self.sin_roll + qz * self.cos_roll);

@@ -114,8 +114,8 @@ impl ContactCandidates {
         let carried = |z: f64| -> Result<f64, ProfileError> {
             let mut sum = 0.0;
             let mut refusal = None;
-            self.for_each_patch(z, |candidate| match loaded(candidate, z) {
-                Ok(patch) => sum += patch.normal_force * vertical_share(&self.side.mirror_point(&patch.point)),
+            self.for_each_patch(z, |candidate| match normal_force(candidate, z) {
+                Ok(force) => sum += force * vertical_share(&self.side.mirror_point(&candidate.point)),
                 Err(error) => refusal = Some(error),
             });
             refusal.map_or(Ok(sum), Err)
@@ -143,12 +143,19 @@ impl ContactCandidates {
     }
 }
 
+/// The candidate's normal penetration and force at z_ws: Q = (δ_n/δ₁)^{3/2}.
+fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileError> {
+    let unit = candidate.unit.as_ref().map_err(Clone::clone)?;
+    let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle.cos() / unit.approach;
+    Ok(relative * relative.sqrt())
+}
+
 /// The candidate loaded at z_ws (module doc).
 fn loaded(candidate: &Candidate, vertical: f64) -> Result<ContactPatch, ProfileError> {
+    let normal_force = normal_force(candidate, vertical)?;
     let unit = candidate.unit.as_ref().map_err(Clone::clone)?;
     let point = candidate.point;
     let penetration = (vertical - point.gap_at_zero) * point.contact_angle.cos();
-    let normal_force = (penetration / unit.approach).powf(1.5);
     let scale = normal_force.cbrt();
     let ellipse = HertzContact {
         semi_axis_a: unit.semi_axis_a * scale,

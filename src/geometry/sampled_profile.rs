@@ -49,7 +49,7 @@ impl SampledProfile {
     /// Height and slope at y by cubic Hermite interpolation, `None` outside the samples.
     pub(crate) fn at(&self, y: f64) -> Option<(f64, f64)> {
         let position = (y - self.first) / self.step;
-        if !(position >= 0.0) {
+        if position.is_nan() || position < 0.0 {
             return None;
         }
         let k = position as usize;

@@ -226,7 +226,9 @@ impl WheelRailContact {
         let (vertical, patches, states) = match input.vertical {
             VerticalContact::PrescribedPosition => {
                 let patches = self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?;
-                let (forces, states) = self.patch_forces(input, &input.position, &patches, state, cache, evaluation)?;
+                let no_hints = WheelState::default();
+                let (forces, states) =
+                    self.patch_forces(input, &input.position, &patches, state, &no_hints, cache, evaluation)?;
                 (input.position.vertical, forces, states)
             }
             VerticalContact::PrescribedForce(force) => {
@@ -266,6 +268,9 @@ impl WheelRailContact {
         let candidates = self.geometry.candidates(&input.position)?;
         let mut previous: Vec<PatchForces> = Vec::new();
         let mut last_vertical = f64::NAN;
+        // Each round's model memory starts the next round's (the exact theory's warm start: the
+        // rounds differ by little); the relaxed forces always start from `state`.
+        let mut hints = WheelState::default();
         for _ in 0..VERTICAL_ROUNDS {
             let share = |point: &ContactPoint| {
                 let (sin, cos) = point.contact_angle.sin_cos();
@@ -277,12 +282,12 @@ impl WheelRailContact {
             };
             let (vertical, patches) = candidates.patches_for_force(force, share)?;
             let position = WheelsetPosition { vertical, ..input.position };
-            let (forces, states) = self.patch_forces(input, &position, &patches, state, cache, evaluation)?;
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
             let settled = (vertical - last_vertical).abs() < 1e-12;
             if settled || forces.is_empty() {
                 return Ok((vertical, forces, states));
             }
-            (previous, last_vertical) = (forces, vertical);
+            (previous, last_vertical, hints) = (forces, vertical, states);
         }
         Err(ProfileError::whole(format!(
             "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
@@ -291,13 +296,16 @@ impl WheelRailContact {
         .into())
     }
 
-    /// Each patch's creep forces (module doc), with the state of the nearest last patch.
+    /// Each patch's creep forces (module doc), with the state of the nearest last patch, its
+    /// model memory from the nearest patch of `hints` if there is one.
+    #[allow(clippy::too_many_arguments)]
     fn patch_forces(
         &self,
         input: &WheelInput,
         position: &WheelsetPosition,
         patches: &[ContactPatch],
         state: &WheelState,
+        hints: &WheelState,
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(Vec<PatchForces>, WheelState), WheelContactError> {
@@ -307,16 +315,10 @@ impl WheelRailContact {
         let mut states = Vec::with_capacity(patches.len());
         for (patch, patch_cache) in patches.iter().zip(&mut cache.patches) {
             let scene_input = patch_scene_input(patch, &centre, position, &input.velocity, input.friction_coefficient);
-            let last = state
-                .patches
-                .iter()
-                .filter(|last| (last.rail_lateral - patch.point.rail_lateral).abs() < PATCH_MATCH_DISTANCE)
-                .min_by(|a, b| {
-                    let distance = |s: &PatchState| (s.rail_lateral - patch.point.rail_lateral).abs();
-                    distance(a).total_cmp(&distance(b))
-                })
-                .map(|last| last.scene.clone())
-                .unwrap_or_default();
+            let mut last = nearest(state, patch).map(|last| last.scene.clone()).unwrap_or_default();
+            if let Some(hint) = nearest(hints, patch) {
+                last.model = hint.scene.model.clone();
+            }
             let scene = self.patch_scene(patch);
             let (output, scene_state) = scene.evaluate(&scene_input, &last, patch_cache, evaluation)?;
             forces.push(PatchForces { patch: *patch, output });
@@ -341,6 +343,16 @@ impl WheelRailContact {
             _ => self.scene,
         }
     }
+}
+
+/// The patch of `state` nearest to `patch` on the rail, within [`PATCH_MATCH_DISTANCE`].
+fn nearest<'a>(state: &'a WheelState, patch: &ContactPatch) -> Option<&'a PatchState> {
+    let distance = |last: &PatchState| (last.rail_lateral - patch.point.rail_lateral).abs();
+    state
+        .patches
+        .iter()
+        .filter(|last| distance(last) < PATCH_MATCH_DISTANCE)
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)))
 }
 
 /// The scene's input for one patch: its slip velocities (module doc) as the kinematics option
