@@ -266,3 +266,40 @@ fn patches_move_continuously_in_y_except_at_the_two_documented_jumps() {
         assert!((from - expected_from).abs() < 0.1e-3 && (to - expected_to).abs() < 0.1e-3, "jump {from} → {to}");
     }
 }
+
+#[test]
+fn rail_cant_turns_the_rail_towards_the_track_centre() {
+    // The shipped UIC60 is already inclined 1:40. Turned upright by hand (its points rotated by
+    // +atan(1/40) about its origin), it must give back the inclined rail's contact when the
+    // track cants it by atan(1/40) again — the same points, angles and heights (CONTACT's CANT:
+    // a rotation about the profile's origin, the highest point then placed at z = 0). A cant of
+    // the wrong sign would double the inclination instead.
+    let inclination = (1.0f64 / 40.0).atan();
+    let shipped = builtin_profile("MBench_UIC60").unwrap();
+    let (sin, cos) = inclination.sin_cos();
+    let upright = wheel_rail_contact::geometry::ProfilePoints {
+        lateral: shipped.lateral.iter().zip(&shipped.vertical).map(|(y, z)| y * cos - z * sin).collect(),
+        vertical: shipped.lateral.iter().zip(&shipped.vertical).map(|(y, z)| y * sin + z * cos).collect(),
+    };
+    let wheel = SmoothProfile::new(&builtin_profile("MBench_S1002").unwrap()).unwrap();
+    let rail = SmoothProfile::new(&upright).unwrap();
+    let track = |rail_cant| TrackDimensions { rail_cant, ..TrackDimensions::MANCHESTER_BENCHMARK };
+    let canted =
+        WheelOnRail::new(wheel.clone(), rail.clone(), track(inclination), WheelSide::Right, 82e9, 0.28).unwrap();
+    let reference = benchmark_pair();
+    for lateral in [0.002, 0.005, 0.008] {
+        let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
+        let (z, patches) = reference.patches_for_force(10e3, &position, cosine).unwrap();
+        let (z_canted, on_canted) = canted.patches_for_force(10e3, &position, cosine).unwrap();
+        assert!((z - z_canted).abs() < 1e-7, "y {lateral}: z_ws {z} vs {z_canted}");
+        for (a, b) in patches.iter().zip(&on_canted) {
+            assert!((a.point.track_lateral - b.point.track_lateral).abs() < 1e-6);
+            assert!((a.point.contact_angle - b.point.contact_angle).abs() < 1e-5);
+        }
+    }
+    // Past ±0.1 rad, or turning a flank past the vertical: errors naming the cause.
+    let wheel = SmoothProfile::new(&builtin_profile("MBench_S1002").unwrap()).unwrap();
+    let rail = SmoothProfile::new(&upright).unwrap();
+    let error = WheelOnRail::new(wheel, rail, track(0.2), WheelSide::Right, 82e9, 0.28).unwrap_err();
+    assert!(error.to_string().contains("rail_cant = 0.2"), "{error}");
+}
