@@ -30,7 +30,7 @@
 //!
 //! Contact points. The gap g(y) = z_rail(y) − z_wheel(y) (vertical, undeformed) is sampled every
 //! 0.1 mm over the profiles' common lateral range; each interior local minimum, refined by
-//! golden-section search, is a candidate contact point. The wheelset's vertical position shifts
+//! Brent's method, is a candidate contact point. The wheelset's vertical position shifts
 //! the gap uniformly, so the candidates do not depend on it: a candidate with g_i < z_ws is in
 //! contact, penetrating vertically by z_ws − g_i, along its normal by (z_ws − g_i) cos δ.
 //! Two candidates whose interpenetration regions join are one patch (the deeper one kept).
@@ -502,7 +502,7 @@ impl<'a> GapSearch<'a> {
     }
 
     /// The full scan: the gap every [`SAMPLE_STEP`] over the rail's extent, each local minimum
-    /// refined by golden-section search; the minima (wheel profile y, increasing) and the highest
+    /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
     /// sampled gap between neighbours.
     fn scan(&self) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
         let (wheel, position) = (self.wheel, &self.position);
@@ -543,10 +543,8 @@ impl<'a> GapSearch<'a> {
         }
         let barriers =
             minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
-        let minima = minima
-            .iter()
-            .map(|&i| golden_section_minimum(|y| self.gap(y), samples[i - 1].0, samples[i + 1].0))
-            .collect();
+        let minima =
+            minima.iter().map(|&i| brent_minimum(|y| self.gap(y), samples[i - 1].0, samples[i + 1].0)).collect();
         Ok((minima, barriers))
     }
 
@@ -563,7 +561,7 @@ impl<'a> GapSearch<'a> {
             let below = if i > 0 { 0.5 * (start - starts[i - 1]) } else { f64::INFINITY };
             let above = starts.get(i + 1).map_or(f64::INFINITY, |next| 0.5 * (next - start));
             let (low, high) = (start - below.min(TABLE_REACH), start + above.min(TABLE_REACH));
-            let found = golden_section_minimum(|y| self.gap(y), low, high);
+            let found = brent_minimum(|y| self.gap(y), low, high);
             let inside = found - low > 1e-6 && high - found > 1e-6 && self.gap(found).is_finite();
             if !inside {
                 return None;
@@ -573,8 +571,7 @@ impl<'a> GapSearch<'a> {
                 minima.push(found);
             }
         }
-        let barriers =
-            minima.windows(2).map(|w| -self.gap(golden_section_minimum(|y| -self.gap(y), w[0], w[1]))).collect();
+        let barriers = minima.windows(2).map(|w| -self.gap(brent_minimum(|y| -self.gap(y), w[0], w[1]))).collect();
         Some((minima, barriers))
     }
 }
@@ -629,25 +626,72 @@ impl ContactTable {
     }
 }
 
-/// Golden-section search for the minimum of `f` in [low, high], to 1 nm.
-fn golden_section_minimum(f: impl Fn(f64) -> f64, mut low: f64, mut high: f64) -> f64 {
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut left, mut right) = (high - ratio * (high - low), low + ratio * (high - low));
-    let (mut f_left, mut f_right) = (f(left), f(right));
-    while high - low > 1e-9 {
-        if f_left < f_right {
-            high = right;
-            (right, f_right) = (left, f_left);
-            left = high - ratio * (high - low);
-            f_left = f(left);
+/// Brent's minimisation of `f` in [low, high] to 1 nm: golden-section steps, parabolic ones
+/// where the parabola through the last three points is trusted (R. P. Brent, "Algorithms for
+/// Minimization without Derivatives", 1973, ch. 5): ten to fifteen evaluations on the gap's
+/// smooth minima, against golden section's thirty.
+fn brent_minimum(f: impl Fn(f64) -> f64, mut low: f64, mut high: f64) -> f64 {
+    const GOLDEN: f64 = 0.381_966_011_250_105_1;
+    const TOLERANCE: f64 = 1e-9;
+    let mut x = low + GOLDEN * (high - low);
+    let (mut w, mut v) = (x, x);
+    let mut fx = f(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut step, mut previous_step) = (0.0f64, 0.0f64);
+    for _ in 0..100 {
+        let middle = 0.5 * (low + high);
+        if (x - middle).abs() <= 2.0 * TOLERANCE - 0.5 * (high - low) {
+            break;
+        }
+        let mut parabolic = false;
+        if previous_step.abs() > TOLERANCE {
+            let r = (x - w) * (fx - fv);
+            let mut q = (x - v) * (fx - fw);
+            let mut p = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let before = previous_step;
+            previous_step = step;
+            if p.abs() < (0.5 * q * before).abs() && p > q * (low - x) && p < q * (high - x) {
+                step = p / q;
+                let u = x + step;
+                if u - low < 2.0 * TOLERANCE || high - u < 2.0 * TOLERANCE {
+                    step = TOLERANCE.copysign(middle - x);
+                }
+                parabolic = true;
+            }
+        }
+        if !parabolic {
+            previous_step = if x >= middle { low - x } else { high - x };
+            step = GOLDEN * previous_step;
+        }
+        let u = if step.abs() >= TOLERANCE { x + step } else { x + TOLERANCE.copysign(step) };
+        let fu = f(u);
+        if fu <= fx {
+            if u >= x {
+                low = x;
+            } else {
+                high = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
         } else {
-            low = left;
-            (left, f_left) = (right, f_right);
-            right = low + ratio * (high - low);
-            f_right = f(right);
+            if u < x {
+                low = u;
+            } else {
+                high = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
         }
     }
-    0.5 * (low + high)
+    x
 }
 
 fn check_position(position: &WheelsetPosition) -> Result<(), ProfileError> {
