@@ -276,7 +276,7 @@ impl WheelOnRail {
         let rail = if dimensions.rail_cant == 0.0 { rail } else { rail.rotated(-dimensions.rail_cant)? };
         let (gauge_face, top) = gauge_face(&rail, dimensions.gauge_measuring_height)?;
         let mut placed = Self {
-            table: ContactTable { first: 0.0, minima: Vec::new() },
+            table: ContactTable { minima: Vec::new() },
             rail_offset: 0.5 * dimensions.gauge - gauge_face,
             rail_lift: -top,
             wheel_offset: 0.5 * dimensions.flange_back_distance - dimensions.flange_back_position,
@@ -366,13 +366,35 @@ impl WheelOnRail {
         check_position(position)?;
         let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };
         let search = GapSearch::new(self, &position);
-        let starts = self.table.starts(search.table_key());
-        let (minima, barriers) = match search.refine_from(&starts) {
+        let starts = if position.yaw.abs() <= TABLE_YAW_REACH {
+            self.table.starts(search.table_key(), position.roll)
+        } else {
+            Vec::new()
+        };
+        let (minima, barriers) = match search.scan_near(&starts) {
             Some(found) => found,
             None => search.scan()?,
         };
+        self.candidates_at(&minima, barriers, &position)
+    }
+
+    /// [`Self::candidates`] by the full scan alone, never from the contact table: the reference
+    /// the table's searches are measured against (`tests/geometry_benchmark.rs`).
+    pub fn candidates_by_full_scan(&self, position: &WheelsetPosition) -> Result<ContactCandidates, ProfileError> {
+        check_position(position)?;
+        let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };
+        let (minima, barriers) = GapSearch::new(self, &position).scan()?;
+        self.candidates_at(&minima, barriers, &position)
+    }
+
+    fn candidates_at(
+        &self,
+        minima: &[f64],
+        barriers: Vec<f64>,
+        position: &WheelsetPosition,
+    ) -> Result<ContactCandidates, ProfileError> {
         let candidates =
-            minima.iter().map(|&profile_y| self.candidate(profile_y, &position)).collect::<Result<_, _>>()?;
+            minima.iter().map(|&profile_y| self.candidate(profile_y, position)).collect::<Result<_, _>>()?;
         Ok(ContactCandidates::new(self.side, candidates, barriers))
     }
 
@@ -480,9 +502,19 @@ impl<'a> GapSearch<'a> {
     }
 
     /// The contact table's key of this pose: the lateral position of the wheel's bottom,
-    /// y_ws − r0 sin φ (roll turns the wheel about its axle, moving its bottom sideways).
+    /// y_ws − r0 sin φ − Y (1 − cos ψ) (roll turns the wheel about its axle, moving its bottom
+    /// sideways; yaw draws the wheel, Y from the centre, towards it).
     fn table_key(&self) -> f64 {
-        self.position.lateral - self.wheel.dimensions.nominal_radius * self.locus.sin_roll
+        self.position.lateral
+            - self.wheel.dimensions.nominal_radius * self.locus.sin_roll
+            - self.wheel.wheel_offset * (1.0 - self.locus.cos_yaw)
+    }
+
+    /// How far from the table's minima the search scans \[m\]: [`TABLE_REACH`], and further
+    /// under yaw, which moves a flange contact (slope tan γ ≤ 3) across the wheel by up to
+    /// r tan γ ψ² ≈ 1.5 ψ² m beyond what the key accounts for.
+    fn reach(&self) -> f64 {
+        TABLE_REACH + 1.5 * self.position.yaw * self.position.yaw
     }
 
     /// The gap at the locus point of a wheel sample (profile y, height, slope).
@@ -501,6 +533,42 @@ impl<'a> GapSearch<'a> {
             .unwrap_or(f64::INFINITY)
     }
 
+    /// The gap at the wheel samples every [`SAMPLE_STEP`] whose profile y lies in [from, to]
+    /// (those over the rail): (profile y, gap), increasing.
+    fn sampled(&self, from: f64, to: f64) -> Vec<(f64, f64)> {
+        let samples = &self.wheel.wheel_samples;
+        let stride = SAMPLES_PER_STEP as usize;
+        let first = samples.index_at(from).max(0.0).ceil() as usize;
+        let last = samples.index_at(to).min((samples.len() - 1) as f64).floor();
+        if last.is_nan() || (last as usize) < first {
+            return Vec::new();
+        }
+        // On the full scan's grid (multiples of the stride), wherever it starts.
+        (first.div_ceil(stride) * stride..=last as usize)
+            .step_by(stride)
+            .filter_map(|k| {
+                let profile_y = samples.lateral(k);
+                self.gap_of(profile_y, samples.sample(k)).map(|gap| (profile_y, gap))
+            })
+            .collect()
+    }
+
+    /// The local minima of a run of samples, refined by Brent's method (wheel profile y), with
+    /// the highest sample between neighbours.
+    fn minima_of(&self, samples: &[(f64, f64)]) -> (Vec<f64>, Vec<f64>) {
+        let mut minima = Vec::new();
+        for (i, window) in samples.windows(3).enumerate() {
+            if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
+                minima.push(i + 1);
+            }
+        }
+        let barriers =
+            minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
+        let minima =
+            minima.iter().map(|&i| brent_minimum(|y| self.gap(y), samples[i - 1].0, samples[i + 1].0)).collect();
+        (minima, barriers)
+    }
+
     /// The full scan: the gap every [`SAMPLE_STEP`] over the rail's extent, each local minimum
     /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
     /// sampled gap between neighbours.
@@ -513,115 +581,119 @@ impl<'a> GapSearch<'a> {
             (track_y - position.lateral + wheel.dimensions.nominal_radius * self.locus.sin_roll) / self.locus.cos_roll
                 - wheel.wheel_offset
         };
-        let (from, to) =
-            (profile_y_at(rail_first + wheel.rail_offset) - 5e-3, profile_y_at(rail_last + wheel.rail_offset) + 5e-3);
-        let samples: Vec<(f64, f64)> = (0..wheel.wheel_samples.len())
-            .step_by(SAMPLES_PER_STEP as usize)
-            .filter(|&k| (from..=to).contains(&wheel.wheel_samples.lateral(k)))
-            .filter_map(|k| {
-                let profile_y = wheel.wheel_samples.lateral(k);
-                self.gap_of(profile_y, wheel.wheel_samples.sample(k)).map(|gap| (profile_y, gap))
-            })
-            .collect();
+        let samples = self.sampled(
+            profile_y_at(rail_first + wheel.rail_offset) - 5e-3,
+            profile_y_at(rail_last + wheel.rail_offset) + 5e-3,
+        );
         if samples.len() < 3 {
             return Err(ProfileError::whole(format!(
                 "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
                 position.lateral
             )));
         }
-        let mut minima = Vec::new();
-        for (i, window) in samples.windows(3).enumerate() {
-            if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
-                minima.push(i + 1);
-            }
-        }
+        let (minima, barriers) = self.minima_of(&samples);
         if minima.is_empty() {
             return Err(ProfileError::whole(format!(
                 "the profiles never touch at wheelset_lateral_displacement = {} m: the gap has no minimum inside their common range",
                 position.lateral
             )));
         }
-        let barriers =
-            minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
-        let minima =
-            minima.iter().map(|&i| brent_minimum(|y| self.gap(y), samples[i - 1].0, samples[i + 1].0)).collect();
         Ok((minima, barriers))
     }
 
-    /// The minima found from `starts` (increasing): each refined by golden-section search within
-    /// 1 mm, and not beyond halfway to its neighbours; `None` — scan instead — if there are no
-    /// starts or a search ends on its bracket's edge (the minimum moved further, or is gone).
-    /// The barriers between neighbours are their gap's maxima, by golden-section search too.
-    fn refine_from(&self, starts: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
-        if starts.is_empty() {
-            return None;
-        }
-        let mut minima: Vec<f64> = Vec::with_capacity(starts.len());
-        for (i, &start) in starts.iter().enumerate() {
-            let below = if i > 0 { 0.5 * (start - starts[i - 1]) } else { f64::INFINITY };
-            let above = starts.get(i + 1).map_or(f64::INFINITY, |next| 0.5 * (next - start));
-            let (low, high) = (start - below.min(TABLE_REACH), start + above.min(TABLE_REACH));
-            let found = brent_minimum(|y| self.gap(y), low, high);
-            let inside = found - low > 1e-6 && high - found > 1e-6 && self.gap(found).is_finite();
-            if !inside {
-                return None;
-            }
-            // Two starts may lead to one minimum.
-            if minima.last().is_none_or(|last| found - last > 1e-6) {
-                minima.push(found);
+    /// The scan restricted to within [`Self::reach`] of `starts` (increasing; the contact
+    /// table's minima near this pose): the same samples, minima and barriers as the full scan
+    /// there (between stretches, the samples between their minima are read for the barrier).
+    /// `None` — scan everything instead — if it finds no minimum.
+    fn scan_near(&self, starts: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        let reach = self.reach();
+        let mut stretches: Vec<(f64, f64)> = Vec::new();
+        for &start in starts {
+            match stretches.last_mut() {
+                Some(last) if start - reach <= last.1 => last.1 = start + reach,
+                _ => stretches.push((start - reach, start + reach)),
             }
         }
-        let barriers = minima.windows(2).map(|w| -self.gap(brent_minimum(|y| -self.gap(y), w[0], w[1]))).collect();
-        Some((minima, barriers))
+        let (mut minima, mut barriers) = (Vec::new(), Vec::new());
+        for (from, to) in stretches {
+            let (found, between) = self.minima_of(&self.sampled(from, to));
+            if let (Some(&last), Some(&first)) = (minima.last(), found.first()) {
+                barriers.push(self.sampled(last, first).iter().map(|s| s.1).fold(f64::MIN, f64::max));
+            }
+            minima.extend(found);
+            barriers.extend(between);
+        }
+        (!minima.is_empty()).then_some((minima, barriers))
     }
 }
 
 /// How far from a contact table's minimum the search looks \[m\].
 const TABLE_REACH: f64 = 1e-3;
 
-/// The gap's minima (wheel profile y) of the unrolled, unyawed wheelset every
-/// [`TABLE_STEP`] of lateral position: where the contact search starts (module doc, "Contact
-/// table").
+/// The gap's minima (wheel profile y) of the unyawed wheelset every [`TABLE_STEP`] of the
+/// wheel bottom's lateral position (the table key) and every [`TABLE_ROLL_STEP`] of roll: where
+/// the contact search starts (module doc, "Contact table").
 #[derive(Debug, Clone)]
 struct ContactTable {
-    first: f64,
-    minima: Vec<Vec<f64>>,
+    /// minima[j][k]: at roll −[`TABLE_ROLL_REACH`] + j·[`TABLE_ROLL_STEP`] and key
+    /// −[`TABLE_REACH_LATERAL`] + k·[`TABLE_STEP`].
+    minima: Vec<Vec<Vec<f64>>>,
 }
 
-/// The contact table's step and reach in lateral position \[m\].
+/// The contact table's steps and reaches in the key and in roll \[m, rad\].
 const TABLE_STEP: f64 = 1e-4;
-const TABLE_REACH_LATERAL: f64 = 0.025;
+/// The rows read around a key \[m\]: what the key misses — roll's turn of the profile between
+/// two nodes, yaw's turn of the contact locus — moves a minimum as a change of the key would,
+/// by up to several tenths of a millimetre of key where the gap is flat. 1 mm finds every
+/// minimum the full scan finds near contact (`the_contact_table_finds_what_the_full_scan_finds`;
+/// 0.5 mm misses some between the roll nodes, also at 0.001 rad between nodes).
+const TABLE_KEY_REACH: f64 = 1e-3;
+const TABLE_REACH_LATERAL: f64 = 0.015;
+const TABLE_ROLL_STEP: f64 = 0.002;
+const TABLE_ROLL_REACH: f64 = 0.012;
+/// Beyond this yaw \[rad\] the flange's minima move further than the table's reach: the full
+/// scan searches there (`the_contact_table_finds_what_the_full_scan_finds`).
+const TABLE_YAW_REACH: f64 = 0.025;
 
 impl ContactTable {
     fn new(wheel: &WheelOnRail) -> Self {
-        let count = (2.0 * TABLE_REACH_LATERAL / TABLE_STEP).round() as usize + 1;
-        let minima = (0..count)
-            .map(|k| {
-                let lateral = -TABLE_REACH_LATERAL + k as f64 * TABLE_STEP;
-                let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
-                // A pose where the profiles do not meet has no minima: the search scans there.
-                GapSearch::new(wheel, &position).scan().map(|(minima, _)| minima).unwrap_or_default()
+        let rows = (2.0 * TABLE_REACH_LATERAL / TABLE_STEP).round() as usize + 1;
+        let rolls = (2.0 * TABLE_ROLL_REACH / TABLE_ROLL_STEP).round() as usize + 1;
+        let minima = (0..rolls)
+            .map(|j| {
+                let roll = -TABLE_ROLL_REACH + j as f64 * TABLE_ROLL_STEP;
+                (0..rows)
+                    .map(|k| {
+                        let key = -TABLE_REACH_LATERAL + k as f64 * TABLE_STEP;
+                        let lateral = key + wheel.dimensions.nominal_radius * roll.sin();
+                        let position = WheelsetPosition { lateral, roll, ..WheelsetPosition::default() };
+                        // A pose where the profiles do not meet has no minima: the search scans there.
+                        GapSearch::new(wheel, &position).scan().map(|(minima, _)| minima).unwrap_or_default()
+                    })
+                    .collect()
             })
             .collect();
-        Self { first: -TABLE_REACH_LATERAL, minima }
+        Self { minima }
     }
 
-    /// The minima of the two rows around `key`, merged where within 0.3 mm (empty outside).
-    fn starts(&self, key: f64) -> Vec<f64> {
-        let position = (key - self.first) / TABLE_STEP;
-        if !(position >= 0.0) || position as usize + 1 >= self.minima.len() {
+    /// The minima of the two rolls around `roll` and the rows within [`TABLE_KEY_REACH`] of
+    /// `key`, increasing (empty outside the table).
+    fn starts(&self, key: f64, roll: f64) -> Vec<f64> {
+        let reach = (TABLE_KEY_REACH / TABLE_STEP).round() as usize;
+        let row = (key + TABLE_REACH_LATERAL) / TABLE_STEP;
+        let column = (roll + TABLE_ROLL_REACH) / TABLE_ROLL_STEP;
+        let rows = self.minima.first().map_or(0, Vec::len);
+        let inside = row >= reach as f64 && (row as usize) + 1 + reach < rows;
+        if !inside || !(column >= 0.0) || column as usize + 1 >= self.minima.len() {
             return Vec::new();
         }
-        let k = position as usize;
-        let mut starts: Vec<f64> = self.minima[k].iter().chain(&self.minima[k + 1]).copied().collect();
+        let (k, j) = (row as usize, column as usize);
+        let mut starts: Vec<f64> = self.minima[j..=j + 1]
+            .iter()
+            .flat_map(|rolled| rolled[k - reach..=k + 1 + reach].iter().flatten())
+            .copied()
+            .collect();
         starts.sort_by(f64::total_cmp);
-        starts.dedup_by(|next, kept| {
-            let close = *next - *kept < 0.3e-3;
-            if close {
-                *kept = 0.5 * (*kept + *next);
-            }
-            close
-        });
         starts
     }
 }

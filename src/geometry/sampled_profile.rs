@@ -37,6 +37,11 @@ impl SampledProfile {
         self.first + k as f64 * self.step
     }
 
+    /// The (fractional) sample index of y.
+    pub(crate) fn index_at(&self, y: f64) -> f64 {
+        (y - self.first) / self.step
+    }
+
     pub(crate) fn len(&self) -> usize {
         self.heights.len()
     }
