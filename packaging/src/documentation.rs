@@ -68,6 +68,7 @@ fn variables_table() -> String {
                 let name = items.iter().find(|(_, value, _)| *value == start).map_or("?", |(name, _, _)| name);
                 format!("{start} ({name})")
             }
+            Kind::String { start } => format!("\"{}\"", escape(start)),
         };
         let mut meaning = escape(variable.description);
         if let Kind::Enumeration { declared_type, items, .. } = variable.kind {
