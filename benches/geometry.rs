@@ -6,9 +6,11 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::geometry::{
-    builtin_profile, ContactPoint, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
+    builtin_profile, ContactPoint, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput,
+    WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
 };
-use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+use wheel_rail_contact::scene::{Evaluation, Scene};
+use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable, ModelChoice, Polach};
 
 /// A patch's vertical share per newton of normal force without tangential forces: cos δ.
 fn cosine(point: &ContactPoint) -> f64 {
@@ -40,6 +42,26 @@ fn geometry(c: &mut Criterion) {
     };
     let model = Polach::default();
     c.bench_function("geometry_polach_scale", |bencher| bencher.iter(|| model.creep_forces(black_box(&input))));
+    // A whole wheel step: geometry, normal problem with the creep forces' share, the forces.
+    for (model, model_name) in [
+        (ModelChoice::Polach(Polach::default()), "polach"),
+        (ModelChoice::ExactTable(ExactTable::new().unwrap()), "exact_table"),
+    ] {
+        let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28));
+        for (place, lateral, yaw) in [("tread", 0.002, 0.0048), ("flange", 0.007, 0.0168)] {
+            let input = WheelInput {
+                position: WheelsetPosition { lateral, yaw, ..WheelsetPosition::default() },
+                velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3478, ..Default::default() },
+                vertical: VerticalContact::PrescribedForce(10e3),
+                friction_coefficient: 0.3,
+            };
+            let mut cache = WheelCache::default();
+            let state = WheelState::default();
+            c.bench_function(&format!("wheel_step_{model_name}_{place}"), |bencher| {
+                bencher.iter(|| contact.evaluate(black_box(&input), &state, &mut cache, Evaluation::Step(1e-3)))
+            });
+        }
+    }
 }
 
 criterion_group!(benches, geometry);

@@ -10,10 +10,22 @@
 //! measuring height below its top — lies at y = gauge/2. The wheel: its profile's flange back
 //! (y = `flange_back_position`) lies at y = `flange_back_distance`/2 in wheelset coordinates,
 //! the profile's z = 0 on the nominal radius r0 below the axle. The wheelset at (y_ws, z_ws,
-//! roll): a wheel point (Y, Z) of the wheelset frame (origin on the axle centre line at the
-//! wheel datum's height) goes to (y_ws + Y cos φ − (Z + r0) sin φ, z_ws − r0 + Y sin φ + (Z + r0)
-//! cos φ), a rotation about the axle centre. With φ = 0, z_ws = 0 the wheel's datum is at the
-//! rail top's level (as CONTACT's Z_WS; its case deck reports z_ws = 0.198 mm on y_ws = 0).
+//! roll φ, yaw ψ): the wheel is the surface of revolution of its profile about the axle; its
+//! point at profile y, angle θ from the bottom, (r sin θ, Y, r cos θ) from the axle centre
+//! (Y = profile y + the flange back's offset, r = r0 + z_wheel), goes to c + R_z(ψ)R_x(φ)·(that),
+//! c = (0, y_ws, z_ws − r0). With φ = ψ = 0, z_ws = 0 the wheel's datum is at the rail top's
+//! level (as CONTACT's Z_WS; its case deck reports z_ws = 0.198 mm on y_ws = 0).
+//!
+//! Yaw. The rail is straight along x, so its normal has no x component, and at a contact
+//! point the wheel's normal must not have one either: per profile point, the angle θ where the
+//! turned normal (sin θ cos γ, −sin γ, cos θ cos γ) (γ the profile's slope) has no x component
+//! solves A sin θ + B cos θ = C in closed form (A = cos γ cos ψ, B = cos γ sin φ sin ψ, C = −sin γ
+//! cos φ sin ψ). These points form the wheel's contact locus; θ ≈ −tan γ tan ψ puts a flange
+//! contact (tan γ ≈ 2) 20–30 mm ahead of or behind the axle at ψ = 10–24 mrad, and shifts it
+//! 0.1–0.7 mm laterally. The gap is taken between the rail and the locus, whose track y follows
+//! the profile's y by a fixed-point iteration. On the contact positions agree with
+//! CONTACT's within 0.004 mm on the flange, 0.03 mm in x (0.07–0.1 mm on the flange without
+//! yaw).
 //!
 //! Contact points. The gap g(y) = z_rail(y) − z_wheel(y) (vertical, undeformed) is sampled every
 //! 0.1 mm over the profiles' common lateral range; each interior local minimum, refined by
@@ -28,21 +40,28 @@
 //! continuously with y_ws, and the load passes between separate patches continuously.
 //!
 //! Ellipse: Hertz per patch (the scene's [`HertzContact`]) from the relative curvatures at the
-//! contact point: rolling A = cos δ/(2 r) (the wheel's normal-section curvature along its
-//! parallel, Meusnier's theorem; a straight rail), lateral B = (κ_rail − κ_wheel)/2 with the
-//! profiles' curvatures (positive bending downward; the rail's convex crown and the wheel's
-//! concave throat). Hertz because it is what multibody codes use online, needs one evaluation
-//! per patch, and its error where the curvature changes across the patch (the flange root) is
-//! what the benchmark check measures. Normal force from the normal penetration δ_n by Hertz's
+//! contact point. The wheel's principal curvatures are cos γ/r along its parallel (Meusnier's
+//! theorem) and −κ_wheel along its profile; the rail bends only laterally (κ_rail; curvatures
+//! positive bending downward: the rail's convex crown, the wheel's concave throat). Without yaw
+//! the parallel runs along x: A = cos γ/(2 r), B = (κ_rail − κ_wheel)/2. With yaw it is turned
+//! from x by the angle whose cosine c is the locus' `circumferential_x`, and Euler's theorem
+//! gives the curvatures along x and across: A = (c² cos γ/r − (1 − c²) κ_wheel)/2, B = (κ_rail +
+//! (1 − c²) cos γ/r − c² κ_wheel)/2 (the twist term is dropped: the ellipse stays aligned with
+//! x). Hertz because it is what multibody codes use online and needs one evaluation per patch;
+//! on its patches give, with the exact theory, creep forces within 0.041 μN of CONTACT's
+//! non-Hertzian solution (`tests/geometry_wheel_forces.rs`), inside the 0.12 μN of CONTACT's
+//! own fast methods. Normal force from the normal penetration δ_n by Hertz's
 //! Q ∝ δ_n^{3/2} (the same ellipse solution at 1 N gives the constant).
 //!
-//! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll; reported
+//! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll, yaw → −yaw; reported
 //! positions and contact angles mirrored back), as CONTACT does.
 //!
-//! Not here yet: yaw (the contact point's shift ahead of the axle and its effect on the
-//! curvatures), rail cant other than the profile's own, the creepages and forces.
+//! The creepages and forces of the patches: [`super::wheel_forces`]. Not here yet: rail cant
+//! other than the profile's own.
 
+use super::normal_problem::{Candidate, ContactCandidates};
 use super::profile_file::ProfileError;
+use super::sampled_profile::SampledProfile;
 use super::smooth_profile::{ProfilePoint, SmoothProfile};
 use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use crate::InvalidInput;
@@ -69,7 +88,7 @@ impl WheelSide {
 
     /// A right-side point seen on this side: lateral positions (track and both profiles', as
     /// CONTACT reports them for the left side) and the contact angle change sign.
-    fn mirror_point(self, point: &ContactPoint) -> ContactPoint {
+    pub(super) fn mirror_point(self, point: &ContactPoint) -> ContactPoint {
         match self {
             Self::Right => *point,
             Self::Left => ContactPoint {
@@ -82,7 +101,7 @@ impl WheelSide {
         }
     }
 
-    fn mirror_patches(self, patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
+    pub(super) fn mirror_patches(self, patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
         patches.into_iter().map(|patch| ContactPatch { point: self.mirror_point(&patch.point), ..patch }).collect()
     }
 }
@@ -151,9 +170,6 @@ struct WheelLocusPoint {
     circumferential_x: f64,
 }
 
-/// Iterations of the locus point's fixed point in y (each gains ≈ 1.5 digits on the flange).
-const LOCUS_ITERATIONS: usize = 12;
-
 /// One contact point's geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
@@ -198,6 +214,9 @@ pub struct ContactPatch {
 /// Sampling step of the gap \[m\]: finer than the profiles' point spacing (≈ 0.35 mm).
 const SAMPLE_STEP: f64 = 1e-4;
 
+/// Profile samples per step of the gap ([`SampledProfile`]: 0.025 mm, its heights within 2 nm).
+const SAMPLES_PER_STEP: u32 = 4;
+
 /// A wheel profile and a rail profile placed on a track.
 #[derive(Debug, Clone)]
 pub struct WheelOnRail {
@@ -205,6 +224,9 @@ pub struct WheelOnRail {
     rail: SmoothProfile,
     dimensions: TrackDimensions,
     side: WheelSide,
+    /// The profiles sampled for the contact search ([`SampledProfile`]).
+    wheel_samples: SampledProfile,
+    rail_samples: SampledProfile,
     /// Track y of the rail profile's origin.
     rail_offset: f64,
     /// Wheelset y of the wheel profile's origin.
@@ -251,6 +273,8 @@ impl WheelOnRail {
         Ok(Self {
             rail_offset: 0.5 * dimensions.gauge - gauge_face,
             wheel_offset: 0.5 * dimensions.flange_back_distance - dimensions.flange_back_position,
+            wheel_samples: SampledProfile::new(&wheel, SAMPLE_STEP / f64::from(SAMPLES_PER_STEP)),
+            rail_samples: SampledProfile::new(&rail, SAMPLE_STEP / f64::from(SAMPLES_PER_STEP)),
             wheel,
             rail,
             dimensions,
@@ -275,7 +299,7 @@ impl WheelOnRail {
         let c = -sin_slope * cos_roll * sin_yaw;
         let amplitude = a.hypot(b);
         let ratio = c / amplitude;
-        if !(ratio.abs() < 1.0) {
+        if ratio.is_nan() || ratio.abs() >= 1.0 {
             return None;
         }
         // The branch near the bottom of the wheel (θ = 0 without yaw).
@@ -297,57 +321,64 @@ impl WheelOnRail {
         })
     }
 
-    /// The wheel's contact locus point at track y (fixed-point iteration on the profile's y:
-    /// the locus' track y moves with the profile's y at a rate within a few per cent of
-    /// cos φ cos ψ), `None` off the profile.
-    fn wheel_at(&self, y: f64, position: &WheelsetPosition) -> Option<WheelLocusPoint> {
-        let rate = position.roll.cos() * position.yaw.cos();
-        let mut profile_y = (y - position.lateral) / rate - self.wheel_offset;
-        let mut point = self.locus_at(profile_y, position)?;
-        for _ in 0..LOCUS_ITERATIONS {
-            let miss = y - point.lateral;
-            if miss.abs() < 1e-12 {
-                break;
-            }
-            profile_y += miss / rate;
-            point = self.locus_at(profile_y, position)?;
-        }
-        Some(point)
-    }
-
-    /// The vertical gap at track y with z_ws = 0, and the two surface points.
-    fn gap(&self, y: f64, position: &WheelsetPosition) -> Option<(f64, WheelLocusPoint, ProfilePoint)> {
-        let at_zero = WheelsetPosition { vertical: 0.0, ..*position };
-        let wheel = self.wheel_at(y, &at_zero)?;
-        let rail = self.rail.at_lateral(y - self.rail_offset)?;
-        Some((rail.vertical - wheel.vertical, wheel, rail))
-    }
-
     /// The wheelset's centre on its axle, (0, y_ws, z_ws − r0) in track axes \[m\].
     pub fn wheelset_centre(&self, position: &WheelsetPosition) -> [f64; 3] {
         [0.0, position.lateral, position.vertical - self.dimensions.nominal_radius]
     }
 
-    /// The candidate contact points (module doc) for the wheelset's lateral position and roll,
-    /// tread first (ordered from the rail's field side to its gauge side); the vertical position
-    /// is not used.
+    /// The candidate contact points (module doc) for the wheelset's lateral position, roll and
+    /// yaw, tread first (ordered from the rail's field side to its gauge side); the vertical
+    /// position is not used.
     pub fn contact_points(&self, position: &WheelsetPosition) -> Result<Vec<ContactPoint>, ProfileError> {
-        check_position(position)?;
-        let points = self.right_points(&self.side.mirror_position(position))?;
-        Ok(points.iter().map(|p| self.side.mirror_point(p)).collect())
+        Ok(self.candidates(position)?.points())
     }
 
-    /// [`Self::contact_points`] for the right side's position.
-    fn right_points(&self, position: &WheelsetPosition) -> Result<Vec<ContactPoint>, ProfileError> {
+    /// The loaded patches at the wheelset's vertical position (prescribed position): every
+    /// candidate the wheel penetrates, merged where their interpenetration joins.
+    pub fn patches_at(&self, position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
+        self.candidates(position)?.patches_at(position.vertical)
+    }
+
+    /// Prescribed vertical force on the wheel \[N\] ([`ContactCandidates::patches_for_force`]).
+    pub fn patches_for_force(
+        &self,
+        vertical_force: f64,
+        position: &WheelsetPosition,
+        vertical_share: impl Fn(&ContactPoint) -> f64,
+    ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
+        self.candidates(position)?.patches_for_force(vertical_force, vertical_share)
+    }
+
+    /// The contact search (module doc, "Contact points") for the wheelset's lateral position,
+    /// roll and yaw: the candidates, from which the normal problem is solved at any vertical
+    /// position or force without searching again.
+    pub fn candidates(&self, position: &WheelsetPosition) -> Result<ContactCandidates, ProfileError> {
+        check_position(position)?;
+        let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };
+        let locus = LocusFrame::new(&position);
+        // The gap at each wheel sample's locus point, in the order of the samples' y (the locus'
+        // track y grows with it).
+        let gap_at = |profile_y: f64, (height, slope): (f64, f64)| {
+            let (lateral, vertical) = locus.track_position(self, profile_y, height, slope)?;
+            let (rail_height, _) = self.rail_samples.at(lateral - self.rail_offset)?;
+            Some(rail_height - vertical)
+        };
+        // Only the wheel samples over the rail: track y ≈ y_ws + (profile y + offset) cos φ
+        // − r0 sin φ (yaw moves it by less than a millimetre), with 5 mm to spare.
         let (rail_first, rail_last) = self.rail.lateral_range();
-        let (wheel_first, wheel_last) = self.wheel.lateral_range();
-        let wheel_shift = position.lateral + self.wheel_offset;
-        let from = (rail_first + self.rail_offset).max(wheel_first + wheel_shift) + SAMPLE_STEP;
-        let to = (rail_last + self.rail_offset).min(wheel_last + wheel_shift) - SAMPLE_STEP;
-        let samples: Vec<(f64, f64)> = (0..)
-            .map(|i| from + f64::from(i) * SAMPLE_STEP)
-            .take_while(|&y| y <= to)
-            .filter_map(|y| self.gap(y, position).map(|(g, _, _)| (y, g)))
+        let profile_y_at = |track_y: f64| {
+            (track_y - position.lateral + self.dimensions.nominal_radius * locus.sin_roll) / locus.cos_roll
+                - self.wheel_offset
+        };
+        let (from, to) =
+            (profile_y_at(rail_first + self.rail_offset) - 5e-3, profile_y_at(rail_last + self.rail_offset) + 5e-3);
+        let samples: Vec<(f64, f64)> = (0..self.wheel_samples.len())
+            .step_by(SAMPLES_PER_STEP as usize)
+            .filter(|&k| (from..=to).contains(&self.wheel_samples.lateral(k)))
+            .filter_map(|k| {
+                let profile_y = self.wheel_samples.lateral(k);
+                gap_at(profile_y, self.wheel_samples.sample(k)).map(|gap| (profile_y, gap))
+            })
             .collect();
         if samples.len() < 3 {
             return Err(ProfileError::whole(format!(
@@ -355,168 +386,141 @@ impl WheelOnRail {
                 position.lateral
             )));
         }
-        let mut points = Vec::new();
-        for window in samples.windows(3) {
+        let mut minima = Vec::new();
+        for (i, window) in samples.windows(3).enumerate() {
             if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
-                let y = self.refine_minimum(window[0].0, window[2].0, position);
-                points.push(self.contact_point(y, position)?);
+                minima.push(i + 1);
             }
         }
-        if points.is_empty() {
+        if minima.is_empty() {
             return Err(ProfileError::whole(format!(
                 "the profiles never touch at wheelset_lateral_displacement = {} m: the gap has no minimum inside their common range",
                 position.lateral
             )));
         }
-        // Tread first: from the rail's field side (large y) to its gauge side.
-        points.reverse();
-        Ok(points)
-    }
-
-    /// Golden-section search for the gap's minimum in [low, high].
-    fn refine_minimum(&self, mut low: f64, mut high: f64, position: &WheelsetPosition) -> f64 {
-        let gap = |y: f64| self.gap(y, position).map_or(f64::INFINITY, |(g, _, _)| g);
-        let ratio = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut left, mut right) = (high - ratio * (high - low), low + ratio * (high - low));
-        let (mut g_left, mut g_right) = (gap(left), gap(right));
-        while high - low > 1e-9 {
-            if g_left < g_right {
-                high = right;
-                (right, g_right) = (left, g_left);
-                left = high - ratio * (high - low);
-                g_left = gap(left);
-            } else {
-                low = left;
-                (left, g_left) = (right, g_right);
-                right = low + ratio * (high - low);
-                g_right = gap(right);
-            }
+        let mut candidates = Vec::with_capacity(minima.len());
+        for &i in &minima {
+            let fast_gap = |profile_y: f64| {
+                self.wheel_samples.at(profile_y).and_then(|sample| gap_at(profile_y, sample)).unwrap_or(f64::INFINITY)
+            };
+            let profile_y = golden_section_minimum(fast_gap, samples[i - 1].0, samples[i + 1].0);
+            candidates.push(self.candidate(profile_y, &position)?);
         }
-        0.5 * (low + high)
+        // The highest gap between neighbouring minima: their interpenetrations join below it.
+        let barriers =
+            minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
+        Ok(ContactCandidates::new(self.side, candidates, barriers))
     }
 
-    fn contact_point(&self, y: f64, position: &WheelsetPosition) -> Result<ContactPoint, ProfileError> {
-        let (gap, wheel, rail) = self
-            .gap(y, position)
-            .ok_or_else(|| ProfileError::whole(format!("contact point y = {y} m off the profiles")))?;
+    /// The candidate at wheel profile y (exact splines), with its Hertz solution under 1 N.
+    fn candidate(&self, profile_y: f64, position: &WheelsetPosition) -> Result<Candidate, ProfileError> {
+        let off = || ProfileError::whole(format!("contact point at wheel profile y = {profile_y} m off the profiles"));
+        let wheel = self.locus_at(profile_y, position).ok_or_else(off)?;
+        let rail = self.rail.at_lateral(wheel.lateral - self.rail_offset).ok_or_else(off)?;
         // Relative curvatures (module doc, "Ellipse"): the wheel's principal curvatures are
         // cos γ/r along its circumference and −κ_wheel along its profile; seen along the track's
         // x axis, at cos² = c² of the circumference's angle to it (Euler's theorem), and along
         // the patch's lateral axis at 1 − c². The straight rail bends only laterally.
         let circumferential = wheel.profile.slope_angle.cos() / wheel.radius;
         let along_x = wheel.circumferential_x * wheel.circumferential_x;
-        Ok(ContactPoint {
+        let point = ContactPoint {
             track_longitudinal: wheel.longitudinal,
-            track_lateral: y,
+            track_lateral: wheel.lateral,
             track_vertical: rail.vertical,
             rail_lateral: rail.lateral,
             wheel_lateral: wheel.profile.lateral,
             contact_angle: rail.slope_angle,
             rolling_radius: wheel.rolling_radius,
-            gap_at_zero: gap,
+            gap_at_zero: rail.vertical - wheel.vertical,
             curvature_rolling: 0.5 * (along_x * circumferential - (1.0 - along_x) * wheel.profile.curvature),
             curvature_lateral: 0.5
                 * (rail.curvature + (1.0 - along_x) * circumferential - along_x * wheel.profile.curvature),
-        })
-    }
-
-    /// The loaded patches at the wheelset's vertical position (prescribed position): every
-    /// candidate the wheel penetrates, merged where their interpenetration joins.
-    pub fn patches_at(&self, position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
-        check_position(position)?;
-        let position = self.side.mirror_position(position);
-        let points = self.right_points(&position)?;
-        Ok(self.side.mirror_patches(self.load(&points, &position)?))
-    }
-
-    fn load(&self, points: &[ContactPoint], position: &WheelsetPosition) -> Result<Vec<ContactPatch>, ProfileError> {
-        let z = position.vertical;
-        let mut active: Vec<ContactPoint> = Vec::new();
-        for point in points.iter().filter(|p| p.gap_at_zero < z) {
-            if let Some(last) = active.last_mut() {
-                if self.interpenetration_joins(last.track_lateral, point.track_lateral, z, position) {
-                    if point.gap_at_zero < last.gap_at_zero {
-                        *last = *point;
-                    }
-                    continue;
-                }
-            }
-            active.push(*point);
-        }
-        active.iter().map(|point| self.patch(*point, (z - point.gap_at_zero) * point.contact_angle.cos())).collect()
-    }
-
-    /// Whether the gap stays below −z_ws everywhere between two track positions.
-    fn interpenetration_joins(&self, from: f64, to: f64, vertical: f64, position: &WheelsetPosition) -> bool {
-        let steps = ((to - from).abs() / SAMPLE_STEP).ceil().max(1.0) as usize;
-        (0..=steps).all(|i| {
-            let y = from + (to - from) * i as f64 / steps as f64;
-            self.gap(y, position).is_some_and(|(g, _, _)| g < vertical)
-        })
-    }
-
-    fn patch(&self, point: ContactPoint, penetration: f64) -> Result<ContactPatch, ProfileError> {
-        let named = |e: InvalidInput| {
-            ProfileError::whole(format!(
-                "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
-                point.rail_lateral * 1e3
-            ))
         };
-        let curvature = RelativeCurvature::new(point.curvature_rolling, point.curvature_lateral).map_err(named)?;
-        // Hertz: δ ∝ Q^{2/3}, so Q = (δ/δ₁)^{3/2} with δ₁ the approach under 1 N.
-        let unit = HertzContact::solve(1.0, &curvature, self.contact_modulus).map_err(named)?;
-        let normal_force = (penetration / unit.approach).powf(1.5);
-        let ellipse = HertzContact::solve(normal_force, &curvature, self.contact_modulus).map_err(named)?;
-        Ok(ContactPatch { point, penetration, normal_force, ellipse })
+        // Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N scales to any load. An
+        // error is kept with the candidate: it matters only if the candidate is loaded.
+        let unit = RelativeCurvature::new(point.curvature_rolling, point.curvature_lateral)
+            .and_then(|curvature| HertzContact::solve(1.0, &curvature, self.contact_modulus))
+            .map_err(|e| {
+                ProfileError::whole(format!(
+                    "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
+                    point.rail_lateral * 1e3
+                ))
+            });
+        Ok(Candidate { point, unit })
+    }
+}
+
+/// The rotation R_z(ψ)R_x(φ) of a wheelset position and the constants of its contact locus'
+/// equation A sin θ + B cos θ = C (module doc, "Yaw"), with cos γ divided out: A/cos γ = cos ψ,
+/// B/cos γ = sin φ sin ψ, C/cos γ = −tan γ cos φ sin ψ.
+struct LocusFrame {
+    sin_roll: f64,
+    cos_roll: f64,
+    sin_yaw: f64,
+    cos_yaw: f64,
+    /// sin β, cos β of β = atan2(B, A).
+    sin_phase: f64,
+    cos_phase: f64,
+    /// −cos φ sin ψ / √(A² + B²) (per unit tan γ, cos γ divided out).
+    ratio_per_slope: f64,
+    lateral: f64,
+}
+
+impl LocusFrame {
+    fn new(position: &WheelsetPosition) -> Self {
+        let (sin_roll, cos_roll) = position.roll.sin_cos();
+        let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
+        let (a, b) = (cos_yaw, sin_roll * sin_yaw);
+        let amplitude = a.hypot(b);
+        Self {
+            sin_roll,
+            cos_roll,
+            sin_yaw,
+            cos_yaw,
+            sin_phase: b / amplitude,
+            cos_phase: a / amplitude,
+            ratio_per_slope: -cos_roll * sin_yaw / amplitude,
+            lateral: position.lateral,
+        }
     }
 
-    /// Prescribed vertical force on the wheel \[N\]: the wheelset's vertical position at which
-    /// the patches carry it, Σ Q_i·s_i = F_z with `vertical_share` s_i the vertical force a patch
-    /// carries per newton of normal force (cos δ alone; [`super::wheel_forces`] adds its
-    /// tangential force's share), found by bisection; returns it with the patches. F_z ≤ 0 is
-    /// lift-off: no patch, the position where the wheel just touches.
-    pub fn patches_for_force(
-        &self,
-        vertical_force: f64,
-        position: &WheelsetPosition,
-        vertical_share: impl Fn(&ContactPoint) -> f64,
-    ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
-        if !vertical_force.is_finite() {
-            return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
+    /// Track y and z (z_ws = 0) of the locus point at wheel profile y with height z_wheel and
+    /// slope tan γ; `None` where the locus has no point (|sin θ + β| would exceed 1).
+    fn track_position(&self, wheel: &WheelOnRail, profile_y: f64, height: f64, slope: f64) -> Option<(f64, f64)> {
+        let ratio = self.ratio_per_slope * slope;
+        if ratio.is_nan() || ratio.abs() >= 1.0 {
+            return None;
         }
-        check_position(position)?;
-        let position = &self.side.mirror_position(position);
-        let points = self.right_points(position)?;
-        let touch = points.iter().map(|p| p.gap_at_zero).fold(f64::INFINITY, f64::min);
-        if vertical_force <= 0.0 {
-            return Ok((touch, Vec::new()));
-        }
-        let carried = |z: f64| -> Result<(f64, Vec<ContactPatch>), ProfileError> {
-            let patches = self.load(&points, &WheelsetPosition { vertical: z, ..*position })?;
-            let carried = patches.iter().map(|p| p.normal_force * vertical_share(&self.side.mirror_point(&p.point)));
-            Ok((carried.sum(), patches))
-        };
-        let (mut low, mut high) = (touch, touch + 1e-5);
-        while carried(high)?.0 < vertical_force {
-            low = high;
-            high = touch + 2.0 * (high - touch);
-            if high - touch > 0.1 {
-                return Err(ProfileError::whole(format!(
-                    "vertical_force = {vertical_force} N is not carried within 0.1 m of penetration"
-                )));
-            }
-        }
-        while high - low > 1e-13 {
-            let middle = 0.5 * (low + high);
-            if carried(middle)?.0 < vertical_force {
-                low = middle;
-            } else {
-                high = middle;
-            }
-        }
-        let z = 0.5 * (low + high);
-        Ok((z, self.side.mirror_patches(carried(z)?.1)))
+        // θ = asin(ratio) − β without trigonometry: sin θ = ratio cos β − √(1 − ratio²) sin β.
+        let root = (1.0 - ratio * ratio).sqrt();
+        let sin_angle = ratio * self.cos_phase - root * self.sin_phase;
+        let cos_angle = root * self.cos_phase + ratio * self.sin_phase;
+        let radius = wheel.dimensions.nominal_radius + height;
+        let (qx, qy, qz) = (radius * sin_angle, profile_y + wheel.wheel_offset, radius * cos_angle);
+        let (ry, rz) = (qy * self.cos_roll - qz * self.sin_roll, qy * self.sin_roll + qz * self.cos_roll);
+        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - wheel.dimensions.nominal_radius))
     }
+}
+
+/// Golden-section search for the minimum of `f` in [low, high], to 1 nm.
+fn golden_section_minimum(f: impl Fn(f64) -> f64, mut low: f64, mut high: f64) -> f64 {
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut left, mut right) = (high - ratio * (high - low), low + ratio * (high - low));
+    let (mut f_left, mut f_right) = (f(left), f(right));
+    while high - low > 1e-9 {
+        if f_left < f_right {
+            high = right;
+            (right, f_right) = (left, f_left);
+            left = high - ratio * (high - low);
+            f_left = f(left);
+        } else {
+            low = left;
+            (left, f_left) = (right, f_right);
+            right = low + ratio * (high - low);
+            f_right = f(right);
+        }
+    }
+    0.5 * (low + high)
 }
 
 fn check_position(position: &WheelsetPosition) -> Result<(), ProfileError> {

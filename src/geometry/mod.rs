@@ -1,4 +1,5 @@
-//! Wheel–rail contact geometry from profiles (issue 25, core part): what is here so far.
+//! Wheel–rail contact from profiles: from wheel and rail profiles and the wheelset's position and
+//! motion to the contact patches and the forces on the wheel.
 //!
 //! - [`profile_file`]: the SIMPACK (`.prw`, `.prr`) and MiniProf (`.whl`, `.ban`) readers, with
 //!   errors naming the line and the reason;
@@ -7,24 +8,29 @@
 //!   their provenance);
 //! - [`smooth_profile`]: a profile's smooth representation (parametric cubic spline) with its
 //!   slope and curvature;
-//! - [`contact`]: a wheel placed on its rail, right or left (gauge, flange back, roll), its contact
-//!   points (tread and flange), the normal problem in both modes (prescribed vertical position or
-//!   force) with a Hertz ellipse per patch.
+//! - [`contact`]: a wheel placed on its rail, right or left (gauge, flange back, roll, yaw), its
+//!   contact points (tread and flange), the normal problem in both modes (prescribed vertical
+//!   position or force) with a Hertz ellipse per patch;
+//! - [`wheel_forces`]: each patch's creepages from the wheelset's motion, its creep forces by
+//!   any rung of the ladder, their sum and moment on the wheel, the vertical balance with the
+//!   creep forces' share.
 //!
 //! Conventions are CONTACT's module 1: profile coordinates y lateral, z downward, in metres; the
 //! profiles are given for the right side (a left wheel and rail use them mirrored).
 //!
-//! Not here yet: yaw, rail cant beyond the profile's own, the
-//! per-patch creepages and forces and their sum on the wheelset, a precomputed contact table.
+//! Not here yet: rail cant beyond the profile's own, a precomputed contact table.
 
 pub mod builtin;
 pub mod contact;
+pub mod normal_problem;
 pub mod profile_file;
+mod sampled_profile;
 pub mod smooth_profile;
 pub mod wheel_forces;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+pub use normal_problem::ContactCandidates;
 pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
 pub use smooth_profile::{ProfilePoint, SmoothProfile};
 pub use wheel_forces::{

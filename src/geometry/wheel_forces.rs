@@ -34,11 +34,12 @@ use std::fmt;
 
 use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
 use super::profile_file::ProfileError;
+use crate::models::exact_table::A_OVER_B_RANGE;
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
     CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
 };
-use crate::InvalidInput;
+use crate::{ExactTheory, InvalidInput, ModelChoice};
 
 /// How many rounds of normal problem and creep forces settle the vertical balance at most.
 pub const VERTICAL_ROUNDS: usize = 12;
@@ -224,8 +225,10 @@ impl WheelRailContact {
         check_velocity(&input.velocity)?;
         let (vertical, patches, states) = match input.vertical {
             VerticalContact::PrescribedPosition => {
-                let patches = self.geometry.patches_at(&input.position)?;
-                let (forces, states) = self.patch_forces(input, &input.position, &patches, state, cache, evaluation)?;
+                let patches = self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?;
+                let no_hints = WheelState::default();
+                let (forces, states) =
+                    self.patch_forces(input, &input.position, &patches, state, &no_hints, cache, evaluation)?;
                 (input.position.vertical, forces, states)
             }
             VerticalContact::PrescribedForce(force) => {
@@ -262,8 +265,12 @@ impl WheelRailContact {
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
+        let candidates = self.geometry.candidates(&input.position)?;
         let mut previous: Vec<PatchForces> = Vec::new();
         let mut last_vertical = f64::NAN;
+        // Each round's model memory starts the next round's (the exact theory's warm start: the
+        // rounds differ by little); the relaxed forces always start from `state`.
+        let mut hints = WheelState::default();
         for _ in 0..VERTICAL_ROUNDS {
             let share = |point: &ContactPoint| {
                 let (sin, cos) = point.contact_angle.sin_cos();
@@ -273,14 +280,14 @@ impl WheelRailContact {
                     .map_or(0.0, |p| p.output.force_lateral / p.patch.normal_force);
                 cos - traction * sin
             };
-            let (vertical, patches) = self.geometry.patches_for_force(force, &input.position, share)?;
+            let (vertical, patches) = candidates.patches_for_force(force, share)?;
             let position = WheelsetPosition { vertical, ..input.position };
-            let (forces, states) = self.patch_forces(input, &position, &patches, state, cache, evaluation)?;
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
             let settled = (vertical - last_vertical).abs() < 1e-12;
             if settled || forces.is_empty() {
                 return Ok((vertical, forces, states));
             }
-            (previous, last_vertical) = (forces, vertical);
+            (previous, last_vertical, hints) = (forces, vertical, states);
         }
         Err(ProfileError::whole(format!(
             "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
@@ -289,13 +296,16 @@ impl WheelRailContact {
         .into())
     }
 
-    /// Each patch's creep forces (module doc), with the state of the nearest last patch.
+    /// Each patch's creep forces (module doc), with the state of the nearest last patch, its
+    /// model memory from the nearest patch of `hints` if there is one.
+    #[allow(clippy::too_many_arguments)]
     fn patch_forces(
         &self,
         input: &WheelInput,
         position: &WheelsetPosition,
         patches: &[ContactPatch],
         state: &WheelState,
+        hints: &WheelState,
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(Vec<PatchForces>, WheelState), WheelContactError> {
@@ -305,22 +315,44 @@ impl WheelRailContact {
         let mut states = Vec::with_capacity(patches.len());
         for (patch, patch_cache) in patches.iter().zip(&mut cache.patches) {
             let scene_input = patch_scene_input(patch, &centre, position, &input.velocity, input.friction_coefficient);
-            let last = state
-                .patches
-                .iter()
-                .filter(|last| (last.rail_lateral - patch.point.rail_lateral).abs() < PATCH_MATCH_DISTANCE)
-                .min_by(|a, b| {
-                    let distance = |s: &PatchState| (s.rail_lateral - patch.point.rail_lateral).abs();
-                    distance(a).total_cmp(&distance(b))
-                })
-                .map(|last| last.scene.clone())
-                .unwrap_or_default();
-            let (output, scene_state) = self.scene.evaluate(&scene_input, &last, patch_cache, evaluation)?;
+            let mut last = nearest(state, patch).map(|last| last.scene.clone()).unwrap_or_default();
+            if let Some(hint) = nearest(hints, patch) {
+                last.model = hint.scene.model.clone();
+            }
+            let scene = self.patch_scene(patch);
+            let (output, scene_state) = scene.evaluate(&scene_input, &last, patch_cache, evaluation)?;
             forces.push(PatchForces { patch: *patch, output });
             states.push(PatchState { rail_lateral: patch.point.rail_lateral, scene: scene_state });
         }
         Ok((forces, WheelState { patches: states }))
     }
+}
+
+impl WheelRailContact {
+    /// The scene for one patch: the wheel's, but beyond exact_table's a/b range
+    /// ([`A_OVER_B_RANGE`]) — a flange's Hertz ellipse is often longer, a/b = 16–22 on A-2.2 —
+    /// the exact theory on CONTACT's grid, the theory the table interpolates, solves it instead
+    /// (slower, as accurate).
+    fn patch_scene(&self, patch: &ContactPatch) -> Scene {
+        let ratio = patch.ellipse.semi_axis_a / patch.ellipse.semi_axis_b;
+        let outside = !(A_OVER_B_RANGE.0..=A_OVER_B_RANGE.1).contains(&ratio);
+        match self.scene.model {
+            ModelChoice::ExactTable(_) if outside => {
+                Scene { model: ModelChoice::Exact(ExactTheory::default()), ..self.scene }
+            }
+            _ => self.scene,
+        }
+    }
+}
+
+/// The patch of `state` nearest to `patch` on the rail, within [`PATCH_MATCH_DISTANCE`].
+fn nearest<'a>(state: &'a WheelState, patch: &ContactPatch) -> Option<&'a PatchState> {
+    let distance = |last: &PatchState| (last.rail_lateral - patch.point.rail_lateral).abs();
+    state
+        .patches
+        .iter()
+        .filter(|last| distance(last) < PATCH_MATCH_DISTANCE)
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)))
 }
 
 /// The scene's input for one patch: its slip velocities (module doc) as the kinematics option

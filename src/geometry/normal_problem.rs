@@ -1,0 +1,167 @@
+//! The normal problem of one wheel from its contact candidates (the gap's local minima, found
+//! once per lateral position, roll and yaw by [`WheelOnRail::candidates`]): which candidates the
+//! wheel penetrates at a vertical position, which of them form one patch, and each patch's
+//! normal force and Hertz ellipse — or the vertical position that carries a prescribed force.
+//!
+//! The wheelset's height shifts the gap uniformly, so a candidate with gap g_i (at z_ws = 0) is
+//! in contact below z_ws = g_i, penetrating along its normal by (z_ws − g_i) cos δ. Two
+//! neighbouring candidates whose interpenetration regions join — the gap between them stays
+//! below z_ws, i.e. z_ws is above the highest gap sampled between them — are one patch, the
+//! deeper one kept. Hertz's Q ∝ δ_n^{3/2} and a, b, p₀ ∝ Q^{1/3} scale each candidate's
+//! solution under 1 N to any load, so the normal problem costs no elliptic integral.
+//!
+//! [`WheelOnRail::candidates`]: super::contact::WheelOnRail::candidates
+
+use super::contact::{ContactPatch, ContactPoint, WheelSide};
+use super::profile_file::ProfileError;
+use crate::scene::hertz::HertzContact;
+
+/// A candidate contact point (right side) with Hertz's solution under 1 N at its curvatures,
+/// or why Hertz does not apply there (an error only once the candidate is loaded).
+#[derive(Debug, Clone)]
+pub(super) struct Candidate {
+    pub(super) point: ContactPoint,
+    pub(super) unit: Result<HertzContact, ProfileError>,
+}
+
+/// One wheel's contact candidates at a lateral position, roll and yaw.
+#[derive(Debug, Clone)]
+pub struct ContactCandidates {
+    side: WheelSide,
+    /// Tread first (from the rail's field side to its gauge side), in the right side's frame.
+    candidates: Vec<Candidate>,
+    /// barriers[i]: the highest gap between candidates i and i + 1.
+    barriers: Vec<f64>,
+}
+
+impl ContactCandidates {
+    /// From the candidates and the barriers between neighbours in the order of increasing y.
+    pub(super) fn new(side: WheelSide, mut candidates: Vec<Candidate>, mut barriers: Vec<f64>) -> Self {
+        candidates.reverse();
+        barriers.reverse();
+        Self { side, candidates, barriers }
+    }
+
+    /// The candidate points on this side, tread first.
+    pub fn points(&self) -> Vec<ContactPoint> {
+        self.candidates.iter().map(|c| self.side.mirror_point(&c.point)).collect()
+    }
+
+    /// z_ws where the wheel first touches: the lowest gap.
+    pub fn touch(&self) -> f64 {
+        self.candidates.iter().map(|c| c.point.gap_at_zero).fold(f64::INFINITY, f64::min)
+    }
+
+    /// The loaded patches at the wheelset's vertical position z_ws (module doc), tread first.
+    pub fn patches_at(&self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
+        Ok(self.side.mirror_patches(self.right_patches(vertical)?))
+    }
+
+    fn right_patches(&self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
+        let mut patches = Vec::with_capacity(self.candidates.len());
+        self.for_each_patch(vertical, |candidate| patches.push(loaded(candidate, vertical)));
+        patches.into_iter().collect()
+    }
+
+    /// Calls `visit` with each loaded candidate at z_ws, the deepest of each group whose
+    /// interpenetrations join, tread first.
+    fn for_each_patch(&self, vertical: f64, mut visit: impl FnMut(&Candidate)) {
+        let mut group: Option<&Candidate> = None;
+        // The highest barrier since the group's last member.
+        let mut barrier = f64::MIN;
+        for (i, candidate) in self.candidates.iter().enumerate() {
+            if candidate.point.gap_at_zero < vertical {
+                match group {
+                    Some(deepest) if barrier < vertical => {
+                        if candidate.point.gap_at_zero < deepest.point.gap_at_zero {
+                            group = Some(candidate);
+                        }
+                    }
+                    Some(deepest) => {
+                        visit(deepest);
+                        group = Some(candidate);
+                    }
+                    None => group = Some(candidate),
+                }
+                barrier = f64::MIN;
+            }
+            if let Some(&next) = self.barriers.get(i) {
+                barrier = barrier.max(next);
+            }
+        }
+        if let Some(deepest) = group {
+            visit(deepest);
+        }
+    }
+
+    /// Prescribed vertical force on the wheel \[N\]: the wheelset's vertical position at which
+    /// the patches carry it, Σ Q_i·s_i = F_z with `vertical_share` s_i the vertical force a patch
+    /// carries per newton of normal force (cos δ alone; [`super::wheel_forces`] adds its
+    /// tangential force's share; > 0), found by bisection; returns it with the patches. F_z ≤ 0
+    /// is lift-off: no patch, the position where the wheel just touches.
+    pub fn patches_for_force(
+        &self,
+        vertical_force: f64,
+        vertical_share: impl Fn(&ContactPoint) -> f64,
+    ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
+        if !vertical_force.is_finite() {
+            return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
+        }
+        let touch = self.touch();
+        if vertical_force <= 0.0 {
+            return Ok((touch, Vec::new()));
+        }
+        let carried = |z: f64| -> Result<f64, ProfileError> {
+            let mut sum = 0.0;
+            let mut refusal = None;
+            self.for_each_patch(z, |candidate| match normal_force(candidate, z) {
+                Ok(force) => sum += force * vertical_share(&self.side.mirror_point(&candidate.point)),
+                Err(error) => refusal = Some(error),
+            });
+            refusal.map_or(Ok(sum), Err)
+        };
+        let (mut low, mut high) = (touch, touch + 1e-5);
+        while carried(high)? < vertical_force {
+            low = high;
+            high = touch + 2.0 * (high - touch);
+            if high - touch > 0.1 {
+                return Err(ProfileError::whole(format!(
+                    "vertical_force = {vertical_force} N is not carried within 0.1 m of penetration"
+                )));
+            }
+        }
+        while high - low > 1e-13 {
+            let middle = 0.5 * (low + high);
+            if carried(middle)? < vertical_force {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        let z = 0.5 * (low + high);
+        Ok((z, self.patches_at(z)?))
+    }
+}
+
+/// The candidate's normal penetration and force at z_ws: Q = (δ_n/δ₁)^{3/2}.
+fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileError> {
+    let unit = candidate.unit.as_ref().map_err(Clone::clone)?;
+    let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle.cos() / unit.approach;
+    Ok(relative * relative.sqrt())
+}
+
+/// The candidate loaded at z_ws (module doc).
+fn loaded(candidate: &Candidate, vertical: f64) -> Result<ContactPatch, ProfileError> {
+    let normal_force = normal_force(candidate, vertical)?;
+    let unit = candidate.unit.as_ref().map_err(Clone::clone)?;
+    let point = candidate.point;
+    let penetration = (vertical - point.gap_at_zero) * point.contact_angle.cos();
+    let scale = normal_force.cbrt();
+    let ellipse = HertzContact {
+        semi_axis_a: unit.semi_axis_a * scale,
+        semi_axis_b: unit.semi_axis_b * scale,
+        max_pressure: unit.max_pressure * scale,
+        approach: penetration,
+    };
+    Ok(ContactPatch { point, penetration, normal_force, ellipse })
+}
