@@ -1,6 +1,7 @@
 """contact_geometry = profiles through fmpy: the Manchester contact benchmark's case A-2.2 (S1002
 on UIC60 1:40, 10 kN per wheel, V = 2 m/s, mu = 0.3, G = 82 GPa, nu = 0.28), right and left
-wheel, against CONTACT's published full solution (tests/data/mbench_a22_contact_ref_out.csv: its
+wheel, with Polach's method and with the exact theory's table, against CONTACT's published full
+solution (tests/data/mbench_a22_contact_ref_out.csv: its
 header gives the source, units and signs; CONTACT's forces are on the rail, so ours, on the
 wheel, are their negatives)."""
 
@@ -22,11 +23,16 @@ MU, LOAD = 0.3, 10e3
 # and the contact angle 0.0100 rad off) and case 11 (the jump from tread to flange, where we find
 # a second, light tread patch).
 EXCLUDED = {("right", 1), ("left", 1), ("right", 2), ("right", 11)}
-# Known defect of the core, checked at its measured size so that a change shows: on the right
-# wheel's first flange case (6.5 mm, the flange root, where the profiles' curvature changes
-# across the patch) Hertz's normal force is 17.06 kN against CONTACT's non-Hertzian 15.44 kN
-# (+10.5 %); every other case is within 2 % on the tread and 8 % on the flange.
-NORMAL_FORCE_TOLERANCE = {("right", 14): 0.11}
+POLACH, EXACT_TABLE = 1, 6
+# Tolerances (normal force relative, creep forces in mu N) per model: the issue's for Polach's
+# method; tighter for the exact theory's table, which is CONTACT's theory (measured: 0.1 % and
+# 0.041 mu N at most).
+TOLERANCES = {POLACH: (0.1, 0.2), EXACT_TABLE: (0.01, 0.05)}
+# A known limit of Polach's method, checked at its measured size so that a change shows: on the
+# right wheel's first flange case (6.5 mm, large spin) its lateral creep force is 0.15 mu N
+# short of CONTACT's, and that force's share of the vertical balance leaves the normal force
+# 17.06 kN against CONTACT's 15.44 kN (+10.5 %; with exact_table: within 0.1 %).
+POLACH_NORMAL_FORCE_TOLERANCE = {("right", 14): 0.11}
 
 
 def rows(name):
@@ -40,11 +46,11 @@ def cases():
             for r in rows("mbench_a22_contact_ref_out.csv")]
 
 
-def wheel_outputs(slave, vr, side, case_inputs):
+def wheel_outputs(slave, vr, side, case_inputs, model=POLACH):
     """One case on a fresh or reset instance: parameters, then the inputs in initialisation mode."""
     slave.setupExperiment(startTime=0.0)
-    slave.setInteger([vr["contact_geometry"], vr["wheel_side"], vr["vertical_contact"]],
-                     [PROFILES, RIGHT if side == "right" else LEFT, PRESCRIBED_FORCE])
+    slave.setInteger([vr["contact_geometry"], vr["wheel_side"], vr["vertical_contact"], vr["creep_force_model"]],
+                     [PROFILES, RIGHT if side == "right" else LEFT, PRESCRIBED_FORCE, model])
     slave.setString([vr["wheel_profile"], vr["rail_profile"]], ["MBench_S1002", "MBench_UIC60"])
     reals = {
         "shear_modulus": 82e9, "poisson_ratio": 0.28, "track_gauge": 1.435, "gauge_measuring_height": 0.014,
@@ -68,16 +74,18 @@ def wheel_outputs(slave, vr, side, case_inputs):
     return dict(zip(names, slave.getReal([vr[n] for n in names])))
 
 
+@pytest.mark.parametrize("model", [POLACH, EXACT_TABLE])
 @pytest.mark.parametrize("side", ["right", "left"])
-def test_a22_against_contact(new_slave, vr, side):
+def test_a22_against_contact(new_slave, vr, side, model):
     slave, _ = instantiated(new_slave, f"A-2.2 {side}")
+    normal_tolerance, creep_tolerance = TOLERANCES[model]
     checked = 0
     for wheel, case, case_inputs, reference in cases():
         if wheel != side:
             continue
         slave.reset()
-        ours = wheel_outputs(slave, vr, side, case_inputs)
-        where = f"{side} case {case}"
+        ours = wheel_outputs(slave, vr, side, case_inputs, model)
+        where = f"{side} case {case}, creep_force_model = {model}"
         # The rail carries the prescribed load (the balance includes the creep forces' share).
         assert math.isclose(ours["track_force_z"], -LOAD, rel_tol=1e-6), (where, ours)
         if (side, case) in EXCLUDED:
@@ -88,10 +96,11 @@ def test_a22_against_contact(new_slave, vr, side):
         assert abs(ours["patch1_contact_angle"] - angle) < (0.02 if on_flange else 0.01), (where, ours, angle)
         assert abs(ours["patch1_rail_lateral_position"] - float(reference["ycp_r"]) * 1e-3) < 1e-3, (where, ours)
         normal = float(reference["fn"])
-        tolerance = NORMAL_FORCE_TOLERANCE.get((side, case), 0.1)
-        assert abs(ours["patch1_normal_force"] / normal - 1.0) < tolerance, (where, ours, normal)
+        if model == POLACH:
+            normal_tolerance = POLACH_NORMAL_FORCE_TOLERANCE.get((side, case), TOLERANCES[POLACH][0])
+        assert abs(ours["patch1_normal_force"] / normal - 1.0) < normal_tolerance, (where, ours, normal)
         for name, theirs in [("patch1_force_longitudinal", -float(reference["fx"])),
                              ("patch1_force_lateral", -float(reference["fs"]))]:
-            assert abs(ours[name] - theirs) < 0.2 * MU * normal, (where, name, ours[name], theirs)
+            assert abs(ours[name] - theirs) < creep_tolerance * MU * normal, (where, name, ours[name], theirs)
         checked += 1
     assert checked == (18 if side == "right" else 20)
