@@ -6,8 +6,9 @@
 //! direction, y lateral positive to the right, z downward; roll about x. The profiles are the
 //! right side's, in their own coordinates (y lateral, z downward, metres).
 //!
-//! Placement. The rail: its gauge face — the point on its inner (y < 0) flank at the gauge
-//! measuring height below its top — lies at y = gauge/2. The wheel: its profile's flange back
+//! Placement. The rail: turned by its cant about its profile's origin (towards the track's
+//! centre), its highest point at z = 0 and its gauge face — the point on its inner (y < 0) flank
+//! at the gauge measuring height below its top — at y = gauge/2, as CONTACT places it. The wheel: its profile's flange back
 //! (y = `flange_back_position`) lies at y = `flange_back_distance`/2 in wheelset coordinates,
 //! the profile's z = 0 on the nominal radius r0 below the axle. The wheelset at (y_ws, z_ws,
 //! roll φ, yaw ψ): the wheel is the surface of revolution of its profile about the axle; its
@@ -56,8 +57,7 @@
 //! The left wheel on the left rail is the right side mirrored (y → −y, roll → −roll, yaw → −yaw; reported
 //! positions and contact angles mirrored back), as CONTACT does.
 //!
-//! The creepages and forces of the patches: [`super::wheel_forces`]. Not here yet: rail cant
-//! other than the profile's own.
+//! The creepages and forces of the patches: [`super::wheel_forces`].
 
 use super::normal_problem::{Candidate, ContactCandidates};
 use super::profile_file::ProfileError;
@@ -229,6 +229,9 @@ pub struct WheelOnRail {
     rail_samples: SampledProfile,
     /// Track y of the rail profile's origin.
     rail_offset: f64,
+    /// Track z of the rail profile's origin: its highest point lies at z = 0 (as CONTACT places
+    /// a rail on a track).
+    rail_lift: f64,
     /// Wheelset y of the wheel profile's origin.
     wheel_offset: f64,
     contact_modulus: f64,
@@ -263,15 +266,16 @@ impl WheelOnRail {
                 dimensions.flange_back_position
             )));
         }
-        if dimensions.rail_cant != 0.0 {
-            return Err(ProfileError::whole(format!(
-                "rail_cant = {} rad: only 0 is modelled yet (give the cant in the rail profile's points)",
-                dimensions.rail_cant
-            )));
+        if !(dimensions.rail_cant.abs() <= 0.1) {
+            return Err(ProfileError::whole(format!("rail_cant = {} rad must be within ±0.1", dimensions.rail_cant)));
         }
-        let gauge_face = gauge_face(&rail, dimensions.gauge_measuring_height)?;
+        // The cant turns the rail towards the track's centre (for the right rail, the field
+        // side up: −cant about x), about its profile's origin, as CONTACT's CANT.
+        let rail = if dimensions.rail_cant == 0.0 { rail } else { rail.rotated(-dimensions.rail_cant)? };
+        let (gauge_face, top) = gauge_face(&rail, dimensions.gauge_measuring_height)?;
         Ok(Self {
             rail_offset: 0.5 * dimensions.gauge - gauge_face,
+            rail_lift: -top,
             wheel_offset: 0.5 * dimensions.flange_back_distance - dimensions.flange_back_position,
             wheel_samples: SampledProfile::new(&wheel, SAMPLE_STEP / f64::from(SAMPLES_PER_STEP)),
             rail_samples: SampledProfile::new(&rail, SAMPLE_STEP / f64::from(SAMPLES_PER_STEP)),
@@ -361,7 +365,7 @@ impl WheelOnRail {
         let gap_at = |profile_y: f64, (height, slope): (f64, f64)| {
             let (lateral, vertical) = locus.track_position(self, profile_y, height, slope)?;
             let (rail_height, _) = self.rail_samples.at(lateral - self.rail_offset)?;
-            Some(rail_height - vertical)
+            Some(rail_height + self.rail_lift - vertical)
         };
         // Only the wheel samples over the rail: track y ≈ y_ws + (profile y + offset) cos φ
         // − r0 sin φ (yaw moves it by less than a millimetre), with 5 mm to spare.
@@ -426,12 +430,12 @@ impl WheelOnRail {
         let point = ContactPoint {
             track_longitudinal: wheel.longitudinal,
             track_lateral: wheel.lateral,
-            track_vertical: rail.vertical,
+            track_vertical: rail.vertical + self.rail_lift,
             rail_lateral: rail.lateral,
             wheel_lateral: wheel.profile.lateral,
             contact_angle: rail.slope_angle,
             rolling_radius: wheel.rolling_radius,
-            gap_at_zero: rail.vertical - wheel.vertical,
+            gap_at_zero: rail.vertical + self.rail_lift - wheel.vertical,
             curvature_rolling: 0.5 * (along_x * circumferential - (1.0 - along_x) * wheel.profile.curvature),
             curvature_lateral: 0.5
                 * (rail.curvature + (1.0 - along_x) * circumferential - along_x * wheel.profile.curvature),
@@ -542,8 +546,9 @@ fn check_position(position: &WheelsetPosition) -> Result<(), ProfileError> {
     Ok(())
 }
 
-/// The rail profile's gauge face: y of its inner (y < 0 side) flank at `height` below its top.
-fn gauge_face(rail: &SmoothProfile, height: f64) -> Result<f64, ProfileError> {
+/// The rail profile's gauge face, y of its inner (y < 0 side) flank at `height` below its top,
+/// and the top's z.
+fn gauge_face(rail: &SmoothProfile, height: f64) -> Result<(f64, f64), ProfileError> {
     let (first, last) = rail.lateral_range();
     let samples: Vec<ProfilePoint> =
         (0..=10_000).filter_map(|i| rail.at_lateral(first + (last - first) * f64::from(i) / 10_000.0)).collect();
@@ -564,5 +569,5 @@ fn gauge_face(rail: &SmoothProfile, height: f64) -> Result<f64, ProfileError> {
             _ => high = middle,
         }
     }
-    Ok(0.5 * (low + high))
+    Ok((0.5 * (low + high), top))
 }

@@ -8,7 +8,7 @@
 //!   their provenance);
 //! - [`smooth_profile`]: a profile's smooth representation (parametric cubic spline) with its
 //!   slope and curvature;
-//! - [`contact`]: a wheel placed on its rail, right or left (gauge, flange back, roll, yaw), its
+//! - [`contact`]: a wheel placed on its rail, right or left (gauge, cant, flange back, roll, yaw), its
 //!   contact points (tread and flange), the normal problem in both modes (prescribed vertical
 //!   position or force) with a Hertz ellipse per patch;
 //! - [`wheel_forces`]: each patch's creepages from the wheelset's motion, its creep forces by
@@ -18,7 +18,7 @@
 //! Conventions are CONTACT's module 1: profile coordinates y lateral, z downward, in metres; the
 //! profiles are given for the right side (a left wheel and rail use them mirrored).
 //!
-//! Not here yet: rail cant beyond the profile's own, a precomputed contact table.
+//! Not here yet: a precomputed contact table (docs/geometry.md, "Speed").
 
 pub mod builtin;
 pub mod contact;

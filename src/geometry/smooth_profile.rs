@@ -111,6 +111,29 @@ impl SmoothProfile {
         Ok(Self { lateral: CubicSpline::natural(&knots, y), vertical: CubicSpline::natural(&knots, z), knots })
     }
 
+    /// The profile turned by `angle` \[rad\] about its origin, about the x axis: (y, z) →
+    /// (y cos α − z sin α, y sin α + z cos α). Exact: the splines are linear in their knot
+    /// values, and a rotation keeps the chord lengths. The turned points must keep y strictly
+    /// increasing (a flank turned past the vertical is an error).
+    pub fn rotated(&self, angle: f64) -> Result<Self, ProfileError> {
+        let (sin, cos) = angle.sin_cos();
+        let turn = |y: &[f64], z: &[f64]| -> (Vec<f64>, Vec<f64>) {
+            y.iter().zip(z).map(|(&y, &z)| (y * cos - z * sin, y * sin + z * cos)).unzip()
+        };
+        let (lateral, vertical) = turn(&self.lateral.values, &self.vertical.values);
+        let (lateral_second, vertical_second) = turn(&self.lateral.second, &self.vertical.second);
+        if lateral.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(ProfileError::whole(format!(
+                "the profile turned by {angle} rad has a flank past the vertical (y no longer increases)"
+            )));
+        }
+        Ok(Self {
+            knots: self.knots.clone(),
+            lateral: CubicSpline { values: lateral, second: lateral_second },
+            vertical: CubicSpline { values: vertical, second: vertical_second },
+        })
+    }
+
     /// The profile's lateral extent \[m\]: its first and last point's y.
     pub fn lateral_range(&self) -> (f64, f64) {
         (self.lateral.values[0], self.lateral.values[self.lateral.values.len() - 1])
