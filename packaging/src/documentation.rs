@@ -261,8 +261,9 @@ file and the reason (the line, for a malformed one).</li>
 <li><b>Track</b>: the rail's gauge face (at <code>gauge_measuring_height</code> below its top) at
 <code>track_gauge</code>/2, the wheel's flange back (at <code>flange_back_position</code> in its profile) at
 <code>flange_back_distance</code>/2, the wheel profile's z = 0 at <code>wheel_nominal_radius</code> r0 below the axle;
-defaults the benchmark's 1.435 m, 14 mm, 1.360 m, −70 mm, 0.46 m. <code>rail_cant</code> other than 0 is not
-modelled yet (fmi2Error naming it): give the inclination in the rail profile's points.</li>
+defaults the benchmark's 1.435 m, 14 mm, 1.360 m, −70 mm, 0.46 m. <code>rail_cant</code> turns the rail profile
+about its origin towards the track's centre (as CONTACT's CANT, within ±0.1 rad) on top of any inclination its
+points have: the built-in UIC60 is already inclined 1:40 (cant 0).</li>
 <li><b>Inputs</b>: the wheelset's <code>wheelset_lateral_displacement</code> y<sub>ws</sub> (to the right),
 <code>wheelset_roll_angle</code>, <code>wheelset_yaw_angle</code> (each within ±0.1 rad), <code>rolling_speed</code> V,
 <code>wheel_angular_speed</code> Ω (positive rolling forward; CONTACT's VPITCH is −Ω),
