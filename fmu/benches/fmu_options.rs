@@ -8,7 +8,9 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion};
 use wheel_rail_contact_fmu::instance::{Instance, InstantiateArguments};
 use wheel_rail_contact_fmu::logging::{LogSink, Status};
-use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch, TractionLaw, GUID};
+use wheel_rail_contact_fmu::model_description::{
+    value_reference as vr, ContactGeometry, Model, Switch, TractionLaw, GUID,
+};
 
 struct NoLog;
 
@@ -49,7 +51,7 @@ fn co_simulation_step(instance: &mut Instance, inputs: &[(&[u32], &[f64])], time
 
 fn options(c: &mut Criterion) {
     let on = Switch::On as i32;
-    let scenes: [(&str, Vec<(u32, i32)>); 8] = [
+    let scenes: [(&str, Vec<(u32, i32)>); 9] = [
         ("all_off", vec![]),
         ("polach2005_dry", vec![(vr::TRACTION_LAW, TractionLaw::Polach2005Dry as i32)]),
         ("hertz_contact", vec![(vr::HERTZ_CONTACT, on)]),
@@ -67,6 +69,9 @@ fn options(c: &mut Criterion) {
         ("fastsim_20x20", vec![(vr::CREEP_FORCE_MODEL, Model::Fastsim as i32)]),
         // issue 11's target: ≤ 1.5 × the Polach step (`all_off`).
         ("exact_table", vec![(vr::CREEP_FORCE_MODEL, Model::ExactTable as i32)]),
+        // One wheel from its profiles (the built-in S1002 on UIC60, y_ws = 0, 10 kN): the
+        // contact search, the vertical balance and a Polach evaluation per patch and round.
+        ("contact_geometry_profiles", vec![(vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32)]),
     ];
     let inputs = [vr::CREEPAGE_LONGITUDINAL, vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE];
     let values = [1.5e-3, -0.8e-3, 0.4, 80e3];
