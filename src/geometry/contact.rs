@@ -30,7 +30,7 @@
 //!
 //! Contact points. The gap g(y) = z_rail(y) − z_wheel(y) (vertical, undeformed) is sampled every
 //! 0.1 mm over the profiles' common lateral range; each interior local minimum, refined by
-//! golden-section search, is a candidate contact point. The wheelset's vertical position shifts
+//! Brent's method, is a candidate contact point. The wheelset's vertical position shifts
 //! the gap uniformly, so the candidates do not depend on it: a candidate with g_i < z_ws is in
 //! contact, penetrating vertically by z_ws − g_i, along its normal by (z_ws − g_i) cos δ.
 //! Two candidates whose interpenetration regions join are one patch (the deeper one kept).
@@ -224,6 +224,8 @@ pub struct WheelOnRail {
     rail: SmoothProfile,
     dimensions: TrackDimensions,
     side: WheelSide,
+    /// The contact table (module doc, "Contact table"), built at placement.
+    table: ContactTable,
     /// The profiles sampled for the contact search ([`SampledProfile`]).
     wheel_samples: SampledProfile,
     rail_samples: SampledProfile,
@@ -273,7 +275,8 @@ impl WheelOnRail {
         // side up: −cant about x), about its profile's origin, as CONTACT's CANT.
         let rail = if dimensions.rail_cant == 0.0 { rail } else { rail.rotated(-dimensions.rail_cant)? };
         let (gauge_face, top) = gauge_face(&rail, dimensions.gauge_measuring_height)?;
-        Ok(Self {
+        let mut placed = Self {
+            table: ContactTable { first: 0.0, minima: Vec::new() },
             rail_offset: 0.5 * dimensions.gauge - gauge_face,
             rail_lift: -top,
             wheel_offset: 0.5 * dimensions.flange_back_distance - dimensions.flange_back_position,
@@ -284,7 +287,9 @@ impl WheelOnRail {
             dimensions,
             side,
             contact_modulus: modulus,
-        })
+        };
+        placed.table = ContactTable::new(&placed);
+        Ok(placed)
     }
 
     /// The wheel's contact locus at wheel profile y `profile_y` (module doc, "Yaw"): the point
@@ -355,64 +360,19 @@ impl WheelOnRail {
 
     /// The contact search (module doc, "Contact points") for the wheelset's lateral position,
     /// roll and yaw: the candidates, from which the normal problem is solved at any vertical
-    /// position or force without searching again.
+    /// position or force without searching again. Started from the contact table's minima where
+    /// it covers the position (module doc, "Contact table"), by the full scan elsewhere.
     pub fn candidates(&self, position: &WheelsetPosition) -> Result<ContactCandidates, ProfileError> {
         check_position(position)?;
         let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };
-        let locus = LocusFrame::new(&position);
-        // The gap at each wheel sample's locus point, in the order of the samples' y (the locus'
-        // track y grows with it).
-        let gap_at = |profile_y: f64, (height, slope): (f64, f64)| {
-            let (lateral, vertical) = locus.track_position(self, profile_y, height, slope)?;
-            let (rail_height, _) = self.rail_samples.at(lateral - self.rail_offset)?;
-            Some(rail_height + self.rail_lift - vertical)
+        let search = GapSearch::new(self, &position);
+        let starts = self.table.starts(search.table_key());
+        let (minima, barriers) = match search.refine_from(&starts) {
+            Some(found) => found,
+            None => search.scan()?,
         };
-        // Only the wheel samples over the rail: track y ≈ y_ws + (profile y + offset) cos φ
-        // − r0 sin φ (yaw moves it by less than a millimetre), with 5 mm to spare.
-        let (rail_first, rail_last) = self.rail.lateral_range();
-        let profile_y_at = |track_y: f64| {
-            (track_y - position.lateral + self.dimensions.nominal_radius * locus.sin_roll) / locus.cos_roll
-                - self.wheel_offset
-        };
-        let (from, to) =
-            (profile_y_at(rail_first + self.rail_offset) - 5e-3, profile_y_at(rail_last + self.rail_offset) + 5e-3);
-        let samples: Vec<(f64, f64)> = (0..self.wheel_samples.len())
-            .step_by(SAMPLES_PER_STEP as usize)
-            .filter(|&k| (from..=to).contains(&self.wheel_samples.lateral(k)))
-            .filter_map(|k| {
-                let profile_y = self.wheel_samples.lateral(k);
-                gap_at(profile_y, self.wheel_samples.sample(k)).map(|gap| (profile_y, gap))
-            })
-            .collect();
-        if samples.len() < 3 {
-            return Err(ProfileError::whole(format!(
-                "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
-                position.lateral
-            )));
-        }
-        let mut minima = Vec::new();
-        for (i, window) in samples.windows(3).enumerate() {
-            if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
-                minima.push(i + 1);
-            }
-        }
-        if minima.is_empty() {
-            return Err(ProfileError::whole(format!(
-                "the profiles never touch at wheelset_lateral_displacement = {} m: the gap has no minimum inside their common range",
-                position.lateral
-            )));
-        }
-        let mut candidates = Vec::with_capacity(minima.len());
-        for &i in &minima {
-            let fast_gap = |profile_y: f64| {
-                self.wheel_samples.at(profile_y).and_then(|sample| gap_at(profile_y, sample)).unwrap_or(f64::INFINITY)
-            };
-            let profile_y = golden_section_minimum(fast_gap, samples[i - 1].0, samples[i + 1].0);
-            candidates.push(self.candidate(profile_y, &position)?);
-        }
-        // The highest gap between neighbouring minima: their interpenetrations join below it.
-        let barriers =
-            minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
+        let candidates =
+            minima.iter().map(|&profile_y| self.candidate(profile_y, &position)).collect::<Result<_, _>>()?;
         Ok(ContactCandidates::new(self.side, candidates, barriers))
     }
 
@@ -506,25 +466,232 @@ impl LocusFrame {
     }
 }
 
-/// Golden-section search for the minimum of `f` in [low, high], to 1 nm.
-fn golden_section_minimum(f: impl Fn(f64) -> f64, mut low: f64, mut high: f64) -> f64 {
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut left, mut right) = (high - ratio * (high - low), low + ratio * (high - low));
-    let (mut f_left, mut f_right) = (f(left), f(right));
-    while high - low > 1e-9 {
-        if f_left < f_right {
-            high = right;
-            (right, f_right) = (left, f_left);
-            left = high - ratio * (high - low);
-            f_left = f(left);
+/// The undeformed gap of one wheel pose (right side, z_ws = 0) as a function of the wheel
+/// profile's y, read from the sampled profiles.
+struct GapSearch<'a> {
+    wheel: &'a WheelOnRail,
+    locus: LocusFrame,
+    position: WheelsetPosition,
+}
+
+impl<'a> GapSearch<'a> {
+    fn new(wheel: &'a WheelOnRail, position: &WheelsetPosition) -> Self {
+        Self { wheel, locus: LocusFrame::new(position), position: *position }
+    }
+
+    /// The contact table's key of this pose: the lateral position of the wheel's bottom,
+    /// y_ws − r0 sin φ (roll turns the wheel about its axle, moving its bottom sideways).
+    fn table_key(&self) -> f64 {
+        self.position.lateral - self.wheel.dimensions.nominal_radius * self.locus.sin_roll
+    }
+
+    /// The gap at the locus point of a wheel sample (profile y, height, slope).
+    fn gap_of(&self, profile_y: f64, (height, slope): (f64, f64)) -> Option<f64> {
+        let (lateral, vertical) = self.locus.track_position(self.wheel, profile_y, height, slope)?;
+        let (rail_height, _) = self.wheel.rail_samples.at(lateral - self.wheel.rail_offset)?;
+        Some(rail_height + self.wheel.rail_lift - vertical)
+    }
+
+    /// The gap at wheel profile y, +∞ off the profiles.
+    fn gap(&self, profile_y: f64) -> f64 {
+        self.wheel
+            .wheel_samples
+            .at(profile_y)
+            .and_then(|sample| self.gap_of(profile_y, sample))
+            .unwrap_or(f64::INFINITY)
+    }
+
+    /// The full scan: the gap every [`SAMPLE_STEP`] over the rail's extent, each local minimum
+    /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
+    /// sampled gap between neighbours.
+    fn scan(&self) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+        let (wheel, position) = (self.wheel, &self.position);
+        // Only the wheel samples over the rail: track y ≈ y_ws + (profile y + offset) cos φ
+        // − r0 sin φ (yaw moves it by less than a millimetre), with 5 mm to spare.
+        let (rail_first, rail_last) = wheel.rail.lateral_range();
+        let profile_y_at = |track_y: f64| {
+            (track_y - position.lateral + wheel.dimensions.nominal_radius * self.locus.sin_roll) / self.locus.cos_roll
+                - wheel.wheel_offset
+        };
+        let (from, to) =
+            (profile_y_at(rail_first + wheel.rail_offset) - 5e-3, profile_y_at(rail_last + wheel.rail_offset) + 5e-3);
+        let samples: Vec<(f64, f64)> = (0..wheel.wheel_samples.len())
+            .step_by(SAMPLES_PER_STEP as usize)
+            .filter(|&k| (from..=to).contains(&wheel.wheel_samples.lateral(k)))
+            .filter_map(|k| {
+                let profile_y = wheel.wheel_samples.lateral(k);
+                self.gap_of(profile_y, wheel.wheel_samples.sample(k)).map(|gap| (profile_y, gap))
+            })
+            .collect();
+        if samples.len() < 3 {
+            return Err(ProfileError::whole(format!(
+                "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
+                position.lateral
+            )));
+        }
+        let mut minima = Vec::new();
+        for (i, window) in samples.windows(3).enumerate() {
+            if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
+                minima.push(i + 1);
+            }
+        }
+        if minima.is_empty() {
+            return Err(ProfileError::whole(format!(
+                "the profiles never touch at wheelset_lateral_displacement = {} m: the gap has no minimum inside their common range",
+                position.lateral
+            )));
+        }
+        let barriers =
+            minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
+        let minima =
+            minima.iter().map(|&i| brent_minimum(|y| self.gap(y), samples[i - 1].0, samples[i + 1].0)).collect();
+        Ok((minima, barriers))
+    }
+
+    /// The minima found from `starts` (increasing): each refined by golden-section search within
+    /// 1 mm, and not beyond halfway to its neighbours; `None` — scan instead — if there are no
+    /// starts or a search ends on its bracket's edge (the minimum moved further, or is gone).
+    /// The barriers between neighbours are their gap's maxima, by golden-section search too.
+    fn refine_from(&self, starts: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        if starts.is_empty() {
+            return None;
+        }
+        let mut minima: Vec<f64> = Vec::with_capacity(starts.len());
+        for (i, &start) in starts.iter().enumerate() {
+            let below = if i > 0 { 0.5 * (start - starts[i - 1]) } else { f64::INFINITY };
+            let above = starts.get(i + 1).map_or(f64::INFINITY, |next| 0.5 * (next - start));
+            let (low, high) = (start - below.min(TABLE_REACH), start + above.min(TABLE_REACH));
+            let found = brent_minimum(|y| self.gap(y), low, high);
+            let inside = found - low > 1e-6 && high - found > 1e-6 && self.gap(found).is_finite();
+            if !inside {
+                return None;
+            }
+            // Two starts may lead to one minimum.
+            if minima.last().is_none_or(|last| found - last > 1e-6) {
+                minima.push(found);
+            }
+        }
+        let barriers = minima.windows(2).map(|w| -self.gap(brent_minimum(|y| -self.gap(y), w[0], w[1]))).collect();
+        Some((minima, barriers))
+    }
+}
+
+/// How far from a contact table's minimum the search looks \[m\].
+const TABLE_REACH: f64 = 1e-3;
+
+/// The gap's minima (wheel profile y) of the unrolled, unyawed wheelset every
+/// [`TABLE_STEP`] of lateral position: where the contact search starts (module doc, "Contact
+/// table").
+#[derive(Debug, Clone)]
+struct ContactTable {
+    first: f64,
+    minima: Vec<Vec<f64>>,
+}
+
+/// The contact table's step and reach in lateral position \[m\].
+const TABLE_STEP: f64 = 1e-4;
+const TABLE_REACH_LATERAL: f64 = 0.025;
+
+impl ContactTable {
+    fn new(wheel: &WheelOnRail) -> Self {
+        let count = (2.0 * TABLE_REACH_LATERAL / TABLE_STEP).round() as usize + 1;
+        let minima = (0..count)
+            .map(|k| {
+                let lateral = -TABLE_REACH_LATERAL + k as f64 * TABLE_STEP;
+                let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
+                // A pose where the profiles do not meet has no minima: the search scans there.
+                GapSearch::new(wheel, &position).scan().map(|(minima, _)| minima).unwrap_or_default()
+            })
+            .collect();
+        Self { first: -TABLE_REACH_LATERAL, minima }
+    }
+
+    /// The minima of the two rows around `key`, merged where within 0.3 mm (empty outside).
+    fn starts(&self, key: f64) -> Vec<f64> {
+        let position = (key - self.first) / TABLE_STEP;
+        if !(position >= 0.0) || position as usize + 1 >= self.minima.len() {
+            return Vec::new();
+        }
+        let k = position as usize;
+        let mut starts: Vec<f64> = self.minima[k].iter().chain(&self.minima[k + 1]).copied().collect();
+        starts.sort_by(f64::total_cmp);
+        starts.dedup_by(|next, kept| {
+            let close = *next - *kept < 0.3e-3;
+            if close {
+                *kept = 0.5 * (*kept + *next);
+            }
+            close
+        });
+        starts
+    }
+}
+
+/// Brent's minimisation of `f` in [low, high] to 1 nm: golden-section steps, parabolic ones
+/// where the parabola through the last three points is trusted (R. P. Brent, "Algorithms for
+/// Minimization without Derivatives", 1973, ch. 5): ten to fifteen evaluations on the gap's
+/// smooth minima, against golden section's thirty.
+fn brent_minimum(f: impl Fn(f64) -> f64, mut low: f64, mut high: f64) -> f64 {
+    const GOLDEN: f64 = 0.381_966_011_250_105_1;
+    const TOLERANCE: f64 = 1e-9;
+    let mut x = low + GOLDEN * (high - low);
+    let (mut w, mut v) = (x, x);
+    let mut fx = f(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut step, mut previous_step) = (0.0f64, 0.0f64);
+    for _ in 0..100 {
+        let middle = 0.5 * (low + high);
+        if (x - middle).abs() <= 2.0 * TOLERANCE - 0.5 * (high - low) {
+            break;
+        }
+        let mut parabolic = false;
+        if previous_step.abs() > TOLERANCE {
+            let r = (x - w) * (fx - fv);
+            let mut q = (x - v) * (fx - fw);
+            let mut p = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let before = previous_step;
+            previous_step = step;
+            if p.abs() < (0.5 * q * before).abs() && p > q * (low - x) && p < q * (high - x) {
+                step = p / q;
+                let u = x + step;
+                if u - low < 2.0 * TOLERANCE || high - u < 2.0 * TOLERANCE {
+                    step = TOLERANCE.copysign(middle - x);
+                }
+                parabolic = true;
+            }
+        }
+        if !parabolic {
+            previous_step = if x >= middle { low - x } else { high - x };
+            step = GOLDEN * previous_step;
+        }
+        let u = if step.abs() >= TOLERANCE { x + step } else { x + TOLERANCE.copysign(step) };
+        let fu = f(u);
+        if fu <= fx {
+            if u >= x {
+                low = x;
+            } else {
+                high = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
         } else {
-            low = left;
-            (left, f_left) = (right, f_right);
-            right = low + ratio * (high - low);
-            f_right = f(right);
+            if u < x {
+                low = u;
+            } else {
+                high = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
         }
     }
-    0.5 * (low + high)
+    x
 }
 
 fn check_position(position: &WheelsetPosition) -> Result<(), ProfileError> {

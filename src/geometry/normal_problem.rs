@@ -59,29 +59,30 @@ impl ContactCandidates {
 
     fn right_patches(&self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
         let mut patches = Vec::with_capacity(self.candidates.len());
-        self.for_each_patch(vertical, |candidate| patches.push(loaded(candidate, vertical)));
+        self.for_each_patch(vertical, |i| patches.push(loaded(&self.candidates[i], vertical)));
         patches.into_iter().collect()
     }
 
-    /// Calls `visit` with each loaded candidate at z_ws, the deepest of each group whose
-    /// interpenetrations join, tread first.
-    fn for_each_patch(&self, vertical: f64, mut visit: impl FnMut(&Candidate)) {
-        let mut group: Option<&Candidate> = None;
+    /// Calls `visit` with the index of each loaded candidate at z_ws, the deepest of each group
+    /// whose interpenetrations join, tread first.
+    fn for_each_patch(&self, vertical: f64, mut visit: impl FnMut(usize)) {
+        let gap = |i: usize| self.candidates[i].point.gap_at_zero;
+        let mut group: Option<usize> = None;
         // The highest barrier since the group's last member.
         let mut barrier = f64::MIN;
-        for (i, candidate) in self.candidates.iter().enumerate() {
-            if candidate.point.gap_at_zero < vertical {
+        for i in 0..self.candidates.len() {
+            if gap(i) < vertical {
                 match group {
                     Some(deepest) if barrier < vertical => {
-                        if candidate.point.gap_at_zero < deepest.point.gap_at_zero {
-                            group = Some(candidate);
+                        if gap(i) < gap(deepest) {
+                            group = Some(i);
                         }
                     }
                     Some(deepest) => {
                         visit(deepest);
-                        group = Some(candidate);
+                        group = Some(i);
                     }
-                    None => group = Some(candidate),
+                    None => group = Some(i),
                 }
                 barrier = f64::MIN;
             }
@@ -111,17 +112,32 @@ impl ContactCandidates {
         if vertical_force <= 0.0 {
             return Ok((touch, Vec::new()));
         }
-        let carried = |z: f64| -> Result<f64, ProfileError> {
-            let mut sum = 0.0;
-            let mut refusal = None;
-            self.for_each_patch(z, |candidate| match normal_force(candidate, z) {
-                Ok(force) => sum += force * vertical_share(&self.side.mirror_point(&candidate.point)),
-                Err(error) => refusal = Some(error),
+        // Per candidate: its vertical share times Q/(z_ws − g)^{3/2} = (cos δ/δ₁)^{3/2}, so that
+        // the carried force is Σ k_i (z_ws − g_i)^{3/2} over the patches.
+        let mut factors = Vec::with_capacity(self.candidates.len());
+        for candidate in &self.candidates {
+            let unit = candidate.unit.as_ref().map_err(Clone::clone);
+            let share = vertical_share(&self.side.mirror_point(&candidate.point));
+            factors.push(unit.map(|unit| {
+                let per_depth = candidate.point.contact_angle.cos() / unit.approach;
+                share * per_depth * per_depth.sqrt()
+            }));
+        }
+        // The force carried at z_ws and its rate.
+        let carried = |z: f64| -> Result<(f64, f64), ProfileError> {
+            let (mut force, mut rate, mut refusal) = (0.0, 0.0, None);
+            self.for_each_patch(z, |i| match &factors[i] {
+                Ok(factor) => {
+                    let depth = z - self.candidates[i].point.gap_at_zero;
+                    force += factor * depth * depth.sqrt();
+                    rate += 1.5 * factor * depth.sqrt();
+                }
+                Err(error) => refusal = Some(error.clone()),
             });
-            refusal.map_or(Ok(sum), Err)
+            refusal.map_or(Ok((force, rate)), Err)
         };
         let (mut low, mut high) = (touch, touch + 1e-5);
-        while carried(high)? < vertical_force {
+        while carried(high)?.0 < vertical_force {
             low = high;
             high = touch + 2.0 * (high - touch);
             if high - touch > 0.1 {
@@ -130,15 +146,22 @@ impl ContactCandidates {
                 )));
             }
         }
+        // Newton's method inside the bracket, bisection where a step would leave it (joining
+        // patches make the carried force jump).
+        let mut z = high;
         while high - low > 1e-13 {
-            let middle = 0.5 * (low + high);
-            if carried(middle)? < vertical_force {
-                low = middle;
+            let (force, rate) = carried(z)?;
+            if force < vertical_force {
+                low = z;
             } else {
-                high = middle;
+                high = z;
             }
+            if (force - vertical_force).abs() <= 1e-12 * vertical_force {
+                break;
+            }
+            let newton = z - (force - vertical_force) / rate;
+            z = if newton > low && newton < high { newton } else { 0.5 * (low + high) };
         }
-        let z = 0.5 * (low + high);
         Ok((z, self.patches_at(z)?))
     }
 }
