@@ -1,7 +1,8 @@
 //! The cost of each scene option per co-simulation step, in one run: one instance per option
 //! (set through the FMU's own parameters), each doing set 7 inputs + DoStep + get 3 outputs
 //! through the safe instance API, against the same with every option off. Options off must cost
-//! nothing; the figures on are what a scene pays for switching one on.
+//! nothing; the figures on are what a scene pays for switching one on. And a wheel on its
+//! profiles (`fmu_profiles`) at four lateral positions, to compare with `all_off` in one run.
 
 use std::hint::black_box;
 
@@ -51,7 +52,7 @@ fn co_simulation_step(instance: &mut Instance, inputs: &[(&[u32], &[f64])], time
 
 fn options(c: &mut Criterion) {
     let on = Switch::On as i32;
-    let scenes: [(&str, Vec<(u32, i32)>); 9] = [
+    let scenes: [(&str, Vec<(u32, i32)>); 8] = [
         ("all_off", vec![]),
         ("polach2005_dry", vec![(vr::TRACTION_LAW, TractionLaw::Polach2005Dry as i32)]),
         ("hertz_contact", vec![(vr::HERTZ_CONTACT, on)]),
@@ -69,9 +70,6 @@ fn options(c: &mut Criterion) {
         ("fastsim_20x20", vec![(vr::CREEP_FORCE_MODEL, Model::Fastsim as i32)]),
         // issue 11's target: ≤ 1.5 × the Polach step (`all_off`).
         ("exact_table", vec![(vr::CREEP_FORCE_MODEL, Model::ExactTable as i32)]),
-        // One wheel from its profiles (the built-in S1002 on UIC60, y_ws = 0, 10 kN): the
-        // contact search, the vertical balance and a Polach evaluation per patch and round.
-        ("contact_geometry_profiles", vec![(vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32)]),
     ];
     let inputs = [vr::CREEPAGE_LONGITUDINAL, vr::CREEPAGE_LATERAL, vr::SPIN_CREEPAGE, vr::NORMAL_FORCE];
     let values = [1.5e-3, -0.8e-3, 0.4, 80e3];
@@ -84,6 +82,26 @@ fn options(c: &mut Criterion) {
         let mut time = 0.0;
         let set: [(&[u32], &[f64]); 2] = [(&inputs, &values), (&kinematics, &kinematic_values)];
         group.bench_function(name, |b| b.iter(|| co_simulation_step(&mut instance, &set, &mut time, &outputs)));
+    }
+    group.finish();
+}
+
+/// One wheel from its profiles (`contact_geometry = profiles`: the built-in S1002 on UIC60,
+/// 10 kN, braking 0.15 % at 20 m/s, Polach): the contact search, the vertical balance and the
+/// patches' creep forces per step, on the tread (2 mm), at the flat gap of the centred wheelset
+/// (0 mm), where tread and flange share the load (5 mm) and on the flange (7 mm).
+fn profiles(c: &mut Criterion) {
+    let mut group = c.benchmark_group("fmu_profiles");
+    let inputs = [vr::WHEELSET_LATERAL_DISPLACEMENT, vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED];
+    let outputs = [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::CONTACT_PATCH_COUNT];
+    for (name, lateral) in [("tread_2mm", 2e-3), ("centred_0mm", 0.0), ("two_patches_5mm", 5e-3), ("flange_7mm", 7e-3)]
+    {
+        let mut instance = instance(&[(vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32)]);
+        let mut time = 0.0;
+        let values = [lateral, 20.0, 19.97 / 0.46];
+        group.bench_function(name, |b| {
+            b.iter(|| co_simulation_step(&mut instance, &[(&inputs, &values)], &mut time, &outputs))
+        });
     }
     group.finish();
 }
@@ -110,5 +128,5 @@ fn exact_co_simulation(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, options, exact_co_simulation);
+criterion_group!(benches, options, profiles, exact_co_simulation);
 criterion_main!(benches);
