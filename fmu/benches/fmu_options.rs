@@ -1,14 +1,17 @@
 //! The cost of each scene option per co-simulation step, in one run: one instance per option
 //! (set through the FMU's own parameters), each doing set 7 inputs + DoStep + get 3 outputs
 //! through the safe instance API, against the same with every option off. Options off must cost
-//! nothing; the figures on are what a scene pays for switching one on.
+//! nothing; the figures on are what a scene pays for switching one on. And a wheel on its
+//! profiles (`fmu_profiles`) at four lateral positions, to compare with `all_off` in one run.
 
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use wheel_rail_contact_fmu::instance::{Instance, InstantiateArguments};
 use wheel_rail_contact_fmu::logging::{LogSink, Status};
-use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch, TractionLaw, GUID};
+use wheel_rail_contact_fmu::model_description::{
+    value_reference as vr, ContactGeometry, Model, Switch, TractionLaw, GUID,
+};
 
 struct NoLog;
 
@@ -83,6 +86,26 @@ fn options(c: &mut Criterion) {
     group.finish();
 }
 
+/// One wheel from its profiles (`contact_geometry = profiles`: the built-in S1002 on UIC60,
+/// 10 kN, braking 0.15 % at 20 m/s, Polach): the contact search, the vertical balance and the
+/// patches' creep forces per step, on the tread (2 mm), at the flat gap of the centred wheelset
+/// (0 mm), where tread and flange share the load (5 mm) and on the flange (7 mm).
+fn profiles(c: &mut Criterion) {
+    let mut group = c.benchmark_group("fmu_profiles");
+    let inputs = [vr::WHEELSET_LATERAL_DISPLACEMENT, vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED];
+    let outputs = [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::CONTACT_PATCH_COUNT];
+    for (name, lateral) in [("tread_2mm", 2e-3), ("centred_0mm", 0.0), ("two_patches_5mm", 5e-3), ("flange_7mm", 7e-3)]
+    {
+        let mut instance = instance(&[(vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32)]);
+        let mut time = 0.0;
+        let values = [lateral, 20.0, 19.97 / 0.46];
+        group.bench_function(name, |b| {
+            b.iter(|| co_simulation_step(&mut instance, &[(&inputs, &values)], &mut time, &outputs))
+        });
+    }
+    group.finish();
+}
+
 /// The exact theory on 40 × 40 in a co-simulation with slowly varying creepage (issue 10's
 /// target: ≤ 5 ms per step): each step moves ξ by 1e-6 and φ by 1e-4 /m, so the warm start from
 /// the previous step's tractions is close; spin keeps adhesion and slip both present.
@@ -105,5 +128,5 @@ fn exact_co_simulation(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, options, exact_co_simulation);
+criterion_group!(benches, options, profiles, exact_co_simulation);
 criterion_main!(benches);

@@ -32,6 +32,8 @@ enum BaseType {
     Real,
     Integer,
     Enumeration,
+    /// Parameters only; kept out of the `Copy` value structs, in [`Strings`].
+    String,
 }
 
 struct Variable {
@@ -100,7 +102,6 @@ pub fn generate(xml_path: &str, out_path: &Path) {
     write_value_references(&mut source, &variables);
     write_structs(&mut source, &variables);
     write_accessors(&mut source, &variables);
-    write_scene_conversions(&mut source, &variables);
     write_table(&mut source, &variables, &output_dependencies);
     std::fs::write(out_path, source).unwrap_or_else(|e| panic!("cannot write {}: {e}", out_path.display()));
 }
@@ -205,8 +206,12 @@ fn read_variables(
             "Real" => BaseType::Real,
             "Integer" => BaseType::Integer,
             "Enumeration" => BaseType::Enumeration,
+            "String" => BaseType::String,
             other => fail(format!("variable {name}: type {other} is not supported yet by build/model_description.rs")),
         };
+        if base_type == BaseType::String && causality != Causality::Parameter {
+            fail(format!("variable {name}: only parameters can be Strings (build/model_description.rs)"));
+        }
         let declared_type = type_element.attribute("declaredType").map(str::to_owned);
         if base_type == BaseType::Enumeration && !enumerations.iter().any(|e| Some(&e.name) == declared_type.as_ref()) {
             fail(format!("variable {name}: declaredType {declared_type:?} is not an Enumeration in <TypeDefinitions>"));
@@ -239,6 +244,7 @@ fn read_variables(
             let parses = match base_type {
                 BaseType::Real => start.parse::<f64>().is_ok_and(f64::is_finite),
                 BaseType::Integer | BaseType::Enumeration => start.parse::<i32>().is_ok(),
+                BaseType::String => true,
             };
             if !parses {
                 fail(format!("variable {name}: start value `{start}` does not parse as its type"));
@@ -351,6 +357,7 @@ fn rust_type(variable: &Variable) -> &'static str {
     match variable.base_type {
         BaseType::Real => "f64",
         BaseType::Integer | BaseType::Enumeration => "i32",
+        BaseType::String => "String",
     }
 }
 
@@ -422,14 +429,14 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
              {struct_name} {{"
         )
         .unwrap();
-        for v in variables.iter().filter(|v| v.causality == causality) {
+        for v in variables.iter().filter(|v| v.causality == causality && v.base_type != BaseType::String) {
             // Escaped: rustdoc would read "[m]" as a link.
             let unit = v.unit.as_deref().map(|u| format!(" \\[{u}\\]")).unwrap_or_default();
             writeln!(source, "    /// {}{unit}\n    pub {}: {},", v.description, v.name, rust_type(v)).unwrap();
         }
         writeln!(source, "}}\n\nimpl Default for {struct_name} {{\n    /// The start values.").unwrap();
         writeln!(source, "    fn default() -> Self {{\n        Self {{").unwrap();
-        for v in variables.iter().filter(|v| v.causality == causality) {
+        for v in variables.iter().filter(|v| v.causality == causality && v.base_type != BaseType::String) {
             let value = match (&v.start, v.base_type) {
                 (Some(start), BaseType::Real) => format!("{:?}", start.parse::<f64>().unwrap()),
                 (Some(start), _) => start.parse::<i32>().unwrap().to_string(),
@@ -457,11 +464,55 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         fields = fields.join(", ")
     )
     .unwrap();
-    writeln!(source, "/// Every value of one instance: plain data, no pointers.").unwrap();
+    write_strings(source, variables);
+    writeln!(source, "/// Every value of one instance but the Strings ([`Strings`]): plain data, no pointers.")
+        .unwrap();
     writeln!(source, "#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]")
         .unwrap();
     writeln!(source, "pub struct Values {{\n    pub inputs: Inputs,\n    pub parameters: Parameters,\n    pub outputs: Outputs,\n}}\n")
         .unwrap();
+}
+
+/// The String variables (parameters only) in their own struct: owned text is not `Copy`, and
+/// the value structs are (the instance compares and copies them on the hot path).
+fn write_strings(source: &mut String, variables: &[Variable]) {
+    let strings: Vec<&Variable> = variables.iter().filter(|v| v.base_type == BaseType::String).collect();
+    writeln!(
+        source,
+        "/// The String parameters (owned copies of what fmi2SetString gave).\n#[derive(Debug, Clone, PartialEq, \
+         serde::Serialize, serde::Deserialize)]\npub struct Strings {{"
+    )
+    .unwrap();
+    for v in &strings {
+        writeln!(source, "    /// {}\n    pub {}: String,", v.description, v.name).unwrap();
+    }
+    writeln!(
+        source,
+        "}}\n\nimpl Default for Strings {{\n    /// The start values.\n    fn default() -> Self {{\n        Self {{"
+    )
+    .unwrap();
+    for v in &strings {
+        writeln!(source, "            {}: {:?}.to_owned(),", v.name, v.start.as_deref().unwrap_or_default()).unwrap();
+    }
+    writeln!(source, "        }}\n    }}\n}}\n\nimpl Strings {{").unwrap();
+    for (suffix, doc, receiver, reference) in [("", "", "&self", "&"), ("_mut", ", for writing", "&mut self", "&mut ")]
+    {
+        writeln!(source, "    /// The String behind a value reference{doc}.").unwrap();
+        writeln!(source, "    pub fn string{suffix}({receiver}, value_reference: u32) -> Option<{reference}String> {{")
+            .unwrap();
+        writeln!(source, "        match value_reference {{").unwrap();
+        for v in &strings {
+            writeln!(
+                source,
+                "            value_reference::{} => Some({reference}self.{}),",
+                constant_name(&v.name),
+                v.name
+            )
+            .unwrap();
+        }
+        writeln!(source, "            _ => None,\n        }}\n    }}\n").unwrap();
+    }
+    writeln!(source, "}}\n").unwrap();
 }
 
 fn field_path(v: &Variable) -> String {
@@ -470,6 +521,7 @@ fn field_path(v: &Variable) -> String {
         Causality::Parameter => "parameters",
         Causality::Output => "outputs",
     };
+    debug_assert!(v.base_type != BaseType::String, "Strings are not in Values");
     format!("{group}.{}", v.name)
 }
 
@@ -506,36 +558,6 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
     writeln!(source, "}}\n").unwrap();
 }
 
-/// The inputs as the core's `SceneInput` and the core's `SceneOutput` as the outputs, field by
-/// field: both are struct literals without `..`, so an input or output added to the XML without
-/// its field in the core's scene (or the other way round) stops the build. Every output is
-/// written `x + 0.0`, which turns −0 into +0 and changes nothing else (masters print −0 as `-0`).
-fn write_scene_conversions(source: &mut String, variables: &[Variable]) {
-    let fields = |causality: Causality, value: &dyn Fn(&str) -> String| -> String {
-        variables
-            .iter()
-            .filter(|v| v.causality == causality)
-            .map(|v| format!("        {}: {},\n", v.name, value(&v.name)))
-            .collect()
-    };
-    writeln!(
-        source,
-        "impl Inputs {{\n    /// The inputs as the core's scene input.\n    #[inline]\n    \
-         pub fn scene_input(&self) -> wheel_rail_contact::scene::SceneInput {{\n        \
-         wheel_rail_contact::scene::SceneInput {{\n{}        }}\n    }}\n}}\n",
-        fields(Causality::Input, &|name| format!("self.{name}")).replace("\n        ", "\n            ")
-    )
-    .unwrap();
-    writeln!(
-        source,
-        "impl Outputs {{\n    /// The core's scene output as the outputs, every zero written as +0.\n    #[inline]\n    \
-         pub fn from_scene(output: &wheel_rail_contact::scene::SceneOutput) -> Self {{\n        \
-         Self {{\n{}        }}\n    }}\n}}\n",
-        fields(Causality::Output, &|name| format!("output.{name} + 0.0")).replace("\n        ", "\n            ")
-    )
-    .unwrap();
-}
-
 fn write_table(source: &mut String, variables: &[Variable], output_dependencies: &[Vec<usize>]) {
     let by_index: BTreeMap<usize, &Variable> = variables.iter().map(|v| (v.index, v)).collect();
     writeln!(source, "/// Every variable, in `<ModelVariables>` order.").unwrap();
@@ -550,6 +572,7 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
             BaseType::Integer => {
                 format!("Kind::Integer {{ start: {:?} }}", v.start.as_ref().map(|s| s.parse::<i32>().unwrap()))
             }
+            BaseType::String => format!("Kind::String {{ start: {:?} }}", v.start.as_deref().unwrap_or_default()),
             BaseType::Enumeration => format!(
                 "Kind::Enumeration {{ declared_type: {:?}, items: {}::ITEMS, start: {} }}",
                 v.declared_type.as_deref().unwrap(),
@@ -606,6 +629,7 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
         let base = match v.base_type {
             BaseType::Real => 1,
             BaseType::Integer | BaseType::Enumeration => 2,
+            BaseType::String => 64,
         };
         let writable = match (v.causality, v.variability.as_str()) {
             (Causality::Output, _) => 0,
@@ -627,7 +651,8 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
          /// A parameter.\n    pub const PARAMETER: u8 = 4;\n    \
          /// Writable in every mode that allows Set (inputs, tunable parameters).\n    pub const WRITABLE: u8 = 8;\n    \
          /// Writable only before initialisation ends (fixed parameters).\n    pub const FIXED: u8 = 16;\n    \
-         /// An output.\n    pub const OUTPUT: u8 = 32;\n}}\n\
+         /// An output.\n    pub const OUTPUT: u8 = 32;\n    \
+         /// A String variable.\n    pub const STRING: u8 = 64;\n}}\n\
          /// The [`ACCESS`] bits of a value reference (0 if there is none).\n\
          #[inline]\npub fn access_of(value_reference: u32) -> u8 {{\n    \
          usize::try_from(value_reference).ok().and_then(|i| ACCESS.get(i)).copied().unwrap_or(0)\n}}",

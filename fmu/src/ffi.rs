@@ -315,7 +315,16 @@ pub unsafe extern "C" fn fmi2GetString(
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice_mut(value, nvr)) {
-            (Some(vr), Some(_)) => instance.get_absent_type(CALL, ValueType::String, vr),
+            (Some(vr), Some(value)) => match instance.get_string(vr) {
+                Ok(texts) => {
+                    // The instance keeps the texts until its next fmi2GetString.
+                    for (slot, text) in value.iter_mut().zip(texts) {
+                        *slot = text.as_ptr();
+                    }
+                    Status::Ok
+                }
+                Err(status) => status,
+            },
             _ => instance.invalid_argument(CALL, NULL_ARRAY),
         })
     }
@@ -383,7 +392,13 @@ pub unsafe extern "C" fn fmi2SetString(
     // SAFETY: see the module's contract.
     unsafe {
         with_instance(c, CALL, |instance| match (slice(vr, nvr), slice(value, nvr)) {
-            (Some(vr), Some(_)) => instance.set_absent_type(CALL, ValueType::String, vr),
+            (Some(vr), Some(value)) => {
+                // Copied now: the master's strings need not outlive the call.
+                match value.iter().map(|&text| string_argument(text)).collect::<Option<Vec<_>>>() {
+                    Some(texts) => instance.set_string(vr, &texts),
+                    None => instance.invalid_argument(CALL, "a value is a NULL string"),
+                }
+            }
             _ => instance.invalid_argument(CALL, NULL_ARRAY),
         })
     }

@@ -7,6 +7,8 @@
 //! - [`model_description`]: the interface, generated from `modelDescription.xml`.
 //! - [`scene`]: the instance's values ↔ the core's scene (decode parameters and inputs, encode
 //!   outputs, directional derivatives).
+//! - [`profiles`]: `contact_geometry = profiles`: the profiles read (the adapter's only file
+//!   I/O) and placed, the wheel's inputs and outputs.
 //! - [`mode`]: the Co-Simulation state machine: modes, and the typed call table saying which
 //!   modes allow each call.
 //! - [`logging`]: statuses, and which messages reach the master's logger.
@@ -25,5 +27,6 @@ pub mod logging;
 pub mod mode;
 pub mod model_description;
 pub mod options;
+pub mod profiles;
 pub mod scene;
 pub mod snapshot;

@@ -4,7 +4,8 @@
 //! Generated items: [`GUID`], [`MODEL_IDENTIFIER`], [`MODEL_DESCRIPTION_XML`], [`LOG_CATEGORIES`],
 //! [`UNITS`], one enum per Enumeration type (e.g. [`StiffnessSource`]), the [`value_reference`]
 //! constants, the plain value structs [`Inputs`], [`Parameters`], [`Outputs`] and [`Values`] (start
-//! values are their `Default`), `Values::{real, real_mut, integer, integer_mut}`, [`VARIABLES`] and [`variable`] (by value
+//! values are their `Default`), `Values::{real, real_mut, integer, integer_mut}`, the String
+//! parameters' [`Strings`] (`string`, `string_mut`), [`VARIABLES`] and [`variable`] (by value
 //! reference).
 
 /// `causality` of a variable.
@@ -26,9 +27,21 @@ pub enum Variability {
 /// The base type of a variable, with its start value (`None` for outputs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Kind {
-    Real { start: Option<f64> },
-    Integer { start: Option<i32> },
-    Enumeration { declared_type: &'static str, items: &'static [(&'static str, i32, &'static str)], start: i32 },
+    Real {
+        start: Option<f64>,
+    },
+    Integer {
+        start: Option<i32>,
+    },
+    Enumeration {
+        declared_type: &'static str,
+        items: &'static [(&'static str, i32, &'static str)],
+        start: i32,
+    },
+    /// A String parameter (kept in [`Strings`], not in [`Values`]).
+    String {
+        start: &'static str,
+    },
 }
 
 /// One `<ScalarVariable>`.

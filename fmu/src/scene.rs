@@ -1,39 +1,54 @@
-//! The FMU's values ↔ the core's [`Scene`]: decodes the parameters into a typed scene (model
-//! choice and options, validated once when a parameter changes, errors naming the FMU's
-//! variables and values), the inputs into a `SceneInput`, and the core's `SceneOutput` into
-//! the outputs. The evaluation itself is the core's ([`Scene::evaluate`]).
+//! The FMU's values ↔ the core's [`Scene`] (`contact_geometry = ellipse`) or the core's wheel on
+//! its rail ([`crate::profiles`], `contact_geometry = profiles`): decodes the parameters into a
+//! typed scene (model choice and options, validated once when a parameter changes, errors naming
+//! the FMU's variables and values), the inputs into a `SceneInput`, and the core's outputs into
+//! the outputs. The evaluation itself is the core's ([`Scene::evaluate`],
+//! [`WheelRailContact::evaluate`](wheel_rail_contact::geometry::WheelRailContact::evaluate)).
 //!
-//! The parameters are destructured without `..` (unused fields bound to `_` explicitly), and the
-//! inputs and outputs are converted by struct literals that the build script generates from
-//! `modelDescription.xml` ([`Inputs::scene_input`], [`Outputs::from_scene`]), so a variable added
-//! to or removed from the interface stops the build until the core's scene or this decoder maps it.
+//! The parameters and inputs are destructured without `..` (unused fields bound to `_`
+//! explicitly) and the outputs built by one struct literal without `..` ([`outputs`]), so a
+//! variable added to or removed from `modelDescription.xml` stops the build until it is mapped here.
 
 use super::model_description::{
-    Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters, StiffnessSource as StiffnessChoice, Switch,
-    TractionBound as TractionBoundChoice, TractionLaw as TractionLawChoice, Values,
+    ContactGeometry, Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters,
+    StiffnessSource as StiffnessChoice, Strings, Switch, TractionBound as TractionBoundChoice,
+    TractionLaw as TractionLawChoice, Values,
 };
+use super::profiles::{ProfileContact, WheelOutputs};
+use wheel_rail_contact::geometry::{WheelCache, WheelState};
 use wheel_rail_contact::models::exact::{MAX_ITERATIONS, MAX_PRODUCTS};
 use wheel_rail_contact::scene::{
-    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneState, TractionLaw,
+    CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneOutput,
+    SceneState, TractionLaw,
 };
 use wheel_rail_contact::{
     ContactInput, ExactTable, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve,
     ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
 };
 
-/// The scene the parameters select, built (the measured-curve fit, FASTSIM's load
-/// normalisation, every check of the parameters) when first needed and again only after
-/// [`ModelCache::parameters_changed`] — the instance calls it whenever a parameter is written or
-/// an FMU state is set — so a step pays no comparison of the parameters; and the scene's
-/// [`SceneCache`] (Polach's shape factors for the last ellipse shape). Derived data, so not part
-/// of the FMU's state (the scene's [`SceneState`] is, in the instance's snapshot).
+/// What the parameters select: one patch from the inputs, or a wheel on its rail from profiles.
+#[derive(Debug, Clone)]
+enum Contact {
+    Ellipse(Scene),
+    Profiles(Box<ProfileContact>),
+}
+
+/// The contact the parameters select, built (the measured-curve fit, FASTSIM's load
+/// normalisation, the profiles read and placed, every check of the parameters) when first
+/// needed and again only after [`ModelCache::parameters_changed`] — the instance calls it
+/// whenever a parameter is written or an FMU state is set — so a step pays no comparison of the
+/// parameters; and the scene's [`SceneCache`] (Polach's shape factors for the last ellipse shape)
+/// or the wheel's. Derived data, so not part of the FMU's state (the scene's [`SceneState`] and
+/// the wheel's [`WheelState`] are, in the instance's snapshot).
 #[derive(Debug, Clone, Default)]
 pub struct ModelCache {
     /// The parameters it was built for (checked against the current ones in debug builds: a
-    /// missed `parameters_changed` fails every test) and the scene or why there is none.
-    built: Option<(Parameters, Result<Scene, String>)>,
+    /// missed `parameters_changed` fails every test) and the contact or why there is none.
+    built: Option<(Parameters, Strings, Result<Contact, String>)>,
     /// The scene's derived data (Polach's shape factors).
     scene_cache: SceneCache,
+    /// The same per patch of the wheel.
+    wheel_cache: WheelCache,
 }
 
 impl ModelCache {
@@ -43,24 +58,29 @@ impl ModelCache {
         self.built = None;
     }
 
-    /// The scene for `parameters` and the scene's cache; the error names the parameter.
+    /// The contact for these parameters and the caches; the error names the parameter.
     #[inline]
-    fn plan(&mut self, parameters: &Parameters) -> Result<(&Scene, &mut SceneCache), String> {
-        let (built_for, scene) = self.built.get_or_insert_with(|| (*parameters, scene_of(parameters)));
+    fn plan(
+        &mut self,
+        parameters: &Parameters,
+        strings: &Strings,
+    ) -> Result<(&Contact, &mut SceneCache, &mut WheelCache), String> {
+        let (built_for, built_strings, contact) =
+            self.built.get_or_insert_with(|| (*parameters, strings.clone(), contact_of(parameters, strings)));
         // A NaN parameter never equals itself (`parameters != parameters`): such a scene is an
         // error, reported alike whether cached or rebuilt.
         #[allow(clippy::eq_op)]
-        let unchanged_or_nan = built_for == parameters || parameters != parameters;
+        let unchanged_or_nan = (built_for == parameters || parameters != parameters) && built_strings == strings;
         debug_assert!(unchanged_or_nan, "a parameter changed without ModelCache::parameters_changed");
-        match scene {
-            Ok(scene) => Ok((scene, &mut self.scene_cache)),
+        match contact {
+            Ok(contact) => Ok((contact, &mut self.scene_cache, &mut self.wheel_cache)),
             Err(reason) => Err(reason.clone()),
         }
     }
 }
 
 /// "name = value is invalid: must be one of 1 (a), 2 (b)".
-fn enumeration<T>(
+pub(crate) fn enumeration<T>(
     name: &str,
     value: i32,
     from_value: fn(i32) -> Option<T>,
@@ -119,6 +139,16 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
         regularisation_speed,
         creep_relaxation,
         relaxation_length,
+        // The wheel on its rail's (`contact_of`, `crate::profiles`).
+        contact_geometry: _,
+        wheel_side: _,
+        track_gauge: _,
+        gauge_measuring_height: _,
+        rail_cant: _,
+        flange_back_distance: _,
+        flange_back_position: _,
+        wheel_nominal_radius: _,
+        vertical_contact: _,
     } = *parameters;
     let selected = enumeration("creep_force_model", creep_force_model, Model::from_value, Model::ITEMS)?;
     let stiffness =
@@ -229,19 +259,58 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
     })
 }
 
-/// The outputs for `values` from the scene's `state`, the state after this evaluation (advanced
-/// or initialised) and a warning for the master when the outputs are an unconverged exact
-/// solve's last iterate; or the reason they cannot be computed (names the variable and value).
+/// The contact the parameters select: the scene, or the wheel on its rail with that scene's
+/// model, traction law, relaxation, material and regularisation speed (its creepages always
+/// from the wheelset's motion, its ellipses from the profiles).
+fn contact_of(parameters: &Parameters, strings: &Strings) -> Result<Contact, String> {
+    let scene = scene_of(parameters)?;
+    let geometry = parameters.contact_geometry;
+    Ok(match enumeration("contact_geometry", geometry, ContactGeometry::from_value, ContactGeometry::ITEMS)? {
+        ContactGeometry::Ellipse => Contact::Ellipse(scene),
+        ContactGeometry::Profiles => {
+            let regularisation_speed = parameters.regularisation_speed;
+            let scene = Scene { creepages: CreepageSource::Kinematics { regularisation_speed }, ..scene };
+            Contact::Profiles(Box::new(ProfileContact::new(parameters, strings, scene)?))
+        }
+    })
+}
+
+/// What an evaluation carries to the next: the scene's state (`ellipse`) or the wheel's
+/// (`profiles`); the other stays as it was.
+pub(crate) type ContactStates = (SceneState, WheelState);
+
+/// The outputs for `values` from the states of the last evaluation, the states after this one
+/// (advanced or initialised) and a warning for the master when the outputs are an unconverged
+/// exact solve's last iterate; or the reason they cannot be computed (names the variable and value).
 pub(crate) fn compute_outputs(
     values: &Values,
+    strings: &Strings,
     cache: &mut ModelCache,
-    state: &SceneState,
+    (scene_state, wheel_state): (&SceneState, &WheelState),
     evaluation: Evaluation,
-) -> Result<(Outputs, SceneState, Option<String>), String> {
-    let (scene, scene_cache) = cache.plan(&values.parameters)?;
-    let (output, next_state) =
-        scene.evaluate(&values.inputs.scene_input(), state, scene_cache, evaluation).map_err(|e| e.to_string())?;
-    let warning = output.unconverged_grid.map(|grid| {
+) -> Result<(Outputs, ContactStates, Option<String>), String> {
+    match cache.plan(&values.parameters, strings)? {
+        (Contact::Ellipse(scene), scene_cache, _) => {
+            let (output, next_state) = scene
+                .evaluate(&scene_input(&values.inputs), scene_state, scene_cache, evaluation)
+                .map_err(|e| e.to_string())?;
+            let warning = unconverged_warning(&output);
+            Ok((outputs(&output, &WheelOutputs::default()), (next_state, wheel_state.clone()), warning))
+        }
+        (Contact::Profiles(wheel), _, wheel_cache) => {
+            let input = wheel.input(&values.inputs);
+            let (output, next_state) =
+                wheel.contact().evaluate(&input, wheel_state, wheel_cache, evaluation).map_err(|e| e.to_string())?;
+            let warning = output.patches.iter().find_map(|patch| unconverged_warning(&patch.output));
+            let wheel_outputs = WheelOutputs::of(&output);
+            Ok((outputs(&SceneOutput::default(), &wheel_outputs), (scene_state.clone(), next_state), warning))
+        }
+    }
+}
+
+/// The master's warning when `output` is an exact solve that stopped at its limits.
+fn unconverged_warning(output: &SceneOutput) -> Option<String> {
+    output.unconverged_grid.map(|grid| {
         let (length, width) = grid.element_sides(output.contact_semi_axis_a, output.contact_semi_axis_b);
         format!(
             "creep_force_model = {} (exact): the exact theory did not converge on exact_elements_longitudinal × \
@@ -256,24 +325,31 @@ pub(crate) fn compute_outputs(
             width * 1e3,
             Model::ExactTable as i32,
         )
-    });
-    Ok((Outputs::from_scene(&output), next_state, warning))
+    })
 }
 
 /// d(outputs) along `direction` (one rate per continuous input) at the current `values` — of
 /// the outputs at these inputs, never of the last step's — or why not (an option without
-/// derivatives, an invalid value, naming the variable). The mathematics is the core's
+/// derivatives, profiles, an invalid value, naming the variable). The mathematics is the core's
 /// [`Scene::directional_derivative`].
 pub(crate) fn directional_derivative(
     values: &Values,
+    strings: &Strings,
     cache: &mut ModelCache,
     direction: &Inputs,
 ) -> Result<Outputs, String> {
-    let (scene, _) = cache.plan(&values.parameters)?;
-    let rates = scene
-        .directional_derivative(&values.inputs.scene_input(), &direction.scene_input())
-        .map_err(|e: SceneError| e.to_string())?;
-    Ok(Outputs::from_scene(&rates))
+    match cache.plan(&values.parameters, strings)? {
+        (Contact::Ellipse(scene), _, _) => {
+            let rates = scene
+                .directional_derivative(&scene_input(&values.inputs), &scene_input(direction))
+                .map_err(|e: SceneError| e.to_string())?;
+            Ok(outputs(&rates, &WheelOutputs::default()))
+        }
+        (Contact::Profiles(_), _, _) => Err(format!(
+            "directional derivatives are not available with contact_geometry = {} (profiles)",
+            ContactGeometry::Profiles as i32
+        )),
+    }
 }
 
 /// The core's input for the instance's values with every option off (the creepage and ellipse
@@ -281,7 +357,97 @@ pub(crate) fn directional_derivative(
 pub fn contact_input(values: &Values) -> ContactInput {
     let parameters = &values.parameters;
     Scene::of_model(ModelChoice::Polach(Polach::default()), parameters.shear_modulus, parameters.poisson_ratio)
-        .contact_input(&values.inputs.scene_input())
+        .contact_input(&scene_input(&values.inputs))
+}
+
+/// The inputs as the core's scene input (the wheelset's, for profiles, bound to `_`).
+pub fn scene_input(inputs: &Inputs) -> SceneInput {
+    let Inputs {
+        creepage_longitudinal,
+        creepage_lateral,
+        spin_creepage,
+        normal_force,
+        semi_axis_a,
+        semi_axis_b,
+        friction_coefficient,
+        rolling_speed,
+        wheel_angular_speed,
+        wheel_rolling_radius,
+        lateral_slip_velocity,
+        spin_angular_velocity,
+        wheelset_lateral_displacement: _,
+        wheelset_vertical_position: _,
+        wheelset_roll_angle: _,
+        wheelset_yaw_angle: _,
+        vertical_force: _,
+        wheelset_lateral_velocity: _,
+        wheelset_yaw_rate: _,
+    } = *inputs;
+    SceneInput {
+        creepage_longitudinal,
+        creepage_lateral,
+        spin_creepage,
+        normal_force,
+        semi_axis_a,
+        semi_axis_b,
+        friction_coefficient,
+        rolling_speed,
+        wheel_angular_speed,
+        wheel_rolling_radius,
+        lateral_slip_velocity,
+        spin_angular_velocity,
+    }
+}
+
+/// The outputs from one patch's scene output and a wheel's outputs (the one not computed all
+/// zero), every zero written as +0 (`x + 0.0` changes nothing else; masters print −0 as `-0`).
+pub fn outputs(scene: &SceneOutput, wheel: &WheelOutputs) -> Outputs {
+    let [patch1, patch2] = &wheel.patches;
+    Outputs {
+        force_longitudinal: scene.force_longitudinal + 0.0,
+        force_lateral: scene.force_lateral + 0.0,
+        adhesion_utilisation: scene.adhesion_utilisation + 0.0,
+        spin_moment: scene.spin_moment + 0.0,
+        current_friction_coefficient: scene.current_friction_coefficient + 0.0,
+        slip_velocity: scene.slip_velocity + 0.0,
+        effective_creepage_longitudinal: scene.effective_creepage_longitudinal + 0.0,
+        effective_creepage_lateral: scene.effective_creepage_lateral + 0.0,
+        effective_spin_creepage: scene.effective_spin_creepage + 0.0,
+        contact_semi_axis_a: scene.contact_semi_axis_a + 0.0,
+        contact_semi_axis_b: scene.contact_semi_axis_b + 0.0,
+        max_pressure: scene.max_pressure + 0.0,
+        approach: scene.approach + 0.0,
+        track_force_x: wheel.track_force[0] + 0.0,
+        track_force_y: wheel.track_force[1] + 0.0,
+        track_force_z: wheel.track_force[2] + 0.0,
+        track_moment_x: wheel.track_moment[0] + 0.0,
+        track_moment_y: wheel.track_moment[1] + 0.0,
+        track_moment_z: wheel.track_moment[2] + 0.0,
+        contact_patch_count: wheel.contact_patch_count,
+        wheelset_vertical_position_solved: wheel.wheelset_vertical_position_solved + 0.0,
+        patch1_contact_angle: patch1.contact_angle + 0.0,
+        patch1_rail_lateral_position: patch1.rail_lateral_position + 0.0,
+        patch1_rolling_radius: patch1.rolling_radius + 0.0,
+        patch1_normal_force: patch1.normal_force + 0.0,
+        patch1_force_longitudinal: patch1.force_longitudinal + 0.0,
+        patch1_force_lateral: patch1.force_lateral + 0.0,
+        patch1_creepage_longitudinal: patch1.creepage_longitudinal + 0.0,
+        patch1_creepage_lateral: patch1.creepage_lateral + 0.0,
+        patch1_spin_creepage: patch1.spin_creepage + 0.0,
+        patch1_semi_axis_a: patch1.semi_axis_a + 0.0,
+        patch1_semi_axis_b: patch1.semi_axis_b + 0.0,
+        patch2_contact_angle: patch2.contact_angle + 0.0,
+        patch2_rail_lateral_position: patch2.rail_lateral_position + 0.0,
+        patch2_rolling_radius: patch2.rolling_radius + 0.0,
+        patch2_normal_force: patch2.normal_force + 0.0,
+        patch2_force_longitudinal: patch2.force_longitudinal + 0.0,
+        patch2_force_lateral: patch2.force_lateral + 0.0,
+        patch2_creepage_longitudinal: patch2.creepage_longitudinal + 0.0,
+        patch2_creepage_lateral: patch2.creepage_lateral + 0.0,
+        patch2_spin_creepage: patch2.spin_creepage + 0.0,
+        patch2_semi_axis_a: patch2.semi_axis_a + 0.0,
+        patch2_semi_axis_b: patch2.semi_axis_b + 0.0,
+    }
 }
 
 #[cfg(test)]
@@ -289,7 +455,9 @@ mod tests {
     use std::f64::consts::PI;
 
     use super::*;
-    use crate::model_description::{value_reference as vr, Causality, TractionLaw, VARIABLES};
+    use crate::model_description::{
+        value_reference as vr, Causality, TractionLaw, VerticalContact as VerticalChoice, VARIABLES,
+    };
     use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
     use wheel_rail_contact::scene::kinematics::WheelKinematics;
     use wheel_rail_contact::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
@@ -309,10 +477,12 @@ mod tests {
         evaluation: Evaluation,
     ) -> Result<Outputs, String> {
         let state = SceneState::with_relaxed_forces(*relaxed_forces);
-        compute_outputs(values, cache, &state, evaluation).map(|(outputs, next, _)| {
-            *relaxed_forces = next.relaxed_forces;
-            outputs
-        })
+        compute_outputs(values, &Strings::default(), cache, (&state, &WheelState::default()), evaluation).map(
+            |(outputs, (next, _), _)| {
+                *relaxed_forces = next.relaxed_forces;
+                outputs
+            },
+        )
     }
 
     fn outputs(values: &Values) -> Outputs {
@@ -331,6 +501,14 @@ mod tests {
         values.inputs.spin_creepage = 0.3;
         values.inputs.lateral_slip_velocity = 0.008;
         values.inputs.spin_angular_velocity = 6.0;
+        // A wheelset at the Manchester benchmark's A-2.2 case 11 (5 mm right, where tread and
+        // flange both carry 10 kN), yawing, moving sideways, about that load's vertical position.
+        values.inputs.wheelset_lateral_displacement = 5e-3;
+        values.inputs.wheelset_yaw_angle = 0.012;
+        values.inputs.wheelset_roll_angle = -3.554e-4;
+        values.inputs.wheelset_vertical_position = 1e-5;
+        values.inputs.wheelset_lateral_velocity = 0.05;
+        values.inputs.wheelset_yaw_rate = 0.02;
         values
     }
 
@@ -746,7 +924,7 @@ mod tests {
     #[test]
     fn declared_output_dependencies_are_the_true_ones() {
         type Configure = fn(&mut Parameters);
-        let scenes: [(Configure, Evaluation); 9] = [
+        let scenes: [(Configure, Evaluation); 12] = [
             (|_| {}, Evaluation::Initialise),
             (|p| p.hertz_contact = on(), Evaluation::Initialise),
             (|p| p.creepages_from_kinematics = on(), Evaluation::Initialise),
@@ -778,6 +956,21 @@ mod tests {
                 |p| {
                     p.traction_law = TractionLaw::Polach2005Wet as i32;
                     (p.hertz_contact, p.creepages_from_kinematics, p.creep_relaxation) = (on(), on(), on());
+                },
+                Evaluation::Step(1e-4),
+            ),
+            (|p| p.contact_geometry = ContactGeometry::Profiles as i32, Evaluation::Initialise),
+            (
+                |p| {
+                    p.contact_geometry = ContactGeometry::Profiles as i32;
+                    p.vertical_contact = VerticalChoice::PrescribedPosition as i32;
+                },
+                Evaluation::Initialise,
+            ),
+            (
+                |p| {
+                    p.contact_geometry = ContactGeometry::Profiles as i32;
+                    p.creep_relaxation = on();
                 },
                 Evaluation::Step(1e-4),
             ),

@@ -2,8 +2,9 @@
 //! computes with, as plain values, and its byte encoding.
 //!
 //! What is saved is a [`Snapshot`]: the state-machine mode, time and stop time, every variable's
-//! value (the generated [`Values`], whole) and the scene's state (relaxed forces, the exact
-//! theory's warm start: [`SceneState`]). A
+//! value (the generated [`Values`], whole, and the String parameters, [`Strings`]), the scene's
+//! state (relaxed forces, the exact theory's warm start: [`SceneState`]) and the wheel's with
+//! profiles (each patch's, [`WheelState`]). A
 //! field added to any of these is saved and restored with no change here. Not saved, because
 //! they are the master's settings for this instance rather than its state: the instance name,
 //! the resource location, the logger and the debug-logging selection.
@@ -32,13 +33,14 @@
 use serde::{Deserialize, Serialize};
 
 use crate::mode::Mode;
-use crate::model_description::{Causality, Values, GUID, STATE_LAYOUT_TAG, VARIABLES};
+use crate::model_description::{Causality, Strings, Values, GUID, STATE_LAYOUT_TAG, VARIABLES};
+use wheel_rail_contact::geometry::WheelState;
 use wheel_rail_contact::scene::SceneState;
 
 /// First bytes of every serialized state of this FMU.
 pub const MAGIC: [u8; 8] = *b"WRCstate";
 /// The layout of the header and payload described in the module documentation.
-pub const FORMAT_VERSION: u16 = 3;
+pub const FORMAT_VERSION: u16 = 4;
 
 /// Everything an instance computes with: what an FMU state holds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -51,10 +53,15 @@ pub struct Snapshot {
     pub stop_time: Option<f64>,
     /// Every variable: inputs, parameters and the last outputs.
     pub values: Values,
+    /// The String parameters (the profiles).
+    pub strings: Strings,
     /// The scene's state carried from step to step: the relaxed forces (`creep_relaxation =
     /// on`) and the model's memory (the exact theory's warm start), so that a restored instance
     /// continues bit for bit ([`SceneState`]).
     pub scene: SceneState,
+    /// The wheel's state with `contact_geometry = profiles`: each patch's scene state and where
+    /// it was on the rail ([`WheelState`]).
+    pub wheel: WheelState,
 }
 
 impl Snapshot {
@@ -65,7 +72,9 @@ impl Snapshot {
             time: 0.0,
             stop_time: None,
             values: Values::default(),
+            strings: Strings::default(),
             scene: SceneState::default(),
+            wheel: WheelState::default(),
         }
     }
 }
@@ -170,7 +179,8 @@ fn check_sense(state: &Snapshot) -> Result<(), String> {
             return Err(format!("{} = {value} is invalid: an output is always finite", variable.name));
         }
     }
-    state.scene.validate().map_err(|error| error.to_string())
+    state.scene.validate().map_err(|error| error.to_string())?;
+    state.wheel.validate().map_err(|error| error.to_string())
 }
 
 #[cfg(test)]
@@ -229,7 +239,7 @@ mod tests {
         );
         let mut version = bytes.clone();
         version[8] = 2;
-        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 3");
+        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 4");
         let mut layout = bytes.clone();
         layout[10] ^= 1;
         let error = decode(&layout).unwrap_err();

@@ -308,3 +308,58 @@ fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
     assert_eq!(fmu.set_state(legal), OK);
     fmu.free_state(legal);
 }
+
+/// With `contact_geometry = profiles` and creep relaxation, the state carries each patch's
+/// relaxed forces and where it was: a rolled-back run and a deserialised one in a fresh
+/// instance continue bit for bit, the String parameters included.
+#[test]
+fn a_wheel_on_profiles_continues_bit_identically() {
+    use wheel_rail_contact_fmu::model_description::ContactGeometry;
+    let outputs = [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::PATCH1_FORCE_LATERAL];
+    // The wheelset sways across the tread towards the flange, braking.
+    let run = |fmu: &Fmu, first: usize, count: usize| -> Vec<[f64; 3]> {
+        (first..first + count)
+            .map(|k| {
+                let lateral = 4e-3 * (0.05 * k as f64).sin();
+                let inputs = [lateral, 2.0, 2.0 / 0.46 * 0.998, 0.2 * (0.05 * k as f64).cos()];
+                let references = [
+                    vr::WHEELSET_LATERAL_DISPLACEMENT,
+                    vr::ROLLING_SPEED,
+                    vr::WHEEL_ANGULAR_SPEED,
+                    vr::WHEELSET_LATERAL_VELOCITY,
+                ];
+                assert_eq!(fmu.set_real(&references, &inputs), OK);
+                assert_eq!(fmu.do_step(k as f64 * STEP, STEP), OK, "step {k}");
+                let values = fmu.get_real(&outputs);
+                [values[0], values[1], values[2]]
+            })
+            .collect()
+    };
+    let fmu = Fmu::instantiate("profiles", None);
+    let parameters = [vr::CONTACT_GEOMETRY, vr::CREEP_RELAXATION, vr::WHEEL_SIDE];
+    assert_eq!(fmu.set_integer(&parameters, &[ContactGeometry::Profiles as i32, Switch::On as i32, 0]), OK);
+    assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE], &["MBench_S1002"]), OK);
+    fmu.initialise(0.0);
+    run(&fmu, 0, 30);
+    let state = fmu.get_state();
+    let first = run(&fmu, 30, 40);
+    assert_eq!(fmu.set_state(state), OK);
+    assert_eq!(bits(&first), bits(&run(&fmu, 30, 40)), "rolled back");
+    // Relaxation matters here: the forces lag behind the steady ones.
+    let snapshot = decode(&fmu.serialize(state)).unwrap();
+    assert!(
+        !snapshot.wheel.patches.is_empty() && snapshot.wheel.patches.iter().all(|p| p.scene.relaxed_forces != [0.0; 2])
+    );
+    assert_eq!(snapshot.strings.wheel_profile, "MBench_S1002");
+    let bytes = fmu.serialize(state);
+    fmu.free_state(state);
+    let fresh = Fmu::instantiate("fresh", None);
+    let restored = fresh.deserialize(&bytes).unwrap();
+    assert_eq!(fresh.set_state(restored), OK);
+    assert_eq!(bits(&first), bits(&run(&fresh, 30, 40)), "deserialised");
+    fresh.free_state(restored);
+    // A state whose wheel holds a non-finite patch position is refused.
+    let mut forged_state = snapshot;
+    forged_state.wheel.patches[0].rail_lateral = f64::NAN;
+    assert_eq!(fresh.deserialize(&encode(&forged_state)), Err(ERROR));
+}

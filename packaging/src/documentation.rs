@@ -10,6 +10,7 @@ use wheel_rail_contact_fmu::options;
 use wheel_rail_contact_fmu::scene::contact_input;
 
 use crate::plot::{escape, line_plot, Series};
+use crate::profile_figure;
 
 /// The core's input at the FMU's start values (the default scene).
 pub fn default_contact_input() -> ContactInput {
@@ -68,6 +69,7 @@ fn variables_table() -> String {
                 let name = items.iter().find(|(_, value, _)| *value == start).map_or("?", |(name, _, _)| name);
                 format!("{start} ({name})")
             }
+            Kind::String { start } => format!("\"{}\"", escape(start)),
         };
         let mut meaning = escape(variable.description);
         if let Kind::Enumeration { declared_type, items, .. } = variable.kind {
@@ -241,6 +243,66 @@ Mindlin's tangential stiffness; ≈ 1.8a and 1.6a for a circle), else L is used 
 state's. After a sudden drop of μQ the relaxed force may exceed the new limit for about L/|V| (utilisation &gt; 1),
 as in any first-order relaxation model.</p>
 
+<h2>Contact from profiles (parameter <code>contact_geometry</code>)</h2>
+<p><code>contact_geometry</code> = ellipse (1, the default) is the one patch of the sections above, its creepages, load
+and ellipse given (or from the kinematics and Hertz). With <code>contact_geometry</code> = profiles (2) one instance
+is <b>one wheel on its rail</b> (issue 25): the contact patches follow from the wheel and rail profiles and the
+wheelset's position and motion, as CONTACT's module 1 computes them.</p>
+<ul>
+<li><b>Profiles</b>: the String parameters <code>wheel_profile</code> and <code>rail_profile</code>, each a file path
+(SIMPACK <code>.prw</code>/<code>.prr</code>, MiniProf <code>.whl</code>/<code>.ban</code>, the format from the extension; a
+relative path is relative to the master's working directory) or a built-in name (<code>MBench_S1002</code>,
+<code>MBench_UIC60</code>: the Manchester benchmark's S1002 wheel and UIC60 rail inclined 1:40, the defaults). Both are
+given for the right side, y lateral and z downward in their own coordinates; the left wheel
+(<code>wheel_side</code> = left, 0) uses them mirrored, as CONTACT does, and reports lateral positions and contact
+angles mirrored back. They are read and placed when the instance leaves initialisation (and again if a profile
+parameter changes before it does); a missing, unreadable or malformed file is fmi2Error naming the variable, the
+file and the reason (the line, for a malformed one).</li>
+<li><b>Track</b>: the rail's gauge face (at <code>gauge_measuring_height</code> below its top) at
+<code>track_gauge</code>/2, the wheel's flange back (at <code>flange_back_position</code> in its profile) at
+<code>flange_back_distance</code>/2, the wheel profile's z = 0 at <code>wheel_nominal_radius</code> r0 below the axle;
+defaults the benchmark's 1.435 m, 14 mm, 1.360 m, −70 mm, 0.46 m. <code>rail_cant</code> turns the rail profile
+about its origin towards the track's centre (as CONTACT's CANT, within ±0.1 rad) on top of any inclination its
+points have: the built-in UIC60 is already inclined 1:40 (cant 0).</li>
+<li><b>Inputs</b>: the wheelset's <code>wheelset_lateral_displacement</code> y<sub>ws</sub> (to the right),
+<code>wheelset_roll_angle</code>, <code>wheelset_yaw_angle</code> (each within ±0.1 rad), <code>rolling_speed</code> V,
+<code>wheel_angular_speed</code> Ω (positive rolling forward; CONTACT's VPITCH is −Ω),
+<code>wheelset_lateral_velocity</code>, <code>wheelset_yaw_rate</code>, <code>friction_coefficient</code>, and with
+<code>vertical_contact</code> = prescribed_force (1) the wheel load <code>vertical_force</code> (≤ 0: lift-off), with
+prescribed_position (2) the height <code>wheelset_vertical_position</code> z<sub>ws</sub> (downward; 0: the wheel's
+datum at the rail top's level). The single patch's inputs (creepages, <code>normal_force</code>, semi-axes,
+<code>wheel_rolling_radius</code>, <code>lateral_slip_velocity</code>, <code>spin_angular_velocity</code>) are not
+read, and its outputs are 0.</li>
+<li><b>Per patch</b>: the contact points are the local minima of the undeformed gap (tread and flange), each in
+contact where the gap closes; the normal force from the penetration by Hertz, with Hertz's ellipse from the
+profiles' curvatures; the creepages from the slip of the wheel's point at the patch over the rolling speed
+(regularised through standstill by <code>regularisation_speed</code>); the creep forces by the chosen
+<code>creep_force_model</code>, <code>traction_law</code> and <code>creep_relaxation</code> (each patch carries its own
+relaxed forces). With a prescribed force the wheelset's height is solved so that the rail carries the load through
+the normal and the creep forces together.</li>
+<li><b>Outputs</b>: <code>track_force_x</code>, <code>track_force_y</code>, <code>track_force_z</code>: the total force
+on the wheel in track coordinates (x along the track in the rolling direction, y to the right, z down; the negative
+of CONTACT's “total forces on rail”, so <code>track_force_z</code> = −<code>vertical_force</code>);
+<code>track_moment_x/y/z</code>: their moment, with the patches' spin moments, about the wheelset's centre on its
+axle; <code>contact_patch_count</code>; <code>wheelset_vertical_position_solved</code>; and for patches 1 and 2,
+ordered by lateral position on the rail from its field side, tread first: <code>patchK_contact_angle</code> δ
+(CONTACT's DELTCP), <code>patchK_rail_lateral_position</code> (in the rail profile's coordinates),
+<code>patchK_rolling_radius</code>, <code>patchK_normal_force</code>, <code>patchK_force_longitudinal</code>,
+<code>patchK_force_lateral</code> (on the wheel, in the patch's tangent plane: the negatives of CONTACT's FX, FS on
+the rail), <code>patchK_creepage_longitudinal</code>, <code>patchK_creepage_lateral</code>,
+<code>patchK_spin_creepage</code> (wheel minus rail: the negatives of CONTACT's CKSI, CETA, CPHI),
+<code>patchK_semi_axis_a</code>, <code>patchK_semi_axis_b</code>. An absent patch gives zeros; a third patch (rare) is
+in the totals only. No directional derivatives (fmi2Error).</li>
+</ul>
+{profile_figures}
+<p>On the benchmark's case A-2.2 (both wheels, 21 lateral positions with yaw and roll) the FMU's patch is within
+1 mm of CONTACT's published full solution on the rail and its contact angle within 0.01 rad on the tread and 0.02
+on the flange; with <code>creep_force_model</code> = exact_table its normal force is within 0.1 % and its creep forces
+within 0.041 μN, with Polach's method within 10 % and 0.2 μN (but on the flange at 6.5 mm, under large spin,
+Polach's lateral force is short and its share of the vertical balance leaves the normal force 10.5 % high) — except
+where the gap is flat or has two nearby minima (y<sub>ws</sub> = 0; the right wheel at 0.5 mm) or the contact jumps
+from tread to flange (the right wheel at 5 mm). The fmpy test <code>tests/fmpy/test_profiles.py</code> checks it.</p>
+
 <h2>Which variables each option uses</h2>
 {option_table}
 <p>&lt;ModelStructure&gt; lists, for each output, every input it depends on under some choice of model and options
@@ -398,7 +460,8 @@ The instance keeps its state and last valid outputs; once the master sets a good
 <li>fmi2DoStep requires h &gt; 0 and currentCommunicationPoint equal to the end of the previous step (relative
 tolerance 1e-9); with a stop time, no step may end after it. canHandleVariableCommunicationStepSize is true.</li>
 <li>FMU state (canGetAndSetFMUstate, canSerializeFMUstate): fmi2GetFMUstate/SetFMUstate copy the instance's mode,
-time, every variable's value and the model's internal state; fmi2SerializeFMUstate writes a versioned byte string
+time, every variable's value (the profiles' names too) and the model's internal state (with profiles, each
+patch's); fmi2SerializeFMUstate writes a versioned byte string
 (magic “WRCstate”, format version, this FMU's GUID, length, CRC-32, then the state), exactly
 fmi2SerializedFMUstateSize bytes. fmi2DeSerializeFMUstate rejects truncated, corrupted, foreign or other-version
 byte strings with fmi2Error and the reason, changing nothing.</li>
@@ -407,8 +470,8 @@ inputs at the current values — exact (forward-mode dual numbers) for Polach, K
 Shen–Hedrick–Elkins (one-sided at kinks: Kalker's table rows in a/b, Φ = 0, aΦ = −2η) and exact_table (the
 interpolant's, one-sided on its cell edges); a central difference for
 FASTSIM and the exact theory (tolerance 1e-2 relative). A parameter as a known is fmi2Error naming it. With
-hertz_contact, creepages_from_kinematics, creep_relaxation or a Polach 2005 traction law on, the call is fmi2Error
-(“directional derivatives are not available with … on”).</li>
+hertz_contact, creepages_from_kinematics, creep_relaxation or a Polach 2005 traction law on, or with
+contact_geometry = profiles, the call is fmi2Error (“directional derivatives are not available with …”).</li>
 <li>Not supported (declared false; the functions return fmi2Error saying so): input interpolation, output
 derivatives, asynchronous steps.</li>
 <li>Logging: messages go to the master's logger as "%s" plus text, with its componentEnvironment. With debug
@@ -421,7 +484,9 @@ be freed. Instances are independent; there is no global state.</li>
 </body></html>
 "#,
         table = variables_table(),
-        options = OPTIONS_HTML.replace("{option_table}", &option_table_html()),
+        options = OPTIONS_HTML
+            .replace("{option_table}", &option_table_html())
+            .replace("{profile_figures}", &profile_figure::DISPLACEMENTS.map(profile_figure::figure).concat()),
         dependencies = dependencies_text(),
         q = scene.normal_force / 1e3,
         a = scene.semi_axis_a * 1e3,
@@ -457,6 +522,17 @@ mod tests {
         }
         assert!(html.contains("N (shown in kN: 1 N = 0.001 kN)"));
         assert!(html.contains("<svg") && html.contains("eq. (34)") && html.contains("[E4]"));
+    }
+
+    /// The profile mode has its section, with the figure at both displacements: the default
+    /// curve's plot and two of the profiles in contact.
+    #[test]
+    fn the_profile_mode_is_documented_with_its_figure() {
+        let html = index_html(&[BinaryNote::Win64]);
+        assert!(html.contains("<h2>Contact from profiles (parameter <code>contact_geometry</code>)</h2>"));
+        assert_eq!(html.matches("<svg").count(), 3);
+        assert!(html.contains("right wheel, y_ws = 2 mm") && html.contains("right wheel, y_ws = 7 mm"));
+        assert!(!html.contains("{profile_figures}"));
     }
 
     #[test]

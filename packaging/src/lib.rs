@@ -9,6 +9,8 @@
 //! - [`reference`](mod@reference): the core's forces for rows of inputs (CSV), the reference of the fmpy tests;
 //! - [`exact_table`](mod@exact_table): generates the `exact_table` model's table from the exact
 //!   solver (`cargo fmu exact-table`), resumable;
+//! - [`profile_figure`]: the documentation's figure of `contact_geometry = profiles` (the built-in
+//!   profiles in contact, the patches marked), computed by the core;
 //! - [`plot`]: the small SVG line plot both of the above draw.
 
 #![forbid(unsafe_code)]
@@ -18,4 +20,5 @@ pub mod documentation;
 pub mod exact_table;
 pub mod fmu;
 pub mod plot;
+pub mod profile_figure;
 pub mod reference;

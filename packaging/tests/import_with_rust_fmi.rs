@@ -29,8 +29,10 @@ fn rust_fmi_imports_the_fmu_and_runs_scenes_equal_to_the_core() {
     assert_eq!(names, VARIABLES.iter().map(|v| v.name).collect::<Vec<_>>());
     let outputs = description.model_variables.variables.iter().filter(|v| v.causality == Causality::Output).count();
     assert_eq!(
-        outputs, 13,
-        "forces, utilisation, spin moment, friction, slip velocity, 3 creepages, a, b, p0, approach"
+        outputs,
+        13 + 8 + 2 * 11,
+        "one patch: forces, utilisation, spin moment, friction, slip velocity, 3 creepages, a, b, p0, approach; \
+         a wheel on profiles: 3 forces, 3 moments, patch count, z_ws, and 11 per patch for two patches"
     );
 
     // The default scene's creepage sweep (the README's first command).

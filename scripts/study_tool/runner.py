@@ -95,10 +95,15 @@ class Instance:
 
 
 def set_values(slave, interface, values):
-    """Sets Real variables with setReal, Integer and Enumeration ones with setInteger."""
+    """Sets Real variables with setReal, Integer and Enumeration ones with setInteger, String ones
+    with setString."""
     variables = interface["variables"]
-    reals = [(variables[n]["vr"], float(x)) for n, x in values.items() if variables[n]["type"] == "Real"]
-    integers = [(variables[n]["vr"], int(x)) for n, x in values.items() if variables[n]["type"] != "Real"]
+    kind = lambda n: variables[n]["type"]
+    reals = [(variables[n]["vr"], float(x)) for n, x in values.items() if kind(n) == "Real"]
+    integers = [(variables[n]["vr"], int(x)) for n, x in values.items() if kind(n) not in ("Real", "String")]
+    strings = [(variables[n]["vr"], str(x)) for n, x in values.items() if kind(n) == "String"]
+    if strings:
+        slave.setString([vr for vr, _ in strings], [x for _, x in strings])
     if reals:
         slave.setReal([vr for vr, _ in reals], [x for _, x in reals])
     if integers:
@@ -185,7 +190,8 @@ def chunk_table(fmu, interface, first_scene, pickled_chunk, outputs, steps, step
     types = {"scene": pa.int64(), "case": pa.string(), "sample": pa.int64(), "status": pa.string(),
              "message": pa.string()}
     for name in names:
-        types[name] = pa.string() if name in enums else (pa.float64() if variables[name]["type"] == "Real" else pa.int64())
+        column_type = {"Real": pa.float64(), "String": pa.string()}.get(variables[name]["type"], pa.int64())
+        types[name] = pa.string() if name in enums else column_type
     for name in outputs:
         types[name] = pa.float64()
     table = pa.table({name: pa.array(values, type=types[name]) for name, values in columns.items()})

@@ -50,7 +50,7 @@ def fmu_interface(model_description):
             items = {item.name: int(item.value) for item in v.declaredType.items}
         start = None
         if v.start is not None:
-            start = float(v.start) if v.type == "Real" else int(v.start)
+            start = {"Real": float, "String": str}.get(v.type, int)(v.start)
         variables[v.name] = {
             "vr": v.valueReference, "type": v.type, "causality": v.causality, "variability": v.variability,
             "start": start, "items": items, "declared_type": v.declaredType.name if v.declaredType else None,
@@ -86,7 +86,7 @@ def check_keys(key, table, allowed):
 
 def variable_value(key, name, value, interface):
     """A value for a settable variable: a number for Real/Integer, an item name (or its number)
-    for an Enumeration; returns the number the FMU is given."""
+    for an Enumeration, a string for a String; returns the value the FMU is given."""
     variable = interface["variables"][name]
     if variable["items"] is not None:
         if isinstance(value, str):
@@ -97,6 +97,10 @@ def variable_value(key, name, value, interface):
         if isinstance(value, int) and not isinstance(value, bool) and value in variable["items"].values():
             return value
         raise StudyError(key, f"must be one of {', '.join(variable['items'])}, not {value!r}")
+    if variable["type"] == "String":
+        if not isinstance(value, str):
+            raise StudyError(key, f"must be a string (a file path or a built-in profile's name), not {value!r}")
+        return value
     if variable["type"] == "Integer":
         if isinstance(value, bool) or not isinstance(value, int):
             raise StudyError(key, f"must be an integer, not {value!r}")

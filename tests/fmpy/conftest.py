@@ -87,10 +87,12 @@ def core_forces(rows):
 
 
 def settable_start_values(model_description):
-    """Start value of every input and parameter: float for Real, int for Integer and Enumeration."""
+    """Start value of every numeric input and parameter: float for Real, int for Integer and
+    Enumeration (the String parameters, the profiles' names, are not numbers: the reference
+    tool's rows cannot hold them)."""
     values = {}
     for v in model_description.modelVariables:
-        if v.causality in ("input", "parameter"):
+        if v.causality in ("input", "parameter") and v.type != "String":
             values[v.name] = float(v.start) if v.type == "Real" else int(v.start)
     return values
 

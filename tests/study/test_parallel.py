@@ -86,6 +86,8 @@ def test_serial_run_equals_a_fresh_instance_per_scene(serial, fmu_path, interfac
                 slave.setInteger([variables[name]["vr"]], [variables[name]["items"][value]])
             elif variables[name]["type"] == "Integer":
                 slave.setInteger([variables[name]["vr"]], [int(value)])
+            elif variables[name]["type"] == "String":
+                slave.setString([variables[name]["vr"]], [value])
             else:
                 slave.setReal([variables[name]["vr"]], [float(value)])
         slave.enterInitializationMode()

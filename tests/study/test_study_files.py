@@ -32,6 +32,8 @@ def document(top="", grid="", tables=""):
     (document(tables='[fixed]\ncreep_force_model = "exact"'), "fixed.creep_force_model: set the model with the top-level key models"),
     (document(tables='[fixed]\nfastsim_strips = 2.5'), "fixed.fastsim_strips: must be an integer, not 2.5"),
     (document(tables='[fixed]\nnormal_force = "heavy"'), "fixed.normal_force: must be a number, not 'heavy'"),
+    (document(tables='[fixed]\nwheel_profile = 1002'),
+     "fixed.wheel_profile: must be a string (a file path or a built-in profile's name), not 1002"),
     (document(tables='[fixed]\ncreepage_longitudinal = 1e-3'), "grid.creepage_longitudinal: is also set in [fixed]"),
     (document(grid='friction_coefficient = { linspace = [0.1, 0.4] }'),
      "grid.friction_coefficient.linspace: must be [start, stop, n] with n a positive integer"),

@@ -61,7 +61,7 @@ impl Instance {
             };
             return self.fail(CALL, &reason);
         }
-        let derivative = directional_derivative(&self.run.values, &mut self.model, &rates.inputs)
+        let derivative = directional_derivative(&self.run.values, &self.run.strings, &mut self.model, &rates.inputs)
             .and_then(|outputs| finite(&outputs).map(|_| Values { outputs, ..rates }));
         match derivative {
             Ok(derivative) => {

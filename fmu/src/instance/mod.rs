@@ -20,6 +20,7 @@
 //! search: one dense-table lookup per value reference, a bit test for the state, and a log
 //! filter decided once per fmi2SetDebugLogging.
 
+use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 mod derivative;
@@ -59,6 +60,8 @@ pub struct Instance {
     run: Snapshot,
     /// A cache derived from the parameters (not state: it is refitted whenever they differ).
     model: ModelCache,
+    /// What the last fmi2GetString returned: the master's pointers point into these.
+    returned_strings: Vec<CString>,
     log_filter: LogFilter,
     sink: Box<dyn LogSink>,
 }
@@ -98,6 +101,7 @@ impl Instance {
             resource_location: resource_location.map(str::to_owned),
             run: Snapshot::instantiated(),
             model: ModelCache::default(),
+            returned_strings: Vec::new(),
             log_filter: LogFilter::new(logging_on, None),
             sink,
         };

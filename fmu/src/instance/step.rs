@@ -18,12 +18,14 @@ impl Instance {
     #[inline]
     pub(super) fn update_outputs(&mut self, call: Call, evaluation: Evaluation) -> Result<Status, Status> {
         // The scene's next state is kept only if the outputs are good.
-        let outputs = compute_outputs(&self.run.values, &mut self.model, &self.run.scene, evaluation)
-            .and_then(|(outputs, state, warning)| finite(&outputs).map(|_| (outputs, state, warning)));
+        let states = (&self.run.scene, &self.run.wheel);
+        let outputs = compute_outputs(&self.run.values, &self.run.strings, &mut self.model, states, evaluation)
+            .and_then(|(outputs, states, warning)| finite(&outputs).map(|_| (outputs, states, warning)));
         match outputs {
-            Ok((outputs, state, warning)) => {
+            Ok((outputs, (scene, wheel), warning)) => {
                 self.run.values.outputs = outputs;
-                self.run.scene = state;
+                self.run.scene = scene;
+                self.run.wheel = wheel;
                 Ok(match warning {
                     Some(warning) => {
                         self.emit(Status::Warning, &format!("{call}: {warning}"));

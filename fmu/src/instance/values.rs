@@ -2,6 +2,8 @@
 //! type and causality, fixed parameters only before initialisation ends; in initialization mode
 //! a read of an output first brings the outputs up to date.
 
+use std::ffi::CString;
+
 use super::Instance;
 use crate::logging::Status;
 use crate::mode::{Call, Mode};
@@ -22,17 +24,19 @@ impl ValueType {
         match kind {
             Kind::Real { .. } => ValueType::Real,
             Kind::Integer { .. } | Kind::Enumeration { .. } => ValueType::Integer,
+            Kind::String { .. } => ValueType::String,
         }
     }
 
-    /// The [`ACCESS`](crate::model_description::ACCESS) bit of the type (none for Boolean and
-    /// String: this FMU has no such variables).
+    /// The [`ACCESS`](crate::model_description::ACCESS) bit of the type (none for Boolean:
+    /// this FMU has no such variables).
     #[inline]
     fn access_bit(self) -> u8 {
         match self {
             ValueType::Real => access::REAL,
             ValueType::Integer => access::INTEGER,
-            ValueType::Boolean | ValueType::String => 0,
+            ValueType::String => access::STRING,
+            ValueType::Boolean => 0,
         }
     }
 
@@ -167,14 +171,52 @@ impl Instance {
         status
     }
 
-    /// fmi2GetBoolean / fmi2GetString: this FMU has no such variables, so only n = 0 succeeds.
+    /// fmi2SetString: copies of the texts (the caller's pointers are not kept); a String is a
+    /// parameter, so the contact is rebuilt (the profiles read again) at the next evaluation.
+    pub fn set_string<T: AsRef<str>>(&mut self, value_references: &[u32], values: &[T]) -> Status {
+        if let Err(status) = self.prepare_set(Call::SetString, value_references, ValueType::String) {
+            return status;
+        }
+        for (&value_reference, value) in value_references.iter().zip(values) {
+            if let Some(field) = self.run.strings.string_mut(value_reference) {
+                value.as_ref().clone_into(field);
+            }
+        }
+        self.trace(|| {
+            let texts: Vec<&str> = values.iter().map(AsRef::as_ref).collect();
+            format!("fmi2SetString: {value_references:?} = {texts:?}")
+        });
+        Status::Ok
+    }
+
+    /// fmi2GetString: the values as C strings, kept by the instance until its next fmi2GetString
+    /// (FMI 2.0 §2.1.7: valid until the next call on the instance, and longer).
+    pub fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status> {
+        match self.prepare_get(Call::GetString, value_references, ValueType::String) {
+            Ok(_) => {}
+            Err(status) => return Err(status),
+        }
+        let texts: Vec<CString> = value_references
+            .iter()
+            .map(|&r| {
+                let text = self.run.strings.string(r).map_or("", String::as_str);
+                // A NUL cannot come through fmi2SetString (it ends a C string).
+                CString::new(text).unwrap_or_default()
+            })
+            .collect();
+        self.trace(|| format!("fmi2GetString: {value_references:?} = {texts:?}"));
+        self.returned_strings = texts;
+        Ok(&self.returned_strings)
+    }
+
+    /// fmi2GetBoolean: this FMU has no such variables, so only n = 0 succeeds.
     pub fn get_absent_type(&mut self, call: Call, value_type: ValueType, value_references: &[u32]) -> Status {
         match self.prepare_get(call, value_references, value_type) {
             Ok(status) | Err(status) => status,
         }
     }
 
-    /// fmi2SetBoolean / fmi2SetString: this FMU has no such variables, so only n = 0 succeeds.
+    /// fmi2SetBoolean: this FMU has no such variables, so only n = 0 succeeds.
     pub fn set_absent_type(&mut self, call: Call, value_type: ValueType, value_references: &[u32]) -> Status {
         match self.prepare_set(call, value_references, value_type) {
             Ok(()) => Status::Ok,

@@ -199,6 +199,32 @@ impl Fmu {
         fmu
     }
 
+    /// fmi2SetString from Rust texts (the C copies are dropped after the call: the FMU must
+    /// have copied them).
+    pub fn set_string(&self, references: &[u32], values: &[&str]) -> fmi2Status {
+        assert_eq!(references.len(), values.len());
+        let owned: Vec<CString> = values.iter().map(|v| CString::new(*v).unwrap()).collect();
+        let pointers: Vec<fmi2String> = owned.iter().map(|c| c.as_ptr()).collect();
+        // SAFETY: live instance, matching lengths, NUL-terminated strings.
+        unsafe { fmi2SetString(self.c, references.as_ptr(), references.len(), pointers.as_ptr()) }
+    }
+
+    /// fmi2GetString's pointers (valid until the instance's next call) and the call's status.
+    pub fn get_string_pointers(&self, references: &[u32]) -> (fmi2Status, Vec<fmi2String>) {
+        let mut pointers = vec![null(); references.len()];
+        // SAFETY: live instance, matching lengths.
+        let status = unsafe { fmi2GetString(self.c, references.as_ptr(), references.len(), pointers.as_mut_ptr()) };
+        (status, pointers)
+    }
+
+    /// fmi2GetString, copied into Rust texts.
+    pub fn get_string(&self, references: &[u32]) -> Vec<String> {
+        let (status, pointers) = self.get_string_pointers(references);
+        assert_eq!(status, OK);
+        // SAFETY: the FMU's NUL-terminated strings, read before any other call on the instance.
+        pointers.iter().map(|&p| unsafe { CStr::from_ptr(p) }.to_str().unwrap().to_owned()).collect()
+    }
+
     pub fn set_real(&self, references: &[u32], values: &[f64]) -> fmi2Status {
         assert_eq!(references.len(), values.len());
         // SAFETY: live instance, matching lengths.

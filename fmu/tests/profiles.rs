@@ -1,0 +1,337 @@
+//! `contact_geometry = profiles` through the C ABI: the String parameters, the profiles read at
+//! initialisation (errors naming the variable, the file and the reason), the wheel's outputs
+//! against the core's own evaluation, lift-off, the left wheel as the right one mirrored, and
+//! no directional derivatives.
+
+mod c_abi;
+
+use std::ffi::CString;
+
+use c_abi::{Fmu, MessageLog, ERROR, OK};
+use wheel_rail_contact::geometry::{
+    builtin_profile, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
+    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+};
+use wheel_rail_contact::scene::{CreepageSource, Evaluation, Scene};
+use wheel_rail_contact::{ModelChoice, Polach};
+use wheel_rail_contact_fmu::ffi::{
+    fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2SetString, fmi2SetupExperiment,
+};
+use wheel_rail_contact_fmu::fmi2::fmi2Status;
+use wheel_rail_contact_fmu::model_description::{
+    value_reference as vr, variable, ContactGeometry, WheelSide as SideChoice,
+};
+
+/// The wheelset's inputs, in this order.
+const WHEELSET: [u32; 9] = [
+    vr::WHEELSET_LATERAL_DISPLACEMENT,
+    vr::WHEELSET_VERTICAL_POSITION,
+    vr::WHEELSET_ROLL_ANGLE,
+    vr::WHEELSET_YAW_ANGLE,
+    vr::VERTICAL_FORCE,
+    vr::ROLLING_SPEED,
+    vr::WHEEL_ANGULAR_SPEED,
+    vr::WHEELSET_LATERAL_VELOCITY,
+    vr::WHEELSET_YAW_RATE,
+];
+
+/// Every output of the wheel, in this order: the totals, then patch 1's and patch 2's.
+const WHEEL_OUTPUTS: [u32; 30] = [
+    vr::TRACK_FORCE_X,
+    vr::TRACK_FORCE_Y,
+    vr::TRACK_FORCE_Z,
+    vr::TRACK_MOMENT_X,
+    vr::TRACK_MOMENT_Y,
+    vr::TRACK_MOMENT_Z,
+    vr::CONTACT_PATCH_COUNT,
+    vr::WHEELSET_VERTICAL_POSITION_SOLVED,
+    vr::PATCH1_CONTACT_ANGLE,
+    vr::PATCH1_RAIL_LATERAL_POSITION,
+    vr::PATCH1_ROLLING_RADIUS,
+    vr::PATCH1_NORMAL_FORCE,
+    vr::PATCH1_FORCE_LONGITUDINAL,
+    vr::PATCH1_FORCE_LATERAL,
+    vr::PATCH1_CREEPAGE_LONGITUDINAL,
+    vr::PATCH1_CREEPAGE_LATERAL,
+    vr::PATCH1_SPIN_CREEPAGE,
+    vr::PATCH1_SEMI_AXIS_A,
+    vr::PATCH1_SEMI_AXIS_B,
+    vr::PATCH2_CONTACT_ANGLE,
+    vr::PATCH2_RAIL_LATERAL_POSITION,
+    vr::PATCH2_ROLLING_RADIUS,
+    vr::PATCH2_NORMAL_FORCE,
+    vr::PATCH2_FORCE_LONGITUDINAL,
+    vr::PATCH2_FORCE_LATERAL,
+    vr::PATCH2_CREEPAGE_LONGITUDINAL,
+    vr::PATCH2_CREEPAGE_LATERAL,
+    vr::PATCH2_SPIN_CREEPAGE,
+    vr::PATCH2_SEMI_AXIS_A,
+    vr::PATCH2_SEMI_AXIS_B,
+];
+
+/// case 11 of the Manchester benchmark (5 mm to the right, yawed and rolled: tread and
+/// flange both in contact on the right wheel), braking slightly, moving sideways and yawing.
+const CASE_11: [f64; 9] = [5e-3, 0.0, -3.554e-4, 0.012, 10e3, 2.0, 4.3353637 * 0.999, 0.01, 0.005];
+
+/// An instance with profiles on `side`, its inputs set, initialised (logging into `log`).
+fn profiles(side: SideChoice, inputs: &[f64; 9], log: &MessageLog) -> Fmu {
+    let fmu = Fmu::instantiate_logged("profiles", log);
+    assert_eq!(
+        fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::WHEEL_SIDE], &[ContactGeometry::Profiles as i32, side as i32]),
+        OK
+    );
+    assert_eq!(fmu.set_real(&WHEELSET, inputs), OK);
+    fmu.initialise(0.0);
+    fmu
+}
+
+/// fmi2ExitInitializationMode's status after setting up.
+fn exit_initialisation(fmu: &Fmu) -> fmi2Status {
+    // SAFETY: a live instance.
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+        fmi2ExitInitializationMode(fmu.c)
+    }
+}
+
+#[test]
+fn strings_are_copied_in_and_read_back() {
+    let fmu = Fmu::instantiate("strings", None);
+    // SAFETY: a live instance (Get is legal from initialisation mode on).
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+    }
+    let profiles = [vr::WHEEL_PROFILE, vr::RAIL_PROFILE];
+    assert_eq!(fmu.get_string(&profiles), ["MBench_S1002", "MBench_UIC60"], "the start values");
+    // The caller's buffer is changed after the call: the FMU kept its own copy.
+    let mut text = CString::new("profiles/worn wheel.prw").unwrap().into_bytes_with_nul();
+    // SAFETY: a live instance; `text` is NUL-terminated and outlives the call.
+    let status = unsafe { fmi2SetString(fmu.c, &vr::WHEEL_PROFILE, 1, &text.as_ptr().cast()) };
+    assert_eq!(status, OK);
+    text[0] = b'X';
+    assert_eq!(fmu.set_string(&[vr::RAIL_PROFILE], &["rail ü.ban"]), OK);
+    assert_eq!(fmu.get_string(&profiles), ["profiles/worn wheel.prw", "rail ü.ban"]);
+    // The pointers of one call stay valid while the master reads them.
+    let (status, pointers) = fmu.get_string_pointers(&[vr::RAIL_PROFILE, vr::WHEEL_PROFILE, vr::RAIL_PROFILE]);
+    assert_eq!(status, OK);
+    // SAFETY: the FMU's strings, valid until its next call.
+    let texts: Vec<&str> = pointers.iter().map(|&p| unsafe { std::ffi::CStr::from_ptr(p) }.to_str().unwrap()).collect();
+    assert_eq!(texts, ["rail ü.ban", "profiles/worn wheel.prw", "rail ü.ban"]);
+    // Not a String, or not a variable: nothing is set.
+    assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE, vr::SHEAR_MODULUS], &["a.prw", "b"]), ERROR);
+    assert_eq!(fmu.get_string(&[vr::WHEEL_PROFILE]), ["profiles/worn wheel.prw"]);
+    assert_eq!(fmu.get_string_pointers(&[vr::TRACK_FORCE_X]).0, ERROR);
+    // Fixed parameters: not after initialisation.
+    // SAFETY: a live instance in initialisation mode (contact_geometry = ellipse: the profiles
+    // are not read).
+    assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, OK);
+    assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE], &["MBench_S1002"]), ERROR);
+}
+
+#[test]
+fn a_missing_or_malformed_profile_is_an_error_naming_the_file_and_the_reason() {
+    let directory = std::env::temp_dir().join(format!("wrc-profiles-{}", std::process::id()));
+    std::fs::create_dir_all(&directory).unwrap();
+    let malformed = directory.join("malformed.ban");
+    std::fs::write(&malformed, "0.0 0.0\n1.0 oops\n").unwrap();
+    let missing = directory.join("missing.prw");
+    let cases = [
+        (vr::WHEEL_PROFILE, missing.to_str().unwrap().to_owned(), "the file cannot be read"),
+        (vr::RAIL_PROFILE, malformed.to_str().unwrap().to_owned(), "line 2"),
+        (vr::WHEEL_PROFILE, "S1002".to_owned(), "neither a built-in profile (MBench_S1002, MBench_UIC60)"),
+    ];
+    for (reference, path, reason) in cases {
+        let log = MessageLog::default();
+        let fmu = Fmu::instantiate_logged("bad profile", &log);
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+        assert_eq!(fmu.set_string(&[reference], &[&path]), OK);
+        assert_eq!(exit_initialisation(&fmu), ERROR, "{path}");
+        let (status, message) = log.last().unwrap();
+        assert_eq!(status, ERROR);
+        let variable = if reference == vr::WHEEL_PROFILE { "wheel_profile" } else { "rail_profile" };
+        assert!(message.starts_with(&format!("fmi2ExitInitializationMode: {variable} = \"{path}\"")), "{message}");
+        assert!(message.contains(reason), "{message}");
+        // Corrected, the instance carries on.
+        let builtin = if reference == vr::WHEEL_PROFILE { "MBench_S1002" } else { "MBench_UIC60" };
+        assert_eq!(fmu.set_string(&[reference], &[builtin]), OK);
+        // SAFETY: a live instance, still in initialisation mode.
+        assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, OK);
+    }
+    std::fs::remove_dir_all(&directory).unwrap();
+}
+
+#[test]
+fn the_outputs_are_the_cores_wheel_on_its_rail() {
+    let log = MessageLog::default();
+    let fmu = profiles(SideChoice::Right, &CASE_11, &log);
+    let outputs = fmu.get_real(&WHEEL_OUTPUTS);
+    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+    let geometry = WheelOnRail::new(
+        profile("MBench_S1002"),
+        profile("MBench_UIC60"),
+        TrackDimensions::MANCHESTER_BENCHMARK,
+        WheelSide::Right,
+        82e9,
+        0.28,
+    )
+    .unwrap();
+    let scene = Scene {
+        creepages: CreepageSource::Kinematics { regularisation_speed: 0.01 },
+        ..Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28)
+    };
+    let input = WheelInput {
+        position: WheelsetPosition { lateral: 5e-3, vertical: 0.0, roll: -3.554e-4, yaw: 0.012 },
+        velocity: WheelsetVelocity {
+            rolling_speed: 2.0,
+            wheel_angular_speed: 4.3353637 * 0.999,
+            lateral_velocity: 0.01,
+            yaw_rate: 0.005,
+        },
+        vertical: VerticalContact::PrescribedForce(10e3),
+        friction_coefficient: 0.3,
+    };
+    let (wheel, _) = WheelRailContact::new(geometry, scene)
+        .evaluate(&input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise)
+        .unwrap();
+    assert_eq!(wheel.patches.len(), 2, "tread and flange");
+    let mut expected = vec![];
+    expected.extend(wheel.track_force);
+    expected.extend(wheel.track_moment);
+    expected.extend([2.0, wheel.wheelset_vertical_position]);
+    for patch in &wheel.patches {
+        let (point, output) = (&patch.patch.point, &patch.output);
+        expected.extend([
+            point.contact_angle,
+            point.rail_lateral,
+            point.rolling_radius,
+            patch.patch.normal_force,
+            output.force_longitudinal,
+            output.force_lateral,
+            output.effective_creepage_longitudinal,
+            output.effective_creepage_lateral,
+            output.effective_spin_creepage,
+            patch.patch.ellipse.semi_axis_a,
+            patch.patch.ellipse.semi_axis_b,
+        ]);
+    }
+    assert_eq!(outputs, expected);
+    // Tread first: the flange patch is further towards the gauge side and steeper.
+    assert!(outputs[9] > outputs[20] && outputs[19] < outputs[8] && outputs[8] < 0.0, "{outputs:?}");
+    // The rail carries the prescribed load: F_z on the wheel is −10 kN.
+    assert!((outputs[2] + 10e3).abs() < 1e-6 * 10e3, "{}", outputs[2]);
+    // The single patch's outputs are not computed with profiles.
+    let single = fmu.get_real(&[vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::CONTACT_SEMI_AXIS_A]);
+    assert_eq!(single, [0.0; 3]);
+}
+
+#[test]
+fn lift_off_gives_zeros_and_no_patch() {
+    let log = MessageLog::default();
+    let mut inputs = CASE_11;
+    inputs[4] = 0.0;
+    let fmu = profiles(SideChoice::Right, &inputs, &log);
+    let outputs = fmu.get_real(&WHEEL_OUTPUTS);
+    // All zero but the height at which the wheel just touches.
+    for (position, value) in outputs.iter().enumerate().filter(|(position, _)| *position != 7) {
+        assert_eq!(*value, 0.0, "output {position}");
+    }
+    assert!(outputs[7].is_finite());
+    // Loaded again: two patches.
+    assert_eq!(fmu.set_real(&[vr::VERTICAL_FORCE], &[10e3]), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    assert_eq!(fmu.get_real(&[vr::CONTACT_PATCH_COUNT]), [2.0]);
+    assert_eq!(fmu.set_real(&[vr::VERTICAL_FORCE], &[-5.0]), OK);
+    assert_eq!(fmu.do_step(1e-3, 1e-3), OK);
+    assert_eq!(fmu.get_real(&[vr::CONTACT_PATCH_COUNT, vr::TRACK_FORCE_Z, vr::PATCH2_NORMAL_FORCE]), [0.0; 3]);
+}
+
+#[test]
+fn an_invalid_position_is_an_error_naming_it_and_the_instance_carries_on() {
+    let log = MessageLog::default();
+    let fmu = profiles(SideChoice::Right, &CASE_11, &log);
+    let before = fmu.get_real(&WHEEL_OUTPUTS);
+    for (reference, name) in [
+        (vr::WHEELSET_LATERAL_DISPLACEMENT, "wheelset_lateral_displacement = NaN"),
+        (vr::WHEELSET_YAW_RATE, "wheelset_yaw_rate = NaN"),
+    ] {
+        assert_eq!(fmu.set_real(&[reference], &[f64::NAN]), OK);
+        assert_eq!(fmu.do_step(0.0, 1e-3), ERROR);
+        let (_, message) = log.last().unwrap();
+        assert!(message.starts_with(&format!("fmi2DoStep: {name}")), "{message}");
+        assert_eq!(fmu.get_real(&WHEEL_OUTPUTS), before, "the outputs are kept");
+        let index = WHEELSET.iter().position(|r| *r == reference).unwrap();
+        assert_eq!(fmu.set_real(&[reference], &[CASE_11[index]]), OK);
+    }
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    // The vertical position is not read with a prescribed force.
+    assert_eq!(fmu.set_real(&[vr::WHEELSET_VERTICAL_POSITION], &[f64::NAN]), OK);
+    assert_eq!(fmu.do_step(1e-3, 1e-3), OK);
+    assert_eq!(fmu.get_real(&WHEEL_OUTPUTS), before);
+}
+
+/// The left wheel at (−y, −roll, −yaw), moving at (−ẏ, −ψ̇), is the right wheel at (y, roll,
+/// yaw) mirrored in y: lateral forces, positions, angles, lateral and spin creepages and the
+/// moments about x and z change sign; the rest is the same.
+#[test]
+fn the_left_wheel_is_the_right_one_mirrored() {
+    let mirror = [-1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0, -1.0, -1.0];
+    let patch = [-1.0, -1.0, 1.0, 1.0, 1.0, -1.0, 1.0, -1.0, -1.0, 1.0, 1.0];
+    let mut signs = vec![1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, 1.0];
+    signs.extend(patch);
+    signs.extend(patch);
+    // The cant turns each rail towards the track's centre, mirrored on the left (here −0.01 rad:
+    // less inclined than the built-in 1:40, which +0.02 would turn past the vertical on its gauge side).
+    for (lateral, cant) in [(5e-3, 0.0), (-2e-3, 0.0), (7e-3, 0.0), (3e-3, -0.01)] {
+        let mut right_inputs = CASE_11;
+        right_inputs[0] = lateral;
+        let left_inputs: [f64; 9] = std::array::from_fn(|i| right_inputs[i] * mirror[i]);
+        let log = MessageLog::default();
+        let canted = |side, inputs: &[f64; 9]| {
+            let fmu = Fmu::instantiate_logged("mirror", &log);
+            let integers = [ContactGeometry::Profiles as i32, side as i32];
+            assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::WHEEL_SIDE], &integers), OK);
+            assert_eq!(fmu.set_real(&[vr::RAIL_CANT], &[cant]), OK);
+            assert_eq!(fmu.set_real(&WHEELSET, inputs), OK);
+            assert_eq!(exit_initialisation(&fmu), OK, "{:?}", log.last());
+            fmu.get_real(&WHEEL_OUTPUTS)
+        };
+        let right = canted(SideChoice::Right, &right_inputs);
+        let left = canted(SideChoice::Left, &left_inputs);
+        if cant != 0.0 {
+            let uncanted = profiles(SideChoice::Right, &right_inputs, &log).get_real(&WHEEL_OUTPUTS);
+            // On the tread the contact angle follows the rail's turn, less the wheel's own slope change.
+            assert!((right[8] - uncanted[8]).abs() > 0.005, "{} vs {}", right[8], uncanted[8]);
+        }
+        assert!(right[6] >= 1.0, "in contact at y = {lateral}");
+        for (i, ((r, l), sign)) in right.iter().zip(&left).zip(&signs).enumerate() {
+            let name = variable(WHEEL_OUTPUTS[i]).unwrap().name;
+            assert!((l - sign * r).abs() <= 1e-9 * r.abs() + 1e-15, "y = {lateral}, {name}: {l} vs {sign} × {r}");
+        }
+    }
+}
+
+#[test]
+fn no_directional_derivatives_with_profiles() {
+    let log = MessageLog::default();
+    let fmu = profiles(SideChoice::Right, &CASE_11, &log);
+    let (status, _) = fmu.directional_derivative(&[vr::TRACK_FORCE_Y], &[vr::WHEELSET_LATERAL_DISPLACEMENT], &[1.0]);
+    assert_eq!(status, ERROR);
+    let (_, message) = log.last().unwrap();
+    assert_eq!(
+        message,
+        "fmi2GetDirectionalDerivative: directional derivatives are not available with contact_geometry = 2 (profiles)"
+    );
+}
+
+#[test]
+fn a_rail_cant_beyond_its_range_is_an_error_naming_it() {
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("cant", &log);
+    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+    assert_eq!(fmu.set_real(&[vr::RAIL_CANT], &[0.2]), OK);
+    assert_eq!(exit_initialisation(&fmu), ERROR);
+    let (_, message) = log.last().unwrap();
+    assert!(message.starts_with("fmi2ExitInitializationMode: rail_cant = 0.2"), "{message}");
+}
