@@ -48,7 +48,9 @@ fn geometry(c: &mut Criterion) {
         (ModelChoice::ExactTable(ExactTable::new().unwrap()), "exact_table"),
     ] {
         let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28));
-        for (place, lateral, yaw) in [("tread", 0.002, 0.0048), ("flange", 0.007, 0.0168)] {
+        for (place, lateral, yaw) in
+            [("tread", 0.002, 0.0048), ("centred", 0.0, 0.0), ("two_minima", 0.005, 0.0), ("flange", 0.007, 0.0168)]
+        {
             let input = WheelInput {
                 position: WheelsetPosition { lateral, yaw, ..WheelsetPosition::default() },
                 velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3478, ..Default::default() },

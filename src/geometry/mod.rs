@@ -18,7 +18,6 @@
 //! Conventions are CONTACT's module 1: profile coordinates y lateral, z downward, in metres; the
 //! profiles are given for the right side (a left wheel and rail use them mirrored).
 //!
-//! Not here yet: a precomputed contact table (docs/geometry.md, "Speed").
 
 pub mod builtin;
 pub mod contact;
