@@ -40,7 +40,7 @@
 //! contact reference between the same places between its cases. Elsewhere the points move
 //! continuously with y_ws, and the load passes between separate patches continuously.
 //!
-//! Contact table. The gap is scanned on the sampled profiles ([`SampledProfile`]); the full scan
+//! Contact table. The gap is scanned on the sampled profiles (`sampled_profile.rs`); the full scan
 //! reads ≈ 800 samples. At placement a table stores the gap's minima of the unyawed wheel every
 //! 0.1 mm of the wheel bottom's lateral position y_ws − r0 sin φ − Y (1 − cos ψ) (±15 mm) and
 //! every 0.002 rad of roll (±0.012 rad); a search then scans only within 1 mm of the minima of
