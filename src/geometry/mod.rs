@@ -17,6 +17,7 @@
 //!
 //! Conventions are CONTACT's module 1: profile coordinates y lateral, z downward, in metres; the
 //! profiles are given for the right side (a left wheel and rail use them mirrored).
+
 pub mod builtin;
 pub mod contact;
 pub mod normal_problem;
