@@ -300,8 +300,12 @@ fn rail_cant_turns_the_rail_towards_the_track_centre() {
     // Past ±0.1 rad, or turning a flank past the vertical: errors naming the cause.
     let wheel = SmoothProfile::new(&builtin_profile("MBench_S1002").unwrap()).unwrap();
     let rail = SmoothProfile::new(&upright).unwrap();
-    let error = WheelOnRail::new(wheel, rail, track(0.2), WheelSide::Right, 82e9, 0.28).unwrap_err();
+    let error = WheelOnRail::new(wheel.clone(), rail, track(0.2), WheelSide::Right, 82e9, 0.28).unwrap_err();
     assert!(error.to_string().contains("rail_cant = 0.2"), "{error}");
+    // The shipped UIC60's gauge face is steep: a further 0.02 rad turns it past the vertical.
+    let shipped = SmoothProfile::new(&builtin_profile("MBench_UIC60").unwrap()).unwrap();
+    let error = WheelOnRail::new(wheel, shipped, track(0.02), WheelSide::Right, 82e9, 0.28).unwrap_err();
+    assert!(error.to_string().contains("rail_cant = 0.02 rad turns a flank"), "{error}");
 }
 
 #[test]

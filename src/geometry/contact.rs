@@ -281,7 +281,16 @@ impl WheelOnRail {
         }
         // The cant turns the rail towards the track's centre (for the right rail, the field
         // side up: −cant about x), about its profile's origin, as CONTACT's CANT.
-        let rail = if dimensions.rail_cant == 0.0 { rail } else { rail.rotated(-dimensions.rail_cant)? };
+        let rail = if dimensions.rail_cant == 0.0 {
+            rail
+        } else {
+            rail.rotated(-dimensions.rail_cant).map_err(|_| {
+                ProfileError::whole(format!(
+                    "rail_cant = {} rad turns a flank of the rail profile past the vertical",
+                    dimensions.rail_cant
+                ))
+            })?
+        };
         let (gauge_face, top) = gauge_face(&rail, dimensions.gauge_measuring_height)?;
         let mut placed = Self {
             table: ContactTable { minima: Vec::new() },
