@@ -537,7 +537,7 @@ impl<'a> GapSearch<'a> {
     /// The gap at the locus point of a wheel sample (profile y, height, slope).
     fn gap_of(&self, profile_y: f64, (height, slope): (f64, f64)) -> Option<f64> {
         let (lateral, vertical) = self.locus.track_position(self.wheel, profile_y, height, slope)?;
-        let (rail_height, _) = self.wheel.rail_samples.at(lateral - self.wheel.rail_offset)?;
+        let rail_height = self.wheel.rail_samples.height_at(lateral - self.wheel.rail_offset)?;
         Some(rail_height + self.wheel.rail_lift - vertical)
     }
 

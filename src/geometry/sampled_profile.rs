@@ -13,6 +13,8 @@ use super::smooth_profile::SmoothProfile;
 pub(crate) struct SampledProfile {
     first: f64,
     step: f64,
+    /// 1/step: a multiplication per read instead of a division.
+    per_step: f64,
     heights: Vec<f64>,
     slopes: Vec<f64>,
 }
@@ -29,7 +31,7 @@ impl SampledProfile {
             heights.push(point.vertical);
             slopes.push(point.slope_angle.tan());
         }
-        Self { first, step, heights, slopes }
+        Self { first, step, per_step: step.recip(), heights, slopes }
     }
 
     /// The k-th sample's y.
@@ -39,7 +41,7 @@ impl SampledProfile {
 
     /// The (fractional) sample index of y.
     pub(crate) fn index_at(&self, y: f64) -> f64 {
-        (y - self.first) / self.step
+        (y - self.first) * self.per_step
     }
 
     pub(crate) fn len(&self) -> usize {
@@ -52,28 +54,58 @@ impl SampledProfile {
     }
 
     /// Height and slope at y by cubic Hermite interpolation, `None` outside the samples.
+    #[inline]
     pub(crate) fn at(&self, y: f64) -> Option<(f64, f64)> {
-        let position = (y - self.first) / self.step;
+        let (k, t) = self.interval(y)?;
+        if t == 0.0 {
+            return Some(self.sample(k));
+        }
+        let (z0, z1, m0, m1) = self.ends(k);
+        let t2 = t * t;
+        let slope =
+            ((6.0 * t2 - 6.0 * t) * (z0 - z1) + (3.0 * t2 - 4.0 * t + 1.0) * m0 + (3.0 * t2 - 2.0 * t) * m1) * self.per_step;
+        Some((hermite_height(t, z0, z1, m0, m1), slope))
+    }
+
+    /// Height at y as [`Self::at`], without the slope: the gap reads only the rail's height.
+    #[inline]
+    pub(crate) fn height_at(&self, y: f64) -> Option<f64> {
+        let (k, t) = self.interval(y)?;
+        if t == 0.0 {
+            return Some(self.heights[k]);
+        }
+        let (z0, z1, m0, m1) = self.ends(k);
+        Some(hermite_height(t, z0, z1, m0, m1))
+    }
+
+    /// The sample interval of y and the fraction t ∈ [0, 1) into it (t = 0 exactly on the last
+    /// sample), `None` outside the samples.
+    #[inline]
+    fn interval(&self, y: f64) -> Option<(usize, f64)> {
+        let position = (y - self.first) * self.per_step;
         if position.is_nan() || position < 0.0 {
             return None;
         }
         let k = position as usize;
         if k + 1 >= self.heights.len() {
-            return (k + 1 == self.heights.len() && position == k as f64).then(|| self.sample(k));
+            return (k + 1 == self.heights.len() && position == k as f64).then_some((k, 0.0));
         }
-        let t = position - k as f64;
-        let (z0, z1) = (self.heights[k], self.heights[k + 1]);
-        let (m0, m1) = (self.slopes[k] * self.step, self.slopes[k + 1] * self.step);
-        let (t2, t3) = (t * t, t * t * t);
-        let height =
-            (2.0 * t3 - 3.0 * t2 + 1.0) * z0 + (t3 - 2.0 * t2 + t) * m0 + (-2.0 * t3 + 3.0 * t2) * z1 + (t3 - t2) * m1;
-        let slope = ((6.0 * t2 - 6.0 * t) * z0
-            + (3.0 * t2 - 4.0 * t + 1.0) * m0
-            + (-6.0 * t2 + 6.0 * t) * z1
-            + (3.0 * t2 - 2.0 * t) * m1)
-            / self.step;
-        Some((height, slope))
+        Some((k, position - k as f64))
     }
+
+    /// Heights and slopes (per unit t) at the ends of interval k.
+    #[inline]
+    fn ends(&self, k: usize) -> (f64, f64, f64, f64) {
+        (self.heights[k], self.heights[k + 1], self.slopes[k] * self.step, self.slopes[k + 1] * self.step)
+    }
+}
+
+/// The cubic Hermite polynomial through z0, z1 with end slopes m0, m1 (per unit t), at t.
+#[inline]
+fn hermite_height(t: f64, z0: f64, z1: f64, m0: f64, m1: f64) -> f64 {
+    // Horner form of (2t³ − 3t² + 1) z0 + (t³ − 2t² + t) m0 + (−2t³ + 3t²) z1 + (t³ − t²) m1.
+    let d = z0 - z1;
+    z0 + t * (m0 + t * (-3.0 * d - 2.0 * m0 - m1 + t * (2.0 * d + m0 + m1)))
 }
 
 #[cfg(test)]
@@ -116,5 +148,19 @@ mod tests {
         assert!(sampled.at(f64::NAN).is_none());
         assert!(sampled.at(sampled.lateral(sampled.len() - 1) + 1e-9).is_none());
         assert_eq!(sampled.at(first), Some(sampled.sample(0)));
+        let last = sampled.lateral(sampled.len() - 1);
+        assert_eq!(sampled.at(last), Some(sampled.sample(sampled.len() - 1)));
+        assert_eq!(sampled.height_at(f64::NAN), None);
+    }
+
+    #[test]
+    fn height_alone_is_the_height_of_both() {
+        let profile = SmoothProfile::new(&builtin_profile("MBench_S1002").unwrap()).unwrap();
+        let sampled = SampledProfile::new(&profile, 1e-4);
+        let (first, last) = profile.lateral_range();
+        for i in 0..1000 {
+            let y = first + (last - first) * (f64::from(i) + 0.5) / 1000.0;
+            assert_eq!(sampled.height_at(y), sampled.at(y).map(|(height, _)| height), "y = {y}");
+        }
     }
 }
