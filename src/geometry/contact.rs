@@ -570,6 +570,40 @@ impl<'a> GapSearch<'a> {
             .collect()
     }
 
+    /// The highest sampled gap between two neighbouring minima at wheel profile y `from` < `to`
+    /// (those of the full scan: no local minimum lies between them), by bisection on the
+    /// samples. Between two neighbouring local minima (a sample strictly below its left and not
+    /// above its right neighbour) the samples rise, then fall: the peak is the first sample
+    /// followed by a lower one, found in O(log n) reads instead of n. Where two neighbours are
+    /// equal the side is unknown and the rest is read in full.
+    fn peak_between(&self, from: f64, to: f64) -> f64 {
+        let samples = &self.wheel.wheel_samples;
+        let stride = SAMPLES_PER_STEP as usize;
+        let first = (samples.index_at(from).max(0.0).ceil() as usize).div_ceil(stride);
+        let last = (samples.index_at(to).min((samples.len() - 1) as f64).floor() as usize) / stride;
+        // On the full scan's grid: sample j is the wheel sample j·stride.
+        let gap = |j: usize| {
+            let k = j * stride;
+            self.gap_of(samples.lateral(k), samples.sample(k)).unwrap_or(f64::INFINITY)
+        };
+        if last < first {
+            return f64::MIN;
+        }
+        let (mut low, mut high) = (first, last);
+        while low < high {
+            let middle = low + (high - low) / 2;
+            let (here, next) = (gap(middle), gap(middle + 1));
+            if next > here {
+                low = middle + 1;
+            } else if next < here {
+                high = middle;
+            } else {
+                return (low..=high).map(gap).fold(f64::MIN, f64::max);
+            }
+        }
+        gap(low)
+    }
+
     /// The local minima of a run of samples, refined by Brent's method (wheel profile y), with
     /// the highest sample between neighbours.
     fn minima_of(&self, samples: &[(f64, f64)]) -> (Vec<f64>, Vec<f64>) {
@@ -620,7 +654,7 @@ impl<'a> GapSearch<'a> {
 
     /// The scan restricted to within [`Self::reach`] of `starts` (increasing; the contact
     /// table's minima near this pose): the same samples, minima and barriers as the full scan
-    /// there (between stretches, the samples between their minima are read for the barrier).
+    /// there (between stretches, the barrier by [`Self::peak_between`]).
     /// `None` — scan everything instead — if it finds no minimum.
     fn scan_near(&self, starts: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
         let reach = self.reach();
@@ -635,7 +669,7 @@ impl<'a> GapSearch<'a> {
         for (from, to) in stretches {
             let (found, between) = self.minima_of(&self.sampled(from, to));
             if let (Some(&last), Some(&first)) = (minima.last(), found.first()) {
-                barriers.push(self.sampled(last, first).iter().map(|s| s.1).fold(f64::MIN, f64::max));
+                barriers.push(self.peak_between(last, first));
             }
             minima.extend(found);
             barriers.extend(between);

@@ -62,8 +62,8 @@ impl SampledProfile {
         }
         let (z0, z1, m0, m1) = self.ends(k);
         let t2 = t * t;
-        let slope =
-            ((6.0 * t2 - 6.0 * t) * (z0 - z1) + (3.0 * t2 - 4.0 * t + 1.0) * m0 + (3.0 * t2 - 2.0 * t) * m1) * self.per_step;
+        let slope = ((6.0 * t2 - 6.0 * t) * (z0 - z1) + (3.0 * t2 - 4.0 * t + 1.0) * m0 + (3.0 * t2 - 2.0 * t) * m1)
+            * self.per_step;
         Some((hermite_height(t, z0, z1, m0, m1), slope))
     }
 
