@@ -11,6 +11,8 @@
 //! - [`contact`]: a wheel placed on its rail, right or left (gauge, cant, flange back, roll, yaw), its
 //!   contact points (tread and flange), the normal problem in both modes (prescribed vertical
 //!   position or force) with a Hertz ellipse per patch;
+//! - [`conicity`]: the wheelset's rolling-radius difference Δr(y) and its equivalent conicity
+//!   tan γ_e(A) by EN 15302's principle (the kinematic wavelength of the nonlinear motion);
 //! - [`wheel_forces`]: each patch's creepages from the wheelset's motion, its creep forces by
 //!   any rung of the ladder, their sum and moment on the wheel, the vertical balance with the
 //!   creep forces' share.
@@ -19,6 +21,7 @@
 //! profiles are given for the right side (a left wheel and rail use them mirrored).
 
 pub mod builtin;
+pub mod conicity;
 pub mod contact;
 pub mod normal_problem;
 pub mod profile_file;
@@ -27,6 +30,7 @@ pub mod smooth_profile;
 pub mod wheel_forces;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
+pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};
 pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
 pub use normal_problem::ContactCandidates;
 pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
