@@ -561,13 +561,15 @@ impl<'a> GapSearch<'a> {
             return Vec::new();
         }
         // On the full scan's grid (multiples of the stride), wherever it starts.
-        (first.div_ceil(stride) * stride..=last as usize)
-            .step_by(stride)
-            .filter_map(|k| {
-                let profile_y = samples.lateral(k);
-                self.gap_of(profile_y, samples.sample(k)).map(|gap| (profile_y, gap))
-            })
-            .collect()
+        let start = first.div_ceil(stride) * stride;
+        let mut gaps = Vec::with_capacity((last as usize).saturating_sub(start) / stride + 1);
+        for k in (start..=last as usize).step_by(stride) {
+            let profile_y = samples.lateral(k);
+            if let Some(gap) = self.gap_of(profile_y, samples.sample(k)) {
+                gaps.push((profile_y, gap));
+            }
+        }
+        gaps
     }
 
     /// The highest sampled gap between two neighbouring minima at wheel profile y `from` < `to`
@@ -744,7 +746,7 @@ impl ContactTable {
             .flat_map(|rolled| rolled[k - reach..=k + 1 + reach].iter().flatten())
             .copied()
             .collect();
-        starts.sort_by(f64::total_cmp);
+        starts.sort_unstable_by(f64::total_cmp);
         starts
     }
 }
