@@ -1,7 +1,8 @@
-//! One wheel's contact geometry and normal problem from profiles, by the direct search (no
-//! precomputed table yet): the Manchester right wheel at y_ws = 2 mm (tread) and 7 mm
-//! (flange), 10 kN prescribed, against one Polach evaluation in the same run for scale.
-//! The goal for a whole wheel step is ≤ 5 µs; the direct search is far from it.
+//! One wheel's contact from profiles: the geometry and normal problem alone by the full scan
+//! (`geometry_direct_*`), one Polach evaluation for scale, whole wheel steps (geometry, normal
+//! problem with the creep forces' share, the forces) at four poses, and the Manchester
+//! benchmark's steps (`a22_*`: each wheel's cases in one iteration; the time over the count is
+//! the mean step). The goal for a whole wheel step is ≤ 5 µs.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -66,5 +67,65 @@ fn geometry(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, geometry);
+/// The Manchester benchmark's steps (`tests/data/manchester_a22_inputs.csv`: 21 positions
+/// per wheel, y_ws 0–10 mm with their yaw and roll, 10 kN), each wheel's 21 steps in one
+/// iteration: criterion's time divided by 21 is the mean wheel step over the benchmark.
+fn a22(c: &mut Criterion) {
+    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+    for (model, model_name) in [
+        (ModelChoice::Polach(Polach::default()), "polach"),
+        (ModelChoice::ExactTable(ExactTable::new().unwrap()), "exact_table"),
+    ] {
+        for (side, side_name) in [(WheelSide::Right, "right"), (WheelSide::Left, "left")] {
+            let pair = WheelOnRail::new(
+                profile("MBench_S1002"),
+                profile("MBench_UIC60"),
+                TrackDimensions::MANCHESTER_BENCHMARK,
+                side,
+                82e9,
+                0.28,
+            )
+            .unwrap();
+            let contact = WheelRailContact::new(pair, Scene::of_model(model.clone(), 82e9, 0.28));
+            let inputs: Vec<WheelInput> = include_str!("../tests/data/manchester_a22_inputs.csv")
+                .lines()
+                .filter(|line| line.starts_with(&format!("{side_name},")))
+                .map(|line| {
+                    let f: Vec<f64> = line.split(',').skip(1).map(|v| v.parse().unwrap()).collect();
+                    WheelInput {
+                        position: WheelsetPosition { lateral: f[1] * 1e-3, vertical: 0.0, roll: f[3], yaw: f[2] },
+                        velocity: WheelsetVelocity {
+                            rolling_speed: f[5] * 1e-3,
+                            wheel_angular_speed: -f[6],
+                            ..WheelsetVelocity::default()
+                        },
+                        vertical: VerticalContact::PrescribedForce(f[4]),
+                        friction_coefficient: 0.3,
+                    }
+                })
+                .collect();
+            assert_eq!(inputs.len(), 21);
+            let mut cache = WheelCache::default();
+            let state = WheelState::default();
+            // exact_table's flange patches (a/b beyond its table) fall back to the exact theory:
+            // milliseconds per step; that bench is the tread cases only (y_ws < 5 mm).
+            let inputs: Vec<WheelInput> = match model {
+                ModelChoice::ExactTable(_) => inputs.into_iter().filter(|i| i.position.lateral < 4.75e-3).collect(),
+                _ => inputs,
+            };
+            let name = format!("a22_{model_name}_{side_name}_{}_steps", inputs.len());
+            c.bench_function(&name, |bencher| {
+                bencher.iter(|| {
+                    for input in &inputs {
+                        black_box(
+                            contact.evaluate(black_box(input), &state, &mut cache, Evaluation::Step(1e-3)).unwrap(),
+                        );
+                    }
+                })
+            });
+        }
+    }
+}
+
+criterion_group!(benches, geometry, a22);
 criterion_main!(benches);
