@@ -73,7 +73,7 @@ use super::normal_problem::{Candidate, ContactCandidates};
 use super::profile_file::ProfileError;
 use super::sampled_profile::SampledProfile;
 use super::smooth_profile::{ProfilePoint, SmoothProfile};
-use crate::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use crate::scene::hertz::{contact_modulus, HertzContact};
 use crate::InvalidInput;
 
 /// Which wheel of the wheelset, on which rail.
@@ -417,7 +417,8 @@ impl WheelOnRail {
         Ok(ContactCandidates::new(self.side, candidates, barriers))
     }
 
-    /// The candidate at wheel profile y (exact splines), with its Hertz solution under 1 N.
+    /// The candidate at wheel profile y (exact splines); its Hertz solution under 1 N is solved
+    /// when it is first loaded.
     fn candidate(&self, profile_y: f64, position: &WheelsetPosition) -> Result<Candidate, ProfileError> {
         let off = || ProfileError::whole(format!("contact point at wheel profile y = {profile_y} m off the profiles"));
         let wheel = self.locus_at(profile_y, position).ok_or_else(off)?;
@@ -441,17 +442,7 @@ impl WheelOnRail {
             curvature_lateral: 0.5
                 * (rail.curvature + (1.0 - along_x) * circumferential - along_x * wheel.profile.curvature),
         };
-        // Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N scales to any load. An
-        // error is kept with the candidate: it matters only if the candidate is loaded.
-        let unit = RelativeCurvature::new(point.curvature_rolling, point.curvature_lateral)
-            .and_then(|curvature| HertzContact::solve(1.0, &curvature, self.contact_modulus))
-            .map_err(|e| {
-                ProfileError::whole(format!(
-                    "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
-                    point.rail_lateral * 1e3
-                ))
-            });
-        Ok(Candidate { point, unit })
+        Ok(Candidate::new(point, self.contact_modulus))
     }
 }
 

@@ -14,14 +14,41 @@
 
 use super::contact::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
-use crate::scene::hertz::HertzContact;
+use std::cell::OnceCell;
+
+use crate::scene::hertz::{HertzContact, RelativeCurvature};
 
 /// A candidate contact point (right side) with Hertz's solution under 1 N at its curvatures,
-/// or why Hertz does not apply there (an error only once the candidate is loaded).
+/// solved when the candidate is first loaded (most candidates never are), or why Hertz does not
+/// apply there (an error only once the candidate is loaded).
 #[derive(Debug, Clone)]
 pub(super) struct Candidate {
     pub(super) point: ContactPoint,
-    pub(super) unit: Result<HertzContact, ProfileError>,
+    contact_modulus: f64,
+    unit: OnceCell<Result<HertzContact, ProfileError>>,
+}
+
+impl Candidate {
+    pub(super) fn new(point: ContactPoint, contact_modulus: f64) -> Self {
+        Self { point, contact_modulus, unit: OnceCell::new() }
+    }
+
+    /// Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N scales to any load.
+    fn unit(&self) -> Result<&HertzContact, ProfileError> {
+        self.unit
+            .get_or_init(|| {
+                RelativeCurvature::new(self.point.curvature_rolling, self.point.curvature_lateral)
+                    .and_then(|curvature| HertzContact::solve(1.0, &curvature, self.contact_modulus))
+                    .map_err(|e| {
+                        ProfileError::whole(format!(
+                            "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
+                            self.point.rail_lateral * 1e3
+                        ))
+                    })
+            })
+            .as_ref()
+            .map_err(Clone::clone)
+    }
 }
 
 /// One wheel's contact candidates at a lateral position, roll and yaw.
@@ -113,26 +140,32 @@ impl ContactCandidates {
             return Ok((touch, Vec::new()));
         }
         // Per candidate: its vertical share times Q/(z_ws − g)^{3/2} = (cos δ/δ₁)^{3/2}, so that
-        // the carried force is Σ k_i (z_ws − g_i)^{3/2} over the patches.
-        let mut factors = Vec::with_capacity(self.candidates.len());
-        for candidate in &self.candidates {
-            let unit = candidate.unit.as_ref().map_err(Clone::clone);
-            let share = vertical_share(&self.side.mirror_point(&candidate.point));
-            factors.push(unit.map(|unit| {
-                let per_depth = candidate.point.contact_angle.cos() / unit.approach;
-                share * per_depth * per_depth.sqrt()
-            }));
-        }
+        // the carried force is Σ k_i (z_ws − g_i)^{3/2} over the patches; computed when the
+        // candidate is first loaded.
+        let factors: Vec<OnceCell<Result<f64, ProfileError>>> =
+            self.candidates.iter().map(|_| OnceCell::new()).collect();
+        let factor = |i: usize| -> Result<f64, ProfileError> {
+            let candidate = &self.candidates[i];
+            factors[i]
+                .get_or_init(|| {
+                    let share = vertical_share(&self.side.mirror_point(&candidate.point));
+                    candidate.unit().map(|unit| {
+                        let per_depth = candidate.point.contact_angle.cos() / unit.approach;
+                        share * per_depth * per_depth.sqrt()
+                    })
+                })
+                .clone()
+        };
         // The force carried at z_ws and its rate.
         let carried = |z: f64| -> Result<(f64, f64), ProfileError> {
             let (mut force, mut rate, mut refusal) = (0.0, 0.0, None);
-            self.for_each_patch(z, |i| match &factors[i] {
+            self.for_each_patch(z, |i| match factor(i) {
                 Ok(factor) => {
                     let depth = z - self.candidates[i].point.gap_at_zero;
                     force += factor * depth * depth.sqrt();
                     rate += 1.5 * factor * depth.sqrt();
                 }
-                Err(error) => refusal = Some(error.clone()),
+                Err(error) => refusal = Some(error),
             });
             refusal.map_or(Ok((force, rate)), Err)
         };
@@ -168,7 +201,7 @@ impl ContactCandidates {
 
 /// The candidate's normal penetration and force at z_ws: Q = (δ_n/δ₁)^{3/2}.
 fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileError> {
-    let unit = candidate.unit.as_ref().map_err(Clone::clone)?;
+    let unit = candidate.unit()?;
     let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle.cos() / unit.approach;
     Ok(relative * relative.sqrt())
 }
@@ -176,7 +209,7 @@ fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileErro
 /// The candidate loaded at z_ws (module doc).
 fn loaded(candidate: &Candidate, vertical: f64) -> Result<ContactPatch, ProfileError> {
     let normal_force = normal_force(candidate, vertical)?;
-    let unit = candidate.unit.as_ref().map_err(Clone::clone)?;
+    let unit = candidate.unit()?;
     let point = candidate.point;
     let penetration = (vertical - point.gap_at_zero) * point.contact_angle.cos();
     let scale = normal_force.cbrt();
