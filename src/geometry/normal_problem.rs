@@ -132,6 +132,18 @@ impl ContactCandidates {
         vertical_force: f64,
         vertical_share: impl Fn(&ContactPoint) -> f64,
     ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
+        self.patches_for_force_near(vertical_force, vertical_share, None)
+    }
+
+    /// [`Self::patches_for_force`], its search started at `guess` (z_ws) if given: the rounds of
+    /// the vertical balance change z_ws by little, and Newton's method from the last one
+    /// converges in two or three steps instead of bracketing from the touch.
+    pub(super) fn patches_for_force_near(
+        &self,
+        vertical_force: f64,
+        vertical_share: impl Fn(&ContactPoint) -> f64,
+        guess: Option<f64>,
+    ) -> Result<(f64, Vec<ContactPatch>), ProfileError> {
         if !vertical_force.is_finite() {
             return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
         }
@@ -169,7 +181,16 @@ impl ContactCandidates {
             });
             refusal.map_or(Ok((force, rate)), Err)
         };
+        // A bracket [low, high] of the root: from the guess, or from the touch, growing upwards
+        // (carried(touch) = 0).
         let (mut low, mut high) = (touch, touch + 1e-5);
+        if let Some(guess) = guess.filter(|&guess| guess > touch) {
+            if carried(guess)?.0 < vertical_force {
+                (low, high) = (guess, guess + 1e-3 * (guess - touch));
+            } else {
+                high = guess;
+            }
+        }
         while carried(high)?.0 < vertical_force {
             low = high;
             high = touch + 2.0 * (high - touch);

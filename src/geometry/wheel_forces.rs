@@ -297,7 +297,7 @@ impl WheelRailContact {
                     .map_or(0.0, |p| p.output.force_lateral / p.patch.normal_force);
                 cos - traction * sin
             };
-            let (next, next_patches) = candidates.patches_for_force(force, share)?;
+            let (next, next_patches) = candidates.patches_for_force_near(force, share, Some(vertical))?;
             hints = states;
             let accelerated = before.and_then(|first| {
                 let (step, last_step) = (next - vertical, vertical - first);
