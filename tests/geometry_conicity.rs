@@ -17,9 +17,12 @@ fn wheel(side: WheelSide) -> WheelOnRail {
     WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, side, 82e9, 0.28).unwrap()
 }
 
-/// CONTACT's samples: (y_ws, right wheel (y on the wheel, rolling radius), left wheel (the same))
-/// [m], every 0.1 mm from −10 to 10 mm; one patch per wheel and case in this file.
-fn contact_samples() -> Vec<(f64, (f64, f64), (f64, f64))> {
+/// One wheel's contact in CONTACT's output: y on the wheel and rolling radius [m].
+type WheelContact = (f64, f64);
+
+/// CONTACT's samples: (y_ws, right wheel, left wheel) [m], every 0.1 mm from −10 to 10 mm; one
+/// patch per wheel and case in this file.
+fn contact_samples() -> Vec<(f64, WheelContact, WheelContact)> {
     let rows: Vec<(String, f64, f64, f64)> = include_str!("data/conicity_contact.csv")
         .lines()
         .filter(|l| l.starts_with("right,") || l.starts_with("left,"))

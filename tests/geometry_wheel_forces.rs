@@ -255,11 +255,10 @@ fn the_left_wheel_mirrors_the_right() {
     for (lateral, yaw) in [(0.0, 0.0), (0.003, 0.002), (0.007, -0.004), (-0.004, 0.001)] {
         let on_right = evaluate(&right, &rolling(lateral, yaw));
         let on_left = evaluate(&left, &rolling(-lateral, -yaw));
-        let signs = [1.0, -1.0, 1.0];
-        for axis in 0..3 {
-            let (r, l) = (on_right.track_force[axis], signs[axis] * on_left.track_force[axis]);
+        for (axis, sign) in [1.0, -1.0, 1.0].into_iter().enumerate() {
+            let (r, l) = (on_right.track_force[axis], sign * on_left.track_force[axis]);
             assert!((r - l).abs() < 1e-6 * 50e3, "y {lateral}: force {axis} {r} vs {l}");
-            let (r, l) = (on_right.track_moment[axis], -signs[axis] * on_left.track_moment[axis]);
+            let (r, l) = (on_right.track_moment[axis], -sign * on_left.track_moment[axis]);
             assert!((r - l).abs() < 1e-6 * 50e3, "y {lateral}: moment {axis} {r} vs {l}");
         }
     }

@@ -171,7 +171,7 @@ fn check_sense(state: &Snapshot) -> Result<(), String> {
     if !state.time.is_finite() {
         return Err(format!("time = {} is invalid: must be finite", state.time));
     }
-    if let Some(stop) = state.stop_time.filter(|stop| !(*stop >= state.time)) {
+    if let Some(stop) = state.stop_time.filter(|stop| stop.is_nan() || *stop < state.time) {
         return Err(format!("stopTime = {stop} is invalid: must be >= time = {}", state.time));
     }
     for variable in VARIABLES.iter().filter(|variable| variable.causality == Causality::Output) {

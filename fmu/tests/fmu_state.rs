@@ -247,6 +247,9 @@ fn forged(bytes: &[u8], forge: impl FnOnce(&mut Snapshot)) -> Vec<u8> {
 /// forged state with a NaN output was returned by fmi2GetReal with fmi2OK; a NaN time left the
 /// instance stuck; a NaN stop time, or one the time has passed, was accepted although
 /// fmi2SetupExperiment refuses both. Each is fmi2Error naming the value, and nothing changes.
+/// A change made to a saved state.
+type Forgery = Box<dyn Fn(&mut Snapshot)>;
+
 #[test]
 fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
     let log = MessageLog::default();
@@ -257,7 +260,7 @@ fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
     let bytes = fmu.serialize(state);
     fmu.free_state(state);
     let outputs = fmu.get_real(&OUTPUTS);
-    let cases: [(Box<dyn Fn(&mut Snapshot)>, &str); 7] = [
+    let cases: [(Forgery, &str); 7] = [
         (Box::new(|s| s.values.outputs.force_longitudinal = f64::NAN), "force_longitudinal = NaN is invalid"),
         (Box::new(|s| s.values.outputs.max_pressure = f64::INFINITY), "max_pressure = inf is invalid"),
         (Box::new(|s| s.time = f64::NAN), "time = NaN is invalid: must be finite"),

@@ -278,7 +278,7 @@ impl WheelOnRail {
                 dimensions.flange_back_position
             )));
         }
-        if !(dimensions.rail_cant.abs() <= 0.1) {
+        if !(-0.1..=0.1).contains(&dimensions.rail_cant) {
             return Err(ProfileError::whole(format!("rail_cant = {} rad must be within ±0.1", dimensions.rail_cant)));
         }
         // The cant turns the rail towards the track's centre (for the right rail, the field
@@ -764,7 +764,8 @@ impl ContactTable {
         let column = (roll + TABLE_ROLL_REACH) / TABLE_ROLL_STEP;
         let rows = self.minima.first().map_or(0, Vec::len);
         let inside = row >= reach as f64 && (row as usize) + 1 + reach < rows;
-        if !inside || !(column >= 0.0) || column as usize + 1 >= self.minima.len() {
+        // (NaN fails `inside` and the column's range.)
+        if !inside || !(0.0..self.minima.len().saturating_sub(1) as f64).contains(&column) {
             return Vec::new();
         }
         let (k, j) = (row as usize, column as usize);
