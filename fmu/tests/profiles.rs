@@ -335,3 +335,31 @@ fn a_rail_cant_beyond_its_range_is_an_error_naming_it() {
     let (_, message) = log.last().unwrap();
     assert!(message.starts_with("fmi2ExitInitializationMode: rail_cant = 0.2"), "{message}");
 }
+
+#[test]
+fn the_patch_count_and_patch_one_follow_the_load_and_are_declared_to() {
+    // Unyawed at 5 mm, S1002 on UIC60 touches on the tread and the flange root: under 10 kN two
+    // patches, under 100 kN their interpenetrations join into one, the deeper kept (the core's
+    // normal problem, module doc). The count, and with it which candidate is patch 1 or 2,
+    // change with the load, so `<ModelStructure>` lists vertical_force (and every input of the
+    // balance) for them.
+    let log = MessageLog::default();
+    let mut inputs = [5e-3, 0.0, 0.0, 0.0, 10e3, 2.0, 2.0 / 0.46, 0.0, 0.0];
+    let fmu = profiles(SideChoice::Right, &inputs, &log);
+    let outputs = [vr::CONTACT_PATCH_COUNT, vr::PATCH1_CONTACT_ANGLE, vr::PATCH2_RAIL_LATERAL_POSITION];
+    let light = fmu.get_real(&outputs);
+    inputs[4] = 100e3;
+    assert_eq!(fmu.set_real(&WHEELSET, &inputs), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+    let heavy = fmu.get_real(&outputs);
+    assert_eq!((light[0], heavy[0]), (2.0, 1.0), "{light:?} {heavy:?}");
+    assert!(light[2] != 0.0 && heavy[2] == 0.0, "patch 2 joins patch 1: {light:?} {heavy:?}");
+    for output in outputs {
+        let declared = variable(output).unwrap();
+        for input in
+            [vr::VERTICAL_FORCE, vr::WHEELSET_VERTICAL_POSITION, vr::WHEELSET_ROLL_ANGLE, vr::FRICTION_COEFFICIENT]
+        {
+            assert!(declared.dependencies.contains(&input), "{} must list {input}", declared.name);
+        }
+    }
+}
