@@ -997,10 +997,24 @@ mod tests {
                 }
             }
         }
+        // Which candidates of a wheel on profiles are loaded, and so the patch count and each
+        // patch's place, changes with every input of the vertical balance, but only where a
+        // patch appears or two join (`fmu/tests/profiles.rs`): no 1 % change here moves them.
+        // For these outputs a declared input need not change them here.
+        let place_of_patches = |name: &str| {
+            name == "contact_patch_count"
+                || ["contact_angle", "rail_lateral_position", "rolling_radius", "spin_creepage"]
+                    .iter()
+                    .any(|quantity| name.starts_with("patch") && name.ends_with(quantity))
+        };
         for (o, output) in outputs.iter().enumerate() {
             for (i, input) in inputs.iter().enumerate() {
                 let declared = output.dependencies.contains(&input.value_reference);
-                assert_eq!(changed[o][i], declared, "{} on {}", output.name, input.name);
+                if place_of_patches(output.name) {
+                    assert!(declared || !changed[o][i], "{} on {}", output.name, input.name);
+                } else {
+                    assert_eq!(changed[o][i], declared, "{} on {}", output.name, input.name);
+                }
             }
         }
         assert_eq!(outputs.iter().find(|o| o.value_reference == vr::APPROACH).unwrap().dependencies.len(), 2);
