@@ -194,7 +194,8 @@ impl ContactCandidates {
         while carried(high)?.0 < vertical_force {
             low = high;
             high = touch + 2.0 * (high - touch);
-            if high - touch > 0.1 {
+            // (NaN, without any candidate, stops here too.)
+            if !(..=0.1).contains(&(high - touch)) {
                 return Err(ProfileError::whole(format!(
                     "vertical_force = {vertical_force} N is not carried within 0.1 m of penetration"
                 )));
