@@ -24,8 +24,8 @@
 //! both the normal and the creep forces: Σ (N cos δ − F_s sin δ) = F_z. On the flange (δ ≈ −1)
 //! the creep force carries a third of the load. The normal problem is solved for the shares
 //! s_i = cos δ_i − (F_s/N)_i sin δ_i of the last creep forces, the creep forces again for its
-//! patches, until they carry F_z within [`BALANCE_TOLERANCE`], Aitken-accelerated (two or
-//! three rounds on the tread, four or five on the flange on A-2.2; [`VERTICAL_ROUNDS`] at most).
+//! patches, until they carry F_z within [`BALANCE_TOLERANCE`], by secant steps on z_ws (three
+//! rounds on the tread, four or five on the flange on A-2.2; [`VERTICAL_ROUNDS`] at most).
 //!
 //! Creep relaxation and the exact theory's warm start carry over per patch: a patch takes the
 //! state of the last evaluation's patch nearest to it on the rail within [`PATCH_MATCH_DISTANCE`];
@@ -261,10 +261,12 @@ impl WheelRailContact {
         Ok((WheelOutput { patches, wheelset_vertical_position: vertical, track_force, track_moment }, states))
     }
 
-    /// Prescribed vertical force: rounds of normal problem and creep forces (module doc),
-    /// accelerated by Aitken's Δ² (Steffensen's method): the plain rounds converge linearly, by
-    /// a factor of about 0.001 a round on the tread and 0.1 on the flange; every third iterate
-    /// is extrapolated from the two before it, where the patches stay the same.
+    /// Prescribed vertical force: rounds of normal problem and creep forces (module doc). A
+    /// round maps z_ws to the normal problem's z_ws under its creep forces' shares, G(z_ws);
+    /// plain rounds z ← G(z) converge linearly, by a factor of about 0.001 a round on the tread
+    /// and 0.1 on the flange. From the second round on, the next z_ws is the secant step on
+    /// G(z) − z through the last two rounds (superlinear; the first is Aitken's Δ²), where it
+    /// keeps the same patches and moves no further than a plain round would by much.
     fn balance_vertical_force(
         &self,
         force: f64,
@@ -279,8 +281,8 @@ impl WheelRailContact {
         // Each round's model memory starts the next round's (the exact theory's warm start: the
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
-        // The iterate before `vertical`, when `vertical` came from it by a plain round.
-        let mut before: Option<f64> = None;
+        // The last round's z_ws and its residual G(z_ws) − z_ws.
+        let mut last: Option<(f64, f64)> = None;
         for _ in 0..VERTICAL_ROUNDS {
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
@@ -299,20 +301,20 @@ impl WheelRailContact {
             };
             let (next, next_patches) = candidates.patches_for_force_near(force, share, Some(vertical))?;
             hints = states;
-            let accelerated = before.and_then(|first| {
-                let (step, last_step) = (next - vertical, vertical - first);
-                let extrapolated = next - step * step / (step - last_step);
-                let contracting = step.abs() < last_step.abs() && extrapolated.is_finite();
+            // The secant step on the round's residual r(z) = G(z) − z through this round and the
+            // last: the root of the line through them (from a plain round's two, Aitken's Δ²).
+            let residual = next - vertical;
+            let secant = last.and_then(|(last_vertical, last_residual): (f64, f64)| {
+                let root = vertical - residual * (vertical - last_vertical) / (residual - last_residual);
+                let closer = (root - vertical).abs() < (vertical - last_vertical).abs() + residual.abs();
                 let same = |patches: &[ContactPatch]| patches.len() == next_patches.len();
-                contracting
-                    .then(|| candidates.patches_at(extrapolated).ok().filter(|p| same(p)))
+                (root.is_finite() && closer)
+                    .then(|| candidates.patches_at(root).ok().filter(|p| same(p)))
                     .flatten()
-                    .map(|patches| (extrapolated, patches))
+                    .map(|patches| (root, patches))
             });
-            (before, vertical, patches) = match accelerated {
-                Some((extrapolated, extrapolated_patches)) => (None, extrapolated, extrapolated_patches),
-                None => (Some(vertical), next, next_patches),
-            };
+            last = Some((vertical, residual));
+            (vertical, patches) = secant.unwrap_or((next, next_patches));
         }
         Err(ProfileError::whole(format!(
             "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
