@@ -184,9 +184,20 @@ fn bad_input_is_an_error() {
     assert!(RollingRadiusDifference::from_samples(vec![0.0, 1.0], vec![0.0, f64::NAN]).is_err());
     assert!(RollingRadiusDifference::from_samples(vec![0.0], vec![0.0]).is_err());
     let (right, left) = (wheel(WheelSide::Right), wheel(WheelSide::Left));
-    for (max, step) in [(0.01, 0.0), (0.01, f64::NAN), (-0.01, 1e-4), (0.01, 1e-12)] {
-        assert!(RollingRadiusDifference::from_wheelset(&right, &left, max, step).is_err(), "{max} {step}");
+    for (max, step, name) in [
+        (0.01, 0.0, "step"),
+        (0.01, -1e-4, "step"),
+        (0.01, f64::INFINITY, "step"),
+        (0.01, f64::NAN, "step"),
+        (-0.01, 1e-4, "max_displacement"),
+        (f64::INFINITY, 1e-4, "max_displacement"),
+        (0.01, 1e-12, "step"),
+    ] {
+        let error = RollingRadiusDifference::from_wheelset(&right, &left, max, step).unwrap_err();
+        assert!(matches!(error, ConicityError::InvalidArgument { name: n, .. } if n == name), "{max} {step}: {error}");
     }
+    // Two samples are the fewest that make a Δr.
+    assert!(RollingRadiusDifference::from_samples(vec![0.0, 1e-3], vec![0.0, 1e-4]).is_ok());
     assert!(first_touch(&right, f64::NAN).is_err());
     // So far off that the profiles do not overlap: the contact search's error, with y.
     let error = RollingRadiusDifference::from_wheelset(&right, &left, 0.5, 0.25).unwrap_err();
