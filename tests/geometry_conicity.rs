@@ -157,6 +157,14 @@ fn invariants_hold() {
         assert!((cone.equivalent_conicity(a).unwrap() - 0.04).abs() < 1e-6);
         assert!((cone.harmonic_conicity(a).unwrap() - 0.04).abs() < 1e-6);
     }
+    // The same cone on a wheelset whose wheels differ in radius by 0.2 mm (Δr offset): the
+    // symmetrisation takes the offset out, the conicity is the cone's.
+    let offset = ys.iter().map(|y| 2.0 * 0.04 * y + 2e-4).collect();
+    let offset_cone = RollingRadiusDifference::from_samples(ys.clone(), offset).unwrap();
+    for a in [1e-4, 3e-3, 1e-2] {
+        assert!((offset_cone.equivalent_conicity(a).unwrap() - 0.04).abs() < 1e-6, "{a}");
+        assert!((offset_cone.harmonic_conicity(a).unwrap() - 0.04).abs() < 1e-6, "{a}");
+    }
     // A step of c = 1 mm, sampled [-h, h] around 0 (h = 1 µm).
     let (c, a, h) = (1e-3, 3e-3, 1e-6);
     let step = RollingRadiusDifference::from_samples(vec![-0.01, -h, h, 0.01], vec![-c, -c, c, c]).unwrap();
