@@ -43,12 +43,12 @@
 //! Contact table. The gap is scanned on the sampled profiles (`sampled_profile.rs`); the full scan
 //! reads ≈ 800 samples. At placement a table stores the gap's minima of the unyawed wheel every
 //! 0.1 mm of the wheel bottom's lateral position y_ws − r0 sin φ − Y (1 − cos ψ) (±20 mm) and
-//! every 0.002 rad of roll (±0.012 rad); a search then scans only within 1 mm of the minima of
-//! the neighbouring rows (0.2 mm of key, more under yaw) and rolls, on the same samples, and
-//! between two such stretches reads every fourth sample, all of them where the gap comes within
-//! 1 mm of the lowest (a minimum born between the nodes, where the gap is flat); it finds what
-//! the full scan finds near contact (tested over 200 000 random poses: identical). Beyond the
-//! table, and beyond 0.025 rad of yaw, the full scan runs.
+//! every 0.002 rad of roll (±0.012 rad); a search then scans, on the same samples, from 1 mm
+//! before the first to 1 mm beyond the last minimum of the neighbouring rows (0.2 mm of key, more
+//! under yaw) and rolls — one stretch, so that a minimum born between the nodes where the gap is
+//! flat, between their minima, is found too; it finds what the full scan finds near contact
+//! (tested over 200 000 random poses: identical). Beyond the table, and beyond 0.025 rad of yaw,
+//! the full scan runs.
 //!
 //! Ellipse: Hertz per patch (the scene's [`HertzContact`]) from the relative curvatures at the
 //! contact point. The wheel's principal curvatures are cos γ/r along its parallel (Meusnier's
@@ -550,11 +550,11 @@ impl<'a> GapSearch<'a> {
             .unwrap_or(f64::INFINITY)
     }
 
-    /// The gap at the wheel samples every `every` × [`SAMPLE_STEP`] whose profile y lies in
-    /// [from, to] (those over the rail): (profile y, gap), increasing.
-    fn sampled(&self, from: f64, to: f64, every: usize) -> Vec<(f64, f64)> {
+    /// The gap at the wheel samples every [`SAMPLE_STEP`] whose profile y lies in [from, to]
+    /// (those over the rail): (profile y, gap), increasing.
+    fn sampled(&self, from: f64, to: f64) -> Vec<(f64, f64)> {
         let samples = &self.wheel.wheel_samples;
-        let stride = SAMPLES_PER_STEP as usize * every;
+        let stride = SAMPLES_PER_STEP as usize;
         let first = samples.index_at(from).max(0.0).ceil() as usize;
         let last = samples.index_at(to).min((samples.len() - 1) as f64).floor();
         if last.is_nan() || (last as usize) < first {
@@ -570,40 +570,6 @@ impl<'a> GapSearch<'a> {
             }
         }
         gaps
-    }
-
-    /// The highest sampled gap between two neighbouring minima at wheel profile y `from` < `to`
-    /// (those of the full scan: no local minimum lies between them), by bisection on the
-    /// samples. Between two neighbouring local minima (a sample strictly below its left and not
-    /// above its right neighbour) the samples rise, then fall: the peak is the first sample
-    /// followed by a lower one, found in O(log n) reads instead of n. Where two neighbours are
-    /// equal the side is unknown and the rest is read in full.
-    fn peak_between(&self, from: f64, to: f64) -> f64 {
-        let samples = &self.wheel.wheel_samples;
-        let stride = SAMPLES_PER_STEP as usize;
-        let first = (samples.index_at(from).max(0.0).ceil() as usize).div_ceil(stride);
-        let last = (samples.index_at(to).min((samples.len() - 1) as f64).floor() as usize) / stride;
-        // On the full scan's grid: sample j is the wheel sample j·stride.
-        let gap = |j: usize| {
-            let k = j * stride;
-            self.gap_of(samples.lateral(k), samples.sample(k)).unwrap_or(f64::INFINITY)
-        };
-        if last < first {
-            return f64::MIN;
-        }
-        let (mut low, mut high) = (first, last);
-        while low < high {
-            let middle = low + (high - low) / 2;
-            let (here, next) = (gap(middle), gap(middle + 1));
-            if next > here {
-                low = middle + 1;
-            } else if next < here {
-                high = middle;
-            } else {
-                return (low..=high).map(gap).fold(f64::MIN, f64::max);
-            }
-        }
-        gap(low)
     }
 
     /// The local minima of a run of samples, refined by Brent's method (wheel profile y), with
@@ -637,7 +603,6 @@ impl<'a> GapSearch<'a> {
         let samples = self.sampled(
             profile_y_at(rail_first + wheel.rail_offset) - 5e-3,
             profile_y_at(rail_last + wheel.rail_offset) + 5e-3,
-            1,
         );
         if samples.len() < 3 {
             return Err(ProfileError::whole(format!(
@@ -655,56 +620,19 @@ impl<'a> GapSearch<'a> {
         Ok((minima, barriers))
     }
 
-    /// The scan restricted to within [`Self::reach`] of `starts` (increasing; the contact
-    /// table's minima near this pose): the same samples, minima and barriers as the full scan
-    /// there. Between two stretches, every fourth sample is read: where one comes within
-    /// [`JOIN_HEIGHT`] of the lowest gap found, a minimum the table's nodes do not hold may lie
-    /// there (one is born where the gap is flat), and the samples between are read in full,
-    /// joining the stretches; elsewhere the barrier comes from [`Self::peak_between`].
-    /// `None` — scan everything instead — if it finds no minimum.
+    /// The scan restricted to `starts` (increasing; the contact table's minima near this pose)
+    /// and [`Self::reach`] around them: one stretch from the first to the last, so that a
+    /// minimum born between the table's nodes where the gap is flat, between two of their
+    /// minima, is found too (a search within reach of each start alone missed some). The same
+    /// samples, minima and barriers as the full scan there. `None` — scan everything instead —
+    /// if it finds no minimum.
     fn scan_near(&self, starts: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        let (&first, &last) = (starts.first()?, starts.last()?);
         let reach = self.reach();
-        let mut stretches: Vec<(f64, f64)> = Vec::new();
-        for &start in starts {
-            match stretches.last_mut() {
-                Some(last) if start - reach <= last.1 => last.1 = start + reach,
-                _ => stretches.push((start - reach, start + reach)),
-            }
-        }
-        let runs: Vec<Vec<(f64, f64)>> =
-            stretches.iter().map(|&(from, to)| self.sampled(from, to, 1)).filter(|run| !run.is_empty()).collect();
-        let lowest = runs.iter().flatten().map(|sample| sample.1).fold(f64::INFINITY, f64::min);
-        let mut joined: Vec<Vec<(f64, f64)>> = Vec::with_capacity(runs.len());
-        for run in runs {
-            if let Some(last) = joined.last_mut() {
-                let (end, start) = (last[last.len() - 1].0, run[0].0);
-                let low = self.sampled(end, start, 4).iter().any(|sample| sample.1 < lowest + JOIN_HEIGHT);
-                if low {
-                    last.extend(self.sampled(end, start, 1).into_iter().filter(|s| s.0 > end && s.0 < start));
-                    last.extend(run);
-                    continue;
-                }
-            }
-            joined.push(run);
-        }
-        let (mut minima, mut barriers) = (Vec::new(), Vec::new());
-        for run in joined {
-            let (found, between) = self.minima_of(&run);
-            if let (Some(&last), Some(&first)) = (minima.last(), found.first()) {
-                barriers.push(self.peak_between(last, first));
-            }
-            minima.extend(found);
-            barriers.extend(between);
-        }
+        let (minima, barriers) = self.minima_of(&self.sampled(first - reach, last + reach));
         (!minima.is_empty()).then_some((minima, barriers))
     }
 }
-
-/// Between two stretches of the table's search, a sample this close to the lowest gap found
-/// \[m\] has the samples between read in full: a candidate further above the touch is loaded
-/// only by a vertical approach beyond 1 mm (S1002 on UIC60: 0.2 mm on the tread under 250 kN,
-/// 0.7 mm on the flange under 100 kN).
-const JOIN_HEIGHT: f64 = 1e-3;
 
 /// How far from a contact table's minimum the search looks \[m\].
 const TABLE_REACH: f64 = 1e-3;
@@ -723,10 +651,10 @@ struct ContactTable {
 const TABLE_STEP: f64 = 1e-4;
 /// The rows read around a key \[m\], beyond the yaw's share ([`GapSearch::key_reach`]): the
 /// key is exact at the table's nodes; between two rolls the minima of both are read, and a
-/// minimum born between nodes where the gap is flat lies between two stretches, where
-/// [`JOIN_HEIGHT`] reads it. 0.2 mm finds every minimum the full scan finds within 1 mm of
-/// touching over 200 000 random poses (0.1 mm did too; `the_contact_table_finds_what_the_full_scan_finds`
-/// checks 20 000 each run); without the joining, 1 mm missed 15 of 200 000.
+/// minimum born between nodes where the gap is flat lies between the minima read, which one
+/// stretch covers. 0.2 mm finds every minimum the full scan finds within 1 mm of touching over
+/// 200 000 random poses (0.1 mm did too; `the_contact_table_finds_what_the_full_scan_finds`
+/// checks 20 000 each run); stretches around each minimum alone, with 1 mm, missed 15.
 const TABLE_KEY_REACH: f64 = 2e-4;
 const TABLE_REACH_LATERAL: f64 = 0.02;
 const TABLE_ROLL_STEP: f64 = 0.002;
