@@ -304,15 +304,10 @@ impl WheelRailContact {
             // The secant step on the round's residual r(z) = G(z) − z through this round and the
             // last: the root of the line through them (from a plain round's two, Aitken's Δ²).
             let residual = next - vertical;
-            let secant = last.and_then(|(last_vertical, last_residual): (f64, f64)| {
-                let root = vertical - residual * (vertical - last_vertical) / (residual - last_residual);
-                let closer = (root - vertical).abs() < (vertical - last_vertical).abs() + residual.abs();
-                let same = |patches: &[ContactPatch]| patches.len() == next_patches.len();
-                (root.is_finite() && closer)
-                    .then(|| candidates.patches_at(root).ok().filter(|p| same(p)))
-                    .flatten()
-                    .map(|patches| (root, patches))
-            });
+            let same = |patches: &[ContactPatch]| patches.len() == next_patches.len();
+            let secant = last
+                .and_then(|last| secant_root(last, (vertical, residual)))
+                .and_then(|root| candidates.patches_at(root).ok().filter(|p| same(p)).map(|patches| (root, patches)));
             last = Some((vertical, residual));
             (vertical, patches) = secant.unwrap_or((next, next_patches));
         }
@@ -370,6 +365,15 @@ impl WheelRailContact {
             _ => self.scene,
         }
     }
+}
+
+/// The secant step on a residual r(z): the root of the line through (z₀, r₀) and (z₁, r₁), if
+/// it lies no further from z₁ than |z₁ − z₀| + |r₁| (the last step and a plain round together);
+/// `None` where the line is flat or the root further off.
+fn secant_root((last_vertical, last_residual): (f64, f64), (vertical, residual): (f64, f64)) -> Option<f64> {
+    let root = vertical - residual * (vertical - last_vertical) / (residual - last_residual);
+    let near = (root - vertical).abs() < (vertical - last_vertical).abs() + residual.abs();
+    (root.is_finite() && near).then_some(root)
 }
 
 /// The patch of `state` nearest to `patch` on the rail, within [`PATCH_MATCH_DISTANCE`].
@@ -443,4 +447,26 @@ fn check_velocity(velocity: &WheelsetVelocity) -> Result<(), InvalidInput> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::secant_root;
+
+    #[test]
+    fn the_secant_step_finds_a_linear_residuals_root_and_refuses_far_or_flat_lines() {
+        // r(z) = −0.3 (z − 2): through (0, 0.6) and (1, 0.3) the root 2, one plain round and the
+        // last step away at most (|2 − 1| = 1 < 1 + 0.3).
+        assert_eq!(secant_root((0.0, 0.6), (1.0, 0.3)), Some(2.0));
+        // r(z) = 0.5 (z − 1) from the other side: through (3, 1) and (2, 0.5) the root 1.
+        assert_eq!(secant_root((3.0, 1.0), (2.0, 0.5)), Some(1.0));
+        // Nearly parallel to the axis: the root 60 lies beyond 1 + 0.59.
+        assert_eq!(secant_root((0.0, 0.6), (1.0, 0.59)), None);
+        // Flat: no root.
+        assert_eq!(secant_root((0.0, 0.6), (1.0, 0.6)), None);
+        // A root inside the reach |z₁ − z₀| + |r₁| (1 against 1.5) and one outside (2.33 against
+        // 1.7).
+        assert_eq!(secant_root((0.0, 1.0), (1.0, 0.5)), Some(2.0));
+        assert_eq!(secant_root((0.0, 1.0), (1.0, 0.7)), None);
+    }
 }
