@@ -468,5 +468,9 @@ mod tests {
         // 1.7).
         assert_eq!(secant_root((0.0, 1.0), (1.0, 0.5)), Some(2.0));
         assert_eq!(secant_root((0.0, 1.0), (1.0, 0.7)), None);
+        // Away from the origin and with a step of 2: r(z) = −0.25 (z − 5) through (2, 0.75) and
+        // (4, 0.25) has its root at 5; the same far line as above shifted to z₀ = 2 is refused.
+        assert_eq!(secant_root((2.0, 0.75), (4.0, 0.25)), Some(5.0));
+        assert_eq!(secant_root((2.0, 1.0), (3.0, 0.7)), None);
     }
 }
