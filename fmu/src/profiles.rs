@@ -3,7 +3,7 @@
 //! I/O, so a profile given as a path is read into text and handed to the core's reader
 //! ([`parse_profile`], the format from the extension); a built-in name goes to
 //! [`builtin_profile`]. Errors name the variable, the file and the reason (the core's
-//! [`ProfileError`] gives the line).
+//! [`ProfileError`](wheel_rail_contact::geometry::ProfileError) gives the line).
 //!
 //! Outputs: the totals on the wheel in track axes, the solved vertical position and, for the
 //! first two patches (tread first, as the core orders them), their geometry, forces and

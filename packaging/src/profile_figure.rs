@@ -13,9 +13,9 @@ use wheel_rail_contact::{ModelChoice, Polach};
 
 use crate::plot::{line_plot, Series};
 
-/// The wheelset's lateral displacements drawn [m]: on the tread, and on the flange.
+/// The wheelset's lateral displacements drawn \[m\]: on the tread, and on the flange.
 pub const DISPLACEMENTS: [f64; 2] = [2e-3, 7e-3];
-/// The wheel load [N].
+/// The wheel load \[N\].
 pub const LOAD: f64 = 10e3;
 /// How far the figure reaches beyond the rail's gauge side, to show the wheel's flange [m].
 const FLANGE_MARGIN: f64 = 0.02;
@@ -52,8 +52,8 @@ pub fn wheel_at(lateral: f64) -> WheelOutput {
     output
 }
 
-/// The rail, the wheel and the patches of [`wheel_at`] as curves in track coordinates, y [mm]
-/// against the height above the rail's top, −z [mm]; each patch a closed box 2b wide along the
+/// The rail, the wheel and the patches of [`wheel_at`] as curves in track coordinates, y \[mm\]
+/// against the height above the rail's top, −z \[mm\]; each patch a closed box 2b wide along the
 /// contact plane around its point.
 pub fn curves(lateral: f64) -> Vec<Series> {
     let output = wheel_at(lateral);
