@@ -9,6 +9,32 @@ use crate::numerics::{value, Scalar};
 /// Creepages are rigid-slip velocities divided by the rolling speed.
 ///
 /// `T` is `f64` for values; models evaluate a dual-number `ContactInput` to differentiate.
+///
+/// ```
+/// use wheel_rail_contact::ContactInput;
+///
+/// let contact = ContactInput {
+///     creepage_longitudinal: 0.002,
+///     creepage_lateral: 0.0,
+///     spin_creepage: 0.0,
+///     normal_force: 100e3,
+///     semi_axis_a: 7.2e-3,
+///     semi_axis_b: 5.4e-3,
+///     friction_coefficient: 0.3,
+///     shear_modulus: 82e9,
+///     poisson_ratio: 0.28,
+/// };
+/// assert!(contact.validate().is_ok() && !contact.transmits_no_force());
+/// assert_eq!(contact.friction_limit(), 30e3);
+/// // Hertz's p₀ = 3Q/(2πab) (Johnson, eq. 3.65): 1.228 GPa.
+/// let p0 = 3.0 * 100e3 / (2.0 * std::f64::consts::PI * 7.2e-3 * 5.4e-3);
+/// assert!((contact.max_pressure() - p0).abs() < 1e-3 && (p0 - 1.228e9).abs() < 1e6);
+/// // Lifted off: valid, no force. A bad value: an error naming it.
+/// let lifted = ContactInput { normal_force: -10.0, ..contact };
+/// assert!(lifted.validate().is_ok() && lifted.transmits_no_force() && lifted.friction_limit() == 0.0);
+/// let error = ContactInput { semi_axis_b: f64::NAN, ..contact }.validate().unwrap_err();
+/// assert_eq!(error.to_string(), "semi_axis_b = NaN is invalid: must be finite and > 0");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactInput<T = f64> {
     /// Longitudinal creepage ξ (s_x in Polach) \[1\].
@@ -85,7 +111,7 @@ impl<T: Scalar> ContactInput<T> {
 /// Hertz's maximum pressure p₀ = 3Q/(2πab) \[Pa\] of an elliptic contact under normal force Q
 /// (Johnson 1985, eq. 3.65: Q is the integral of the semi-ellipsoidal pressure), 0 after
 /// lift-off (Q ≤ 0).
-pub fn hertz_max_pressure<T: Scalar>(normal_force: T, semi_axis_a: T, semi_axis_b: T) -> T {
+pub(crate) fn hertz_max_pressure<T: Scalar>(normal_force: T, semi_axis_a: T, semi_axis_b: T) -> T {
     if value(normal_force) > 0.0 {
         normal_force * 3.0 / (semi_axis_a * (2.0 * std::f64::consts::PI)) / semi_axis_b
     } else {

@@ -9,6 +9,15 @@ use crate::numerics::{magnitude, value, Scalar};
 ///
 /// `T` is `f64` for forces; [`crate::CreepForceModel::directional_derivative`] returns the same
 /// structure holding derivatives.
+///
+/// ```
+/// use wheel_rail_contact::CreepForces;
+///
+/// // 3 kN and 4 kN under μQ = 10 kN: half the Coulomb limit used.
+/// let forces = CreepForces::new(-3e3, 4e3, None, 10e3);
+/// assert_eq!(forces.adhesion_utilisation, 0.5);
+/// assert_eq!(CreepForces::new(0.0, 0.0, Some(0.0), 0.0).adhesion_utilisation, 0.0, "no limit, no utilisation");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CreepForces<T = f64> {
     /// Longitudinal force F_x \[N\].

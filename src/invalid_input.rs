@@ -3,6 +3,15 @@
 use std::fmt;
 
 /// An input value outside the domain of the models: names the variable, its value and the rule.
+///
+/// ```
+/// use wheel_rail_contact::scene::hertz::RelativeCurvature;
+///
+/// let error = RelativeCurvature::from_radii(0.46, f64::INFINITY, -0.3).unwrap_err();
+/// assert_eq!((error.variable, error.value), ("rail_profile_radius", -0.3));
+/// assert_eq!(error.with, [Some(("wheel_profile_radius", f64::INFINITY)), None]);
+/// assert!(error.to_string().starts_with("rail_profile_radius = -0.3 is invalid with wheel_profile_radius = inf: "));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InvalidInput {
     /// The variable's name, as in [`crate::ContactInput`] and the FMU's `modelDescription.xml`.

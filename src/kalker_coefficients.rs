@@ -58,6 +58,23 @@ const G_FLOOR: f64 = 1e-100;
 /// Kalker's creepage coefficients for one ellipse shape and material \[1\].
 ///
 /// `T` is `f64` for values, a dual number where the models differentiate with respect to a/b.
+///
+/// Kalker's Table E.3 at its nodes, interpolated between them (module doc):
+///
+/// ```
+/// use wheel_rail_contact::KalkerCoefficients;
+///
+/// let circle = KalkerCoefficients::new(1.0, 0.25);
+/// assert_eq!((circle.c11, circle.c22, circle.c23), (4.12, 3.67, 1.47));
+/// assert_eq!(KalkerCoefficients::spin_moment_c33(1.0, 0.25), 1.19);
+/// // b/a = 0.5 (a = 2b), ν = 0: 4.37, 4.37, 2.35; ν = 0.5: 6.11, 5.56, 2.96.
+/// let near = |c: KalkerCoefficients, table: [f64; 3]| (c.c11 - table[0]).abs() + (c.c22 - table[1]).abs() + (c.c23 - table[2]).abs() < 1e-12;
+/// assert!(near(KalkerCoefficients::new(2.0, 0.0), [4.37, 4.37, 2.35]));
+/// assert!(near(KalkerCoefficients::new(2.0, 0.5), [6.11, 5.56, 2.96]));
+/// // Between rows: linear in g = b/a (halfway between the rows b/a = 0.8 and 0.7 at ν = 0: 3.65, 3.82).
+/// let between = KalkerCoefficients::new(1.0 / 0.75, 0.0);
+/// assert!((between.c11 - 0.5 * (3.65 + 3.82)).abs() < 1e-12);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KalkerCoefficients<T = f64> {
     /// Longitudinal creepage coefficient C11.

@@ -109,6 +109,39 @@ pub fn first_touch(wheel: &WheelOnRail, lateral: f64) -> Result<ContactPoint, Co
 
 /// Δr(y) = r_right − r_left \[m\] sampled over the wheelset's lateral displacement y \[m\]
 /// (module doc), linear between samples.
+///
+/// A conical wheelset of slope γ has Δr = 2γy and, at every amplitude, the conicity γ; the
+/// S1002 wheels on UIC60 1:40 of the Manchester benchmark have tan γ_e = 0.1803 at 3 mm by
+/// CONTACT's Δr (`tests/data/conicity_contact.csv`):
+///
+/// ```
+/// use wheel_rail_contact::geometry::{
+///     builtin_profile, first_touch, RollingRadiusDifference, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide,
+/// };
+///
+/// let lateral: Vec<f64> = (-10..=10).map(|i| f64::from(i) * 1e-3).collect();
+/// let difference = lateral.iter().map(|y| 2.0 * 0.04 * y).collect();
+/// let cone = RollingRadiusDifference::from_samples(lateral, difference).unwrap();
+/// assert_eq!((cone.lateral().len(), cone.difference()[20]), (21, 2.0 * 0.04 * 0.01));
+/// assert!((cone.at(2.5e-3).unwrap() - 2e-4).abs() < 1e-15, "linear between samples");
+/// assert!(cone.at(0.011).is_err(), "outside the samples");
+/// for amplitude in [1e-3, 4e-3, 9e-3] {
+///     assert!((cone.equivalent_conicity(amplitude).unwrap() - 0.04).abs() < 1e-6);
+///     assert!((cone.harmonic_conicity(amplitude).unwrap() - 0.04).abs() < 1e-6);
+/// }
+///
+/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+/// let wheel = |side| {
+///     let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
+///     WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, side, 82e9, 0.28).unwrap()
+/// };
+/// let (right, left) = (wheel(WheelSide::Right), wheel(WheelSide::Left));
+/// // CONTACT: the right wheel rolls on 460.76 mm with the wheelset 3 mm to the right.
+/// assert!((first_touch(&right, 3e-3).unwrap().rolling_radius - 0.46076).abs() < 0.05e-3);
+/// let s1002 = RollingRadiusDifference::from_wheelset(&right, &left, 3e-3, 1e-4).unwrap();
+/// let conicity = s1002.equivalent_conicity(3e-3).unwrap();
+/// assert!((conicity - 0.1803).abs() < 2e-4, "tan γ_e(3 mm) = {conicity}");
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct RollingRadiusDifference {
     lateral: Vec<f64>,

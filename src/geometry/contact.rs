@@ -228,6 +228,38 @@ const SAMPLE_STEP: f64 = 1e-4;
 const SAMPLES_PER_STEP: u32 = 4;
 
 /// A wheel profile and a rail profile placed on a track.
+///
+/// The right wheel of the Manchester benchmark's wheelset 3 mm to the right, frictionless under
+/// 500 N, against CONTACT's module 1 on the same profiles (`tests/data/conicity_contact.csv`:
+/// rail y −20.44 mm, wheel y −12.91 mm, rolling radius 460.76 mm, contact angle −0.0908 rad,
+/// z_ws −0.0338 mm):
+///
+/// ```
+/// use wheel_rail_contact::geometry::{builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+///
+/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+/// let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
+/// let placed = WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, WheelSide::Right, 82e9, 0.28).unwrap();
+/// let position = WheelsetPosition { lateral: 3e-3, ..WheelsetPosition::default() };
+/// // The candidates (the gap's local minima): the deepest is where the wheel touches.
+/// let points = placed.contact_points(&position).unwrap();
+/// let touch = points.iter().min_by(|a, b| a.gap_at_zero.total_cmp(&b.gap_at_zero)).unwrap();
+/// assert!((touch.rail_lateral + 20.44e-3).abs() < 0.1e-3, "rail y {}", touch.rail_lateral);
+/// assert!((touch.wheel_lateral + 12.91e-3).abs() < 0.1e-3, "wheel y {}", touch.wheel_lateral);
+/// assert!((touch.rolling_radius - 0.46076).abs() < 0.05e-3, "r {}", touch.rolling_radius);
+/// assert!((touch.contact_angle + 0.0908).abs() < 0.002, "δ {}", touch.contact_angle);
+/// // The contact table's search finds what the full scan finds.
+/// assert_eq!(placed.candidates_by_full_scan(&position).unwrap().points(), points);
+/// // Prescribed force: 500 N carried by N cos δ (frictionless).
+/// let (height, patches) = placed.patches_for_force(500.0, &position, |point| point.contact_angle.cos()).unwrap();
+/// assert!((height + 0.0338e-3).abs() < 0.5e-6, "z_ws {height}");
+/// let carried: f64 = patches.iter().map(|p| p.normal_force * p.point.contact_angle.cos()).sum();
+/// assert!((carried - 500.0).abs() < 1e-6);
+/// // Prescribed position: the same height gives the same patches.
+/// let at_height = WheelsetPosition { vertical: height, ..position };
+/// assert_eq!(placed.patches_at(&at_height).unwrap(), patches);
+/// assert_eq!(placed.wheelset_centre(&at_height), [0.0, 3e-3, height - 0.46]);
+/// ```
 #[derive(Debug, Clone)]
 pub struct WheelOnRail {
     wheel: SmoothProfile,
@@ -825,7 +857,8 @@ mod tests {
     /// section alone needs ≈ 24 here).
     #[test]
     fn brent_finds_smooth_minima_to_a_nanometre_in_few_evaluations() {
-        let shapes: [(&str, fn(f64) -> f64); 3] = [
+        type Shape = (&'static str, fn(f64) -> f64);
+        let shapes: [Shape; 3] = [
             ("parabola", |d| 3.0 * d * d),
             ("cubic", |d| d * d * (1.0 + 2e3 * d)),
             ("quartic and parabola", |d| d * d + 5e6 * d.powi(4)),

@@ -52,6 +52,28 @@ impl Candidate {
 }
 
 /// One wheel's contact candidates at a lateral position, roll and yaw.
+///
+/// Searched once, solved at any height or load: the S1002 wheel on UIC60 with the wheelset
+/// centred touches at z_ws = `touch()` and carries, by Hertz, Q ∝ δ^{3/2} of its penetration
+/// δ = (z_ws − touch)·cos γ along the normal:
+///
+/// ```
+/// use wheel_rail_contact::geometry::{builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+///
+/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+/// let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
+/// let placed = WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, WheelSide::Left, 82e9, 0.28).unwrap();
+/// let candidates = placed.candidates(&WheelsetPosition { lateral: -3e-3, ..WheelsetPosition::default() }).unwrap();
+/// assert_eq!(candidates.points(), placed.contact_points(&WheelsetPosition { lateral: -3e-3, ..Default::default() }).unwrap());
+/// let touch = candidates.touch();
+/// assert!(candidates.patches_at(touch - 1e-6).unwrap().is_empty(), "above the touch: no contact");
+/// let load = |depth: f64| candidates.patches_at(touch + depth).unwrap()[0].normal_force;
+/// assert!((load(40e-6) / load(10e-6) - 8.0).abs() < 1e-9, "Hertz: four times deeper, eight times the load");
+/// let (height, patches) = candidates.patches_for_force(10e3, |point| point.contact_angle.cos()).unwrap();
+/// assert!(height > touch && (patches[0].normal_force * patches[0].point.contact_angle.cos() - 10e3).abs() < 1e-6);
+/// // The left wheel mirrors the right: positions and contact angles change sign.
+/// assert!(patches[0].point.rail_lateral > 0.0 && patches[0].point.contact_angle > 0.0);
+/// ```
 #[derive(Debug, Clone)]
 pub struct ContactCandidates {
     side: WheelSide,

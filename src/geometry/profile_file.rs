@@ -89,6 +89,22 @@ pub struct ProfilePoints {
 const MIN_POINTS: usize = 4;
 
 /// Reads a profile file's text in the given format.
+///
+/// ```
+/// use wheel_rail_contact::geometry::{parse_profile, ProfileFormat};
+///
+/// // A MiniProf rail (mm; `"` comments a point out), its format known by the file's extension.
+/// let format = ProfileFormat::from_file_name("worn/rail.BAN").unwrap();
+/// assert_eq!(format, ProfileFormat::MiniProf);
+/// assert_eq!(ProfileFormat::from_file_name("rail.csv"), None);
+/// let text = "Filename=rail.ban\nColumnDef=X,Y\n-2.0 1.0\n\"-1.5 9.9\n-1.0 0.25\n0.0 0.0\n1.0 0.25\n2.0 1.0\n";
+/// let points = parse_profile(text, format).unwrap();
+/// assert_eq!(points.lateral, [-2e-3, -1e-3, 0.0, 1e-3, 2e-3]);
+/// assert_eq!(points.vertical, [1e-3, 0.25e-3, 0.0, 0.25e-3, 1e-3]);
+/// // A malformed file: the error names the line and the reason.
+/// let error = parse_profile("ColumnDef=X,Y\n0 0\n1 x\n", format).unwrap_err();
+/// assert_eq!((error.line, error.to_string()), (Some(3), "line 3: expected a number, found `x` in `1 x`".to_string()));
+/// ```
 pub fn parse_profile(text: &str, format: ProfileFormat) -> Result<ProfilePoints, ProfileError> {
     match format {
         ProfileFormat::Simpack => parse_simpack(text),

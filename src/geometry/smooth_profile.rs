@@ -82,6 +82,36 @@ pub struct ProfilePoint {
 }
 
 /// A profile as y(s), z(s) natural cubic splines over the chord length s (module doc).
+///
+/// A rail crown of radius R = 300 mm sampled every 0.5 mm over ±30 mm, as a profile file
+/// gives it: away from the ends the spline has the circle's height R − √(R² − y²), slope
+/// angle atan(y/√(R² − y²)) and curvature 1/R:
+///
+/// ```
+/// use wheel_rail_contact::geometry::{ProfilePoints, SmoothProfile};
+///
+/// let radius = 0.3;
+/// let lateral: Vec<f64> = (-60..=60).map(|i| f64::from(i) * 0.5e-3).collect();
+/// let vertical = lateral.iter().map(|y| radius - (radius * radius - y * y).sqrt()).collect();
+/// let crown = SmoothProfile::new(&ProfilePoints { lateral, vertical }).unwrap();
+/// assert_eq!(crown.lateral_range(), (-0.03, 0.03));
+/// let y = 0.012;
+/// let root = (radius * radius - y * y).sqrt();
+/// let point = crown.at_lateral(y).unwrap();
+/// assert!((point.vertical - (radius - root)).abs() < 1e-10);
+/// assert!((point.slope_angle - (y / root).atan()).abs() < 1e-7);
+/// assert!((point.curvature * radius - 1.0).abs() < 1e-4);
+/// assert!(crown.at_lateral(0.031).is_none(), "outside the profile");
+/// // Along the profile: its length is the chord polygon's (2R·asin(0.1) less a little).
+/// let arc = 2.0 * radius * (0.03 / radius).asin();
+/// assert!(crown.length() < arc && crown.length() > arc - 1e-8);
+/// assert!((crown.at_parameter(0.5 * crown.length()).lateral).abs() < 1e-12, "the middle is the crown");
+/// // Turned by α = 0.05 rad about the origin, the circle's centre (0, R) moves to
+/// // (−R sin α, R cos α), and with it the crown's top: slope 0 at y = −R sin α, z = −R(1 − cos α).
+/// let alpha = 0.05_f64;
+/// let top = crown.rotated(alpha).unwrap().at_lateral(-radius * alpha.sin()).unwrap();
+/// assert!(top.slope_angle.abs() < 1e-7 && (top.vertical + radius * (1.0 - alpha.cos())).abs() < 1e-10);
+/// ```
 #[derive(Debug, Clone)]
 pub struct SmoothProfile {
     knots: Vec<f64>,

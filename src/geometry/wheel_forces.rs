@@ -190,6 +190,58 @@ impl From<InvalidInput> for WheelContactError {
 }
 
 /// A wheel on its rail with the scene that gives each patch's creep forces.
+///
+/// The right wheel 5 mm to the right under 10 kN: a tread patch and one at the flange root, whose forces
+/// (on the wheel, in track axes) sum to the wheel's; both vertical modes give the same wheel;
+/// a state carries each patch's relaxation to the next step (see the module example in
+/// [`crate::geometry`] for a case against CONTACT):
+///
+/// ```
+/// use wheel_rail_contact::geometry::{
+///     builtin_profile, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
+///     WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+/// };
+/// use wheel_rail_contact::scene::{Evaluation, Relaxation, Scene};
+/// use wheel_rail_contact::{ModelChoice, Polach};
+///
+/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+/// let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
+/// let placed = WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, WheelSide::Right, 82e9, 0.28);
+/// let scene = Scene { relaxation: Relaxation::On { length: 0.01 }, ..Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28) };
+/// let contact = WheelRailContact::new(placed.unwrap(), scene);
+/// let input = WheelInput {
+///     position: WheelsetPosition { lateral: 5e-3, yaw: 2e-3, ..WheelsetPosition::default() },
+///     velocity: WheelsetVelocity { rolling_speed: 20.0, wheel_angular_speed: 20.0 / 0.46, ..WheelsetVelocity::default() },
+///     vertical: VerticalContact::PrescribedForce(10e3),
+///     friction_coefficient: 0.3,
+/// };
+/// let mut cache = WheelCache::default();
+/// let (output, state) = contact.evaluate(&input, &WheelState::default(), &mut cache, Evaluation::Initialise).unwrap();
+/// assert_eq!(output.patches.len(), 2, "tread and flange root");
+/// let angles = output.patches.iter().map(|patch| patch.patch.point.contact_angle).collect::<Vec<_>>();
+/// assert!(angles[0] > -0.15 && angles[1] < -0.25, "contact angles {angles:?}");
+/// for axis in 0..3 {
+///     let sum: f64 = output.patches.iter().map(|patch| patch.track_force()[axis]).sum();
+///     assert!((sum - output.track_force[axis]).abs() < 1e-6);
+/// }
+/// assert!((output.track_force[2] + 10e3).abs() < 10e3 * 1e-10, "the balance carries 10 kN");
+/// // The same wheel at the height the balance found, with the height prescribed.
+/// let at_height = WheelInput {
+///     position: WheelsetPosition { vertical: output.wheelset_vertical_position, ..input.position },
+///     vertical: VerticalContact::PrescribedPosition,
+///     ..input
+/// };
+/// let (same, _) = contact.evaluate(&at_height, &state, &mut cache, Evaluation::Initialise).unwrap();
+/// assert!((same.track_force[1] - output.track_force[1]).abs() < 1e-3);
+/// // A step of 1 ms from the relaxed state: finite forces, a state that validates.
+/// let (_, next) = contact.evaluate(&input, &state, &mut cache, Evaluation::Step(1e-3)).unwrap();
+/// assert!(next.validate().is_ok() && next.patches.len() == 2);
+/// assert!(contact.geometry().contact_points(&input.position).unwrap().len() >= 2);
+/// // Bad motion is an error naming the variable.
+/// let spinning = WheelInput { velocity: WheelsetVelocity { yaw_rate: f64::NAN, ..input.velocity }, ..input };
+/// let error = contact.evaluate(&spinning, &state, &mut cache, Evaluation::Step(1e-3)).unwrap_err();
+/// assert!(error.to_string().contains("wheelset_yaw_rate"), "{error}");
+/// ```
 #[derive(Debug, Clone)]
 pub struct WheelRailContact {
     geometry: WheelOnRail,

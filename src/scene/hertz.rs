@@ -226,6 +226,36 @@ pub fn contact_modulus(shear_modulus: f64, poisson_ratio: f64) -> Result<f64, In
 }
 
 /// The Hertzian contact of one wheel on one rail, SI units.
+///
+/// Equal curvatures A = B = 1/(2R) (a ball of radius R on a flat, or a wheel of radius R on a
+/// rail head of the same crown radius) give a circle with Hertz's closed form (Johnson,
+/// *Contact Mechanics*, eqs. 4.22–4.23): a³ = 3QR/(4E*), δ = a²/R, p₀ = 3Q/(2πa²):
+///
+/// ```
+/// use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+///
+/// // E* = G/(1 − ν) for two bodies of one steel.
+/// let modulus = contact_modulus(82e9, 0.28).unwrap();
+/// assert!((modulus - 82e9 / 0.72).abs() < 1.0);
+/// let (load, radius) = (100e3, 0.46);
+/// let wheel_on_crown = RelativeCurvature::from_radii(radius, f64::INFINITY, radius).unwrap();
+/// assert_eq!((wheel_on_crown.rolling(), wheel_on_crown.lateral()), (0.5 / radius, 0.5 / radius));
+/// let contact = HertzContact::solve(load, &wheel_on_crown, modulus).unwrap();
+/// let a = (3.0 * load * radius / (4.0 * modulus)).cbrt();
+/// assert!((contact.semi_axis_a / a - 1.0).abs() < 1e-9 && (contact.semi_axis_b / a - 1.0).abs() < 1e-9);
+/// assert!((contact.approach / (a * a / radius) - 1.0).abs() < 1e-9);
+/// assert!((contact.max_pressure / (3.0 * load / (2.0 * std::f64::consts::PI * a * a)) - 1.0).abs() < 1e-12);
+/// // The FMU's variables (profile curvatures): the same gap, the same contact.
+/// let same = RelativeCurvature::from_profile_curvatures(radius, 0.0, 1.0 / radius).unwrap();
+/// assert_eq!(HertzContact::solve(load, &same, modulus).unwrap(), contact);
+/// // Flatter across (B < A): the ellipse is longer across, b > a.
+/// let ellipse = HertzContact::solve(load, &RelativeCurvature::new(1.0, 0.25).unwrap(), modulus).unwrap();
+/// assert!(ellipse.semi_axis_b > ellipse.semi_axis_a);
+/// // Lift-off is not an error, a concave gap is (naming the variable).
+/// assert_eq!(HertzContact::solve(-1.0, &same, modulus).unwrap().semi_axis_a, 0.0);
+/// let error = RelativeCurvature::from_radii(radius, -0.2, 0.3).unwrap_err();
+/// assert_eq!(error.variable, "wheel_profile_radius");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HertzContact {
     /// Semi-axis a along the rolling direction (the `rolling` curvature) \[m\].

@@ -39,6 +39,30 @@ use crate::InvalidInput;
 pub const DEFAULT_REGULARISATION_SPEED: f64 = 0.01;
 
 /// The velocities at one wheel–rail contact, SI units, track axes.
+///
+/// ```
+/// use wheel_rail_contact::scene::kinematics::{WheelKinematics, DEFAULT_REGULARISATION_SPEED};
+///
+/// // Braking at 20 m/s: ωr = 19.96 m/s, 0.1 m/s sideways, spinning at 0.5 rad/s.
+/// let braking = WheelKinematics {
+///     rolling_speed: 20.0,
+///     wheel_angular_speed: 19.96 / 0.46,
+///     wheel_rolling_radius: 0.46,
+///     lateral_slip_velocity: 0.1,
+///     spin_angular_velocity: 0.5,
+/// };
+/// assert!((braking.longitudinal_slip_velocity() - 0.04).abs() < 1e-12);
+/// let creepages = braking.creepages(DEFAULT_REGULARISATION_SPEED).unwrap();
+/// // ξ = (V − ωr)/V, η = v_y/V, φ = ω_z/V, to a relative v_c²/(2V²) (φ: v_c²/V²) at speed.
+/// assert!((creepages.longitudinal / 0.002 - 1.0).abs() < 1e-6);
+/// assert!((creepages.lateral / 0.005 - 1.0).abs() < 1e-6);
+/// assert!((creepages.spin / 0.025 - 1.0).abs() < 1e-6);
+/// // At standstill nothing divides by zero: a spinning wheel's creepage is −ωr/v_c.
+/// let spinning = WheelKinematics { rolling_speed: 0.0, lateral_slip_velocity: 0.0, ..braking };
+/// let at_rest = spinning.creepages(DEFAULT_REGULARISATION_SPEED).unwrap();
+/// assert!((at_rest.longitudinal + 19.96 / 0.01).abs() < 1e-9 && at_rest.spin == 0.0);
+/// assert_eq!(braking.creepages(0.0).unwrap_err().variable, "regularisation_speed");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelKinematics {
     /// Rolling speed V: the wheel centre's speed along the track [m/s], negative when the wheel

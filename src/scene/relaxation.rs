@@ -73,6 +73,33 @@ pub fn renewal_speed(kinematics: &WheelKinematics) -> f64 {
 }
 
 /// Relaxation lengths of the longitudinal and lateral force \[m\].
+///
+/// ```
+/// use wheel_rail_contact::scene::kinematics::WheelKinematics;
+/// use wheel_rail_contact::scene::relaxation::{relax, renewal_speed, RelaxationLengths};
+///
+/// // 1 ms at 20 m/s over L = 10 mm: 2 lengths travelled, 1 − e⁻² of the way to the steady force.
+/// let lengths = RelaxationLengths::uniform(0.01).unwrap();
+/// let [f_x, f_y] = lengths.advance([0.0, 100.0], [1000.0, -500.0], 20.0, 1e-3).unwrap();
+/// let progress = 1.0 - (-2.0_f64).exp();
+/// assert!((f_x - 1000.0 * progress).abs() < 1e-9 && (f_y - (100.0 - 600.0 * progress)).abs() < 1e-9);
+/// assert_eq!(relax(100.0, -500.0, f64::INFINITY), -500.0);
+/// // The contact's own lengths, L = √(ab)·C(2 − ν)/4: a circle of 6 mm at ν = 0.25, with
+/// // Kalker's C11 = 4.12, C22 = 3.67 (Table E.3).
+/// let circle = RelaxationLengths::from_contact(6e-3, 6e-3, 0.25).unwrap();
+/// assert!((circle.longitudinal - 6e-3 * 4.12 * 1.75 / 4.0).abs() < 1e-12);
+/// assert!((circle.lateral - 6e-3 * 3.67 * 1.75 / 4.0).abs() < 1e-12);
+/// // The renewal speed (|V| + |ωr|)/2: a wheel spinning at standstill renews the contact.
+/// let spinning = WheelKinematics {
+///     rolling_speed: 0.0,
+///     wheel_angular_speed: 2.0 / 0.5,
+///     wheel_rolling_radius: 0.5,
+///     lateral_slip_velocity: 0.0,
+///     spin_angular_velocity: 0.0,
+/// };
+/// assert_eq!(renewal_speed(&spinning), 1.0);
+/// assert_eq!(RelaxationLengths::uniform(0.0).unwrap_err().variable, "relaxation_length");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RelaxationLengths {
     /// L_x, for the longitudinal force \[m\].
