@@ -230,3 +230,20 @@ fn the_smooth_profile_refuses_bad_points() {
     let bad = ProfilePoints { lateral: vec![0.0, 1.0, 2.0], vertical: vec![0.0; 3] };
     assert!(SmoothProfile::new(&bad).is_err());
 }
+
+#[test]
+fn a_point_on_a_near_vertical_flank_is_found_at_its_lateral_position() {
+    // A flange-like step: flat, a flank rising 1 mm over 2 µm of y, flat again (mm). Along the
+    // flank y(s) is nearly flat in s, so Newton's step on y(s) from the linear guess leaves its
+    // bracket and the bracket's bisection takes over: every y on the flank is found to 1e-13 m,
+    // at a height between the flank's ends.
+    let lateral = [-3.0, -2.0, -1.0, 0.0, 0.001, 0.002, 1.0, 2.0, 3.0].map(|y: f64| y * 1e-3).to_vec();
+    let vertical = [0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0].map(|z: f64| z * 1e-3).to_vec();
+    let step = SmoothProfile::new(&ProfilePoints { lateral, vertical }).unwrap();
+    for i in 0..=100 {
+        let y = 2e-6 * f64::from(i) / 100.0;
+        let point = step.at_lateral(y).unwrap();
+        assert!((point.lateral - y).abs() <= 1e-13, "y {y}: found {}", point.lateral);
+        assert!(point.vertical > -0.2e-3 && point.vertical < 1.2e-3, "z({y}) = {}", point.vertical);
+    }
+}
