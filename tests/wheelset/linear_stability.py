@@ -18,21 +18,32 @@ has no longitudinal creepage. A patch at contact angle δ (track coordinates) ha
 
 and, by Kalker's linear theory (Kalker 1967; the crate's KalkerLinear), forces on the wheel
 F_x = −f11 ξ, F_s = −f22 η − f23 φ, M_z = f23 η − f33 φ; its normal force carries the wheel load
-Q vertically, so its lateral part is N sin δ = Q tan δ. The equations of motion (Wickens 2003,
-Fundamentals of Rail Vehicle Dynamics, ch. 2 and 5, the wheelset on a yaw and lateral
-suspension; Garg & Dukkipati 1984, Dynamics of Railway Vehicle Systems, ch. 6, with the spin and
-gravitational terms; Iwnicki (ed.) 2006, Handbook of Railway Vehicle Dynamics, ch. on stability),
+Q vertically, so its lateral part is N sin δ = Q tan δ. The equations of motion are the classical
+linear wheelset's (Wickens 2003, Fundamentals of Rail Vehicle Dynamics; Garg & Dukkipati 1984,
+Dynamics of Railway Vehicle Systems, with the spin and gravitational terms; Iwnicki (ed.) 2006,
+Handbook of Railway Vehicle Dynamics), written here term by term from the contact unit's
+conventions above (the books were not at hand to compare their printed forms),
 linearised:
 
     m ÿ + (2 f22/V + 2 c_y) ẏ + (2 f23/V) ψ̇ + (2 k_y + k_c) y − 2 f22 ψ = 0
-    I ψ̈ + (2 f11 s²/V + 2 f33/V + 2 c_x b1²) ψ̇ − (2 f23/V) ẏ
-        + (2 f11 s γ_e / r_c + k_s) y + (2 k_x b1² + 2 f23) ψ = 0
+    I ψ̈ + (d_ψ/V + 2 f33/V + 2 c_x b1²) ψ̇ − (2 f23/V) ẏ + (k_ψy + k_s) y + (2 k_x b1² + 2 f23) ψ = 0
 
-with k_c the lateral stiffness of the contact forces at rest (normal forces' lateral part
-minus the lateral spin creep force, F_c(y) = Σ_patches (N sin δ − f23 sin δ / r_c)) and k_s
-the yaw stiffness of the spin moments, M_s(y) = −Σ f33 sin δ / r_c, both by harmonic
-linearisation at amplitude A. f11, f22, f23, f33 are per wheel, averaged over the two wheels
-and over the cycle y = A sin θ; s is the contacts' mean lateral distance from the centre.
+with, from the contact data at amplitude A (ContactModel.linearised):
+- f11, f22, f23, f33: Kalker's G ab C11, G ab C22, G (ab)^{3/2} C23, G (ab)² C33 per wheel
+  (summed over its patches), averaged over the two wheels and over the cycle y = A sin θ;
+- d_ψ = Σ f11 Y² (2 f11 s² for two equal wheels at ±s), less (Σ f11 Y)²/Σ f11 with the spin free;
+- k_ψy: the yaw moment of the longitudinal creep forces at rest, −Σ Y f11 ξ, harmonically
+  linearised (each wheel with its own f11 and rolling radius; the textbook 2 f11 s tan γ_e / r_c
+  for two equal wheels), plus ε Σ f11 Y with the spin free (ε below);
+- k_c: the lateral force of the contacts at rest, F_c(y) = Σ (N sin δ − f23 sin δ / r_c) (the
+  normal forces' part is the gravitational stiffness k_grav, the other the spin creep force),
+  and k_s: the spin moments' −Σ f33 sin δ / r_c, both harmonically linearised;
+- tan γ_e(A), the library's equivalent conicity, for Klingel's ω = V √(tan γ_e/(r_c s)), s the
+  contacts' mean half distance.
+The wheel spin: imposed (Ω = V/r_c), or free (a spin degree of freedom taken as quasi-static:
+Ω such that Σ F_x = 0, i.e. a common creepage ε = Σ f11 ((r − r_c)/r_c + ψ̇ Y/V) / Σ f11 added
+to every patch's). With the spin free the kinematic motion is Klingel's, both wheels rolling
+without creepage; with it imposed the wheel with the stiffer patch dominates the yaw moment.
 
 Describing functions: γ_e(A) is the library's equivalent conicity (EN 15302's principle,
 src/geometry/conicity.rs); a force F(y) is replaced by K y with K = (2/(πA)) ∫_0^π F(A sin θ)
