@@ -7,7 +7,9 @@
 //! - `node_grid_study`, `kink_alignment_experiment`, `exact_table_at_point`: how exact_table's
 //!   nodes were chosen and where its errors come from (docs/exact_table.md);
 //! - `kalker_table_check`, `kalker_c33_check`: the exact solver against Kalker's table
-//!   (docs/reference/).
+//!   (docs/reference/);
+//! - `wheelset_contact_data`: the passenger-coach wheelset's contact data on S1002/UIC60 for the
+//!   linear stability reference (data/wheelset/, docs/wheelset.md).
 //!
 //! What they share is here: [`random_contacts`].
 
