@@ -362,43 +362,37 @@ pub fn contact_input(values: &Values) -> ContactInput {
         .contact_input(&scene_input(&values.inputs))
 }
 
-/// The inputs as the core's scene input (the wheelset's, for profiles, bound to `_`).
+/// The inputs as the core's scene input: each of its fields is the input of the same name, listed
+/// once; the wheelset's inputs (profiles only) are bound to `_`, so an input added to
+/// `modelDescription.xml` stops the build here until it is mapped.
 pub fn scene_input(inputs: &Inputs) -> SceneInput {
-    let Inputs {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
-        normal_force,
-        semi_axis_a,
-        semi_axis_b,
-        friction_coefficient,
-        rolling_speed,
-        wheel_angular_speed,
-        wheel_rolling_radius,
-        lateral_slip_velocity,
-        spin_angular_velocity,
-        wheelset_lateral_displacement: _,
-        wheelset_vertical_position: _,
-        wheelset_roll_angle: _,
-        wheelset_yaw_angle: _,
-        vertical_force: _,
-        wheelset_lateral_velocity: _,
-        wheelset_yaw_rate: _,
-    } = *inputs;
-    SceneInput {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
-        normal_force,
-        semi_axis_a,
-        semi_axis_b,
-        friction_coefficient,
-        rolling_speed,
-        wheel_angular_speed,
-        wheel_rolling_radius,
-        lateral_slip_velocity,
-        spin_angular_velocity,
+    macro_rules! scene_input_of {
+        ($($field:ident),*; unused: $($unused:ident),*) => {{
+            let Inputs { $($field,)* $($unused: _,)* } = *inputs;
+            SceneInput { $($field),* }
+        }};
     }
+    scene_input_of!(
+        creepage_longitudinal,
+        creepage_lateral,
+        spin_creepage,
+        normal_force,
+        semi_axis_a,
+        semi_axis_b,
+        friction_coefficient,
+        rolling_speed,
+        wheel_angular_speed,
+        wheel_rolling_radius,
+        lateral_slip_velocity,
+        spin_angular_velocity;
+        unused: wheelset_lateral_displacement,
+        wheelset_vertical_position,
+        wheelset_roll_angle,
+        wheelset_yaw_angle,
+        vertical_force,
+        wheelset_lateral_velocity,
+        wheelset_yaw_rate
+    )
 }
 
 /// The outputs from one patch's scene output and a wheel's outputs (the one not computed all
