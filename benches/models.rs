@@ -1,13 +1,12 @@
-//! One evaluation of every model of the ladder (with spin, in partial slip, including validation
-//! and the Kalker coefficient lookup); FASTSIM at several grids (ns per element = time / n²);
-//! `exact_table` against Polach on the same 64 contacts (`cases/…`: time per evaluation is the
-//! reported time / 64).
+//! One evaluation of every real-time rung of the ladder at its default (`ModelChoice::RUNGS`; with
+//! spin, in partial slip, including validation and the Kalker coefficient lookup) and of each on
+//! the same 64 contacts (`cases/…`: time per evaluation is the reported time / 64); FASTSIM at
+//! several more grids (ns per element = time / n²). The exact theory has its own (`exact.rs`).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::{
-    ContactInput, CreepForceModel, Discretisation, ExactTable, Fastsim, Flexibility, KalkerLinear, Polach,
-    ShenHedrickElkins, TractionBound,
+    ContactInput, CreepForceModel, Discretisation, Fastsim, Flexibility, ModelChoice, TractionBound,
 };
 
 /// A worn-wheel tread contact in partial slip with all three creepages (utilisation ≈ 0.6).
@@ -65,16 +64,15 @@ fn bench_cases(c: &mut Criterion, name: &str, model: &dyn CreepForceModel, cases
 }
 
 fn models(c: &mut Criterion) {
-    bench_model(c, "polach", &Polach::default());
-    let table = ExactTable::new().expect("the compiled-in table is valid");
-    bench_model(c, "exact_table", &table);
     let cases = cases();
-    bench_cases(c, "cases/polach", &Polach::default(), &cases);
-    bench_cases(c, "cases/exact_table", &table, &cases);
-    bench_model(c, "kalker_linear", &KalkerLinear);
-    bench_model(c, "shen_hedrick_elkins", &ShenHedrickElkins);
-    // CONTACT's blended flexibilities (the default); the unblended 5 × 5 shows the blend's cost.
-    for n in [5, 10, 20, 40, 100] {
+    for rung in ModelChoice::RUNGS.iter().filter(|rung| !rung.offline) {
+        let model = (rung.default_model)().unwrap_or_else(|e| panic!("{}: {e}", rung.name));
+        bench_model(c, rung.name, &model);
+        bench_cases(c, &format!("cases/{}", rung.name), &model, &cases);
+    }
+    // CONTACT's blended flexibilities (the default; 20 × 20 is `fastsim` above); the unblended
+    // 5 × 5 shows the blend's cost.
+    for n in [5, 10, 40, 100] {
         let model = Fastsim::new(n, n, TractionBound::Parabolic, Flexibility::ThreeBlended).unwrap();
         bench_model(c, &format!("fastsim_parabolic_{n}x{n}"), &model);
     }

@@ -8,8 +8,7 @@ use wheel_rail_contact::{
     ContactInput, CreepForceModel, LargeCreepage, MeasuredCurve, Polach, Polach2005, ShapeCache, StiffnessSource,
 };
 
-mod shared;
-use shared::WITH_SPIN;
+use wheel_rail_contact::reference_cases::BENCHMARK_WITH_SPIN as WITH_SPIN;
 
 fn polach(c: &mut Criterion) {
     let base = Polach::default();

@@ -1,5 +1,6 @@
 //! CONTACT's published reference cases as data, in SI units, to check a model choice against:
-//! the one definition the tests, the exact theory's benchmark and the lab's trade report use.
+//! the one definition the tests, the benchmarks and the lab's trade report use (and, not published,
+//! the scene two benchmarks share, [`BENCHMARK_WITH_SPIN`]).
 //! Source and the full tables: `tests/data/contact_published_cases.md` (open-source CONTACT, <https://github.com/eve70a/CONTACT>, `examples/tractcurv`
 //! and `examples/fastsim`, Apache-2.0).
 
@@ -103,3 +104,18 @@ const fn contact_fastsim(
 ) -> PublishedFastsim {
     PublishedFastsim { bound, elements_in_contact, result: Published { force_lateral_ratio, spin_moment } }
 }
+
+/// Not a published case: issue 2's evaluation with spin (combined ξ, η and spin in partial slip),
+/// the one scene the Polach benchmark (`benches/polach.rs`) and the FMU's C-ABI step benchmark
+/// (`fmu/benches/fmu_step.rs`) share, so that their figures compare.
+pub const BENCHMARK_WITH_SPIN: ContactInput = ContactInput {
+    creepage_longitudinal: 1.5e-3,
+    creepage_lateral: -0.8e-3,
+    spin_creepage: 0.4,
+    normal_force: 80e3,
+    semi_axis_a: 6.3e-3,
+    semi_axis_b: 4.1e-3,
+    friction_coefficient: 0.35,
+    shear_modulus: 82e9,
+    poisson_ratio: 0.28,
+};

@@ -10,9 +10,7 @@ use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::fmi2::{fmi2CallbackFunctions, fmi2Status_fmi2OK, fmi2Type_fmi2CoSimulation};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID};
 
-#[path = "../../benches/shared/mod.rs"]
-mod shared;
-use shared::WITH_SPIN as SCENE;
+use wheel_rail_contact::reference_cases::BENCHMARK_WITH_SPIN as SCENE;
 
 fn fmu_step_against_core(c: &mut Criterion) {
     let mut group = c.benchmark_group("fmu_step");

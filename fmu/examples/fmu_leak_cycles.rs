@@ -6,10 +6,7 @@
 //! and read, the profiles loaded, steps, its state serialised and restored). Every allocation of
 //! a cycle must be released by its end.
 
-#[path = "../tests/c_abi/mod.rs"]
-mod c_abi;
-
-use c_abi::{run_scene, Fmu, LogCounter, ERROR, INPUTS, OK, OUTPUTS};
+use fmu_test_master::{run_scene, Fmu, LogCounter, ERROR, INPUTS, OK, OUTPUTS};
 use std::ffi::CString;
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::model_description::value_reference as vr;

@@ -1,14 +1,19 @@
-//! Which variables each model choice and scene option uses — declared once, here. The FMU's
+//! Which variables each model choice and scene option uses — declared once: the options here,
+//! the models in their rungs (`wheel_rail_contact::ModelChoice::RUNGS`). The FMU's
 //! documentation prints this table (`packaging/src/documentation.rs`), the README carries the
-//! same table (checked by `packaging/tests/options_table.rs`), and the tests check it against the
+//! same table (checked by `packaging/tests/readme_tables.rs`), and the tests check it against the
 //! model description: every name is a variable of the stated causality, and every input listed
 //! for an output is among that output's declared dependencies.
 
+use std::borrow::Cow;
+
+use wheel_rail_contact::ModelChoice;
+
 /// One row: what a model choice or option reads and what it sets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct OptionUse {
     /// The choice or option, as a user selects it (`parameter = item`).
-    pub option: &'static str,
+    pub option: Cow<'static, str>,
     /// The inputs it reads.
     pub inputs: &'static [&'static str],
     /// The inputs it makes unused (replaced by what it computes).
@@ -19,64 +24,35 @@ pub struct OptionUse {
     pub outputs: &'static [&'static str],
 }
 
-/// Every scene, then each model that has parameters, then each option.
-pub const OPTION_USES: &[OptionUse] = &[
+/// What every scene uses, whichever model and options.
+const EVERY_SCENE: &[OptionUse] = &[
     OptionUse {
-        option: "every scene",
+        option: Cow::Borrowed("every scene"),
         inputs: &["normal_force", "friction_coefficient", "rolling_speed"],
         replaces: &[],
         parameters: &["shear_modulus", "poisson_ratio", "creep_force_model"],
         outputs: &["force_longitudinal", "force_lateral", "adhesion_utilisation", "spin_moment"],
     },
     OptionUse {
-        option: "creepages as inputs (default)",
+        option: Cow::Borrowed("creepages as inputs (default)"),
         inputs: &["creepage_longitudinal", "creepage_lateral", "spin_creepage"],
         replaces: &[],
         parameters: &[],
         outputs: &["effective_creepage_longitudinal", "effective_creepage_lateral", "effective_spin_creepage"],
     },
     OptionUse {
-        option: "ellipse as inputs (default)",
+        option: Cow::Borrowed("ellipse as inputs (default)"),
         inputs: &["semi_axis_a", "semi_axis_b"],
         replaces: &[],
         parameters: &[],
         outputs: &["contact_semi_axis_a", "contact_semi_axis_b", "max_pressure"],
     },
+];
+
+/// What each option uses.
+const OPTIONS: &[OptionUse] = &[
     OptionUse {
-        option: "creep_force_model = polach",
-        inputs: &[],
-        replaces: &[],
-        parameters: &[
-            "stiffness_source",
-            "measured_peak_adhesion",
-            "measured_creepage_at_peak",
-            "measured_kinetic_friction",
-        ],
-        outputs: &[],
-    },
-    OptionUse {
-        option: "creep_force_model = fastsim",
-        inputs: &[],
-        replaces: &[],
-        parameters: &["fastsim_strips", "fastsim_elements", "fastsim_traction_bound", "fastsim_flexibility"],
-        outputs: &["spin_moment"],
-    },
-    OptionUse {
-        option: "creep_force_model = exact",
-        inputs: &[],
-        replaces: &[],
-        parameters: &["exact_elements_longitudinal", "exact_elements_lateral"],
-        outputs: &["spin_moment"],
-    },
-    OptionUse {
-        option: "creep_force_model = exact_table",
-        inputs: &[],
-        replaces: &[],
-        parameters: &[],
-        outputs: &["spin_moment"],
-    },
-    OptionUse {
-        option: "traction_law = polach2005_*",
+        option: Cow::Borrowed("traction_law = polach2005_*"),
         inputs: &["rolling_speed"],
         replaces: &[],
         parameters: &[
@@ -89,14 +65,14 @@ pub const OPTION_USES: &[OptionUse] = &[
         outputs: &["current_friction_coefficient", "slip_velocity"],
     },
     OptionUse {
-        option: "hertz_contact = on",
+        option: Cow::Borrowed("hertz_contact = on"),
         inputs: &["wheel_rolling_radius"],
         replaces: &["semi_axis_a", "semi_axis_b"],
         parameters: &["hertz_contact", "wheel_profile_curvature", "rail_profile_curvature"],
         outputs: &["contact_semi_axis_a", "contact_semi_axis_b", "max_pressure", "approach"],
     },
     OptionUse {
-        option: "creepages_from_kinematics = on",
+        option: Cow::Borrowed("creepages_from_kinematics = on"),
         inputs: &[
             "rolling_speed",
             "wheel_angular_speed",
@@ -114,7 +90,7 @@ pub const OPTION_USES: &[OptionUse] = &[
         ],
     },
     OptionUse {
-        option: "creep_relaxation = on",
+        option: Cow::Borrowed("creep_relaxation = on"),
         // The renewal speed: |V|, or (|V| + |ωr|)/2 with the kinematics.
         inputs: &["rolling_speed", "wheel_angular_speed", "wheel_rolling_radius"],
         replaces: &[],
@@ -122,7 +98,7 @@ pub const OPTION_USES: &[OptionUse] = &[
         outputs: &["force_longitudinal", "force_lateral", "adhesion_utilisation"],
     },
     OptionUse {
-        option: "contact_geometry = profiles",
+        option: Cow::Borrowed("contact_geometry = profiles"),
         inputs: &[
             "wheelset_lateral_displacement",
             "wheelset_vertical_position",
@@ -197,6 +173,21 @@ pub const OPTION_USES: &[OptionUse] = &[
     },
 ];
 
+/// Every scene, then each model that has parameters or a spin moment (its rung), then each option.
+pub fn option_uses() -> Vec<OptionUse> {
+    let models =
+        ModelChoice::RUNGS.iter().filter(|rung| !rung.fmu_parameters.is_empty() || rung.spin_moment).map(|rung| {
+            OptionUse {
+                option: Cow::Owned(format!("creep_force_model = {}", rung.name)),
+                inputs: &[],
+                replaces: &[],
+                parameters: rung.fmu_parameters,
+                outputs: if rung.spin_moment { &["spin_moment"] } else { &[] },
+            }
+        });
+    EVERY_SCENE.iter().cloned().chain(models).chain(OPTIONS.iter().cloned()).collect()
+}
+
 /// The table's header cells.
 pub const COLUMNS: [&str; 5] =
     ["choice or option", "inputs used", "inputs it replaces", "parameters used", "outputs it sets"];
@@ -211,10 +202,10 @@ pub fn rows(code: impl Fn(&str) -> String) -> Vec<[String; 5]> {
             names.iter().map(|name| code(name)).collect::<Vec<_>>().join(", ")
         }
     };
-    OPTION_USES
-        .iter()
+    option_uses()
+        .into_iter()
         .map(|row| {
-            [row.option.to_owned(), list(row.inputs), list(row.replaces), list(row.parameters), list(row.outputs)]
+            [row.option.into_owned(), list(row.inputs), list(row.replaces), list(row.parameters), list(row.outputs)]
         })
         .collect()
 }
@@ -241,7 +232,7 @@ mod tests {
 
     #[test]
     fn every_name_is_a_variable_of_its_causality() {
-        for row in OPTION_USES {
+        for row in option_uses() {
             for name in row.inputs.iter().chain(row.replaces) {
                 assert_eq!(variable(name).causality, Causality::Input, "{}: {name}", row.option);
             }
@@ -259,7 +250,7 @@ mod tests {
     /// of some output of the row, and every output of the row depends on some input of it.
     #[test]
     fn the_inputs_and_outputs_of_a_row_are_declared_dependencies() {
-        for row in OPTION_USES.iter().filter(|row| !row.inputs.is_empty() && !row.outputs.is_empty()) {
+        for row in option_uses().iter().filter(|row| !row.inputs.is_empty() && !row.outputs.is_empty()) {
             let depends =
                 |output: &str, input: &str| variable(output).dependencies.contains(&variable(input).value_reference);
             for input in row.inputs {
@@ -275,10 +266,10 @@ mod tests {
     #[test]
     fn every_input_and_parameter_is_listed() {
         for v in VARIABLES.iter().filter(|v| v.causality != Causality::Output) {
-            let listed = OPTION_USES.iter().any(|row| {
+            let listed = option_uses().iter().any(|row| {
                 row.inputs.contains(&v.name) || row.replaces.contains(&v.name) || row.parameters.contains(&v.name)
             });
-            assert!(listed, "{} is in no row of OPTION_USES", v.name);
+            assert!(listed, "{} is in no row of option_uses()", v.name);
         }
     }
 }

@@ -22,8 +22,8 @@ use wheel_rail_contact::scene::{
     SceneState, TractionLaw,
 };
 use wheel_rail_contact::{
-    ContactInput, ExactTable, ExactTheory, Fastsim, Flexibility, InvalidInput, KalkerLinear, MeasuredCurve,
-    ModelChoice, Polach, Polach2005, ShenHedrickElkins, StiffnessSource, TractionBound,
+    ContactInput, ExactTheory, Fastsim, Flexibility, InvalidInput, MeasuredCurve, ModelChoice, Polach, Polach2005,
+    StiffnessSource, TractionBound,
 };
 
 /// What the parameters select: one patch from the inputs, or a wheel on its rail from profiles.
@@ -177,8 +177,7 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
         };
     // Both are Polach's: rejected rather than silently ignored with another model.
     if selected != Model::Polach {
-        let name =
-            Model::ITEMS.iter().find(|(_, value, _)| *value == creep_force_model).map_or("?", |(name, _, _)| name);
+        let name = ModelChoice::rung_of_fmu_value(creep_force_model).map_or("?", |rung| rung.name);
         let model_text = format!("creep_force_model = {creep_force_model} ({name})");
         if traction.is_some() {
             return Err(format!(
@@ -191,10 +190,10 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
             ));
         }
     }
+    // The rungs with FMU parameters of their own are built from them here; every other rung is
+    // its registered default (`ModelChoice::RUNGS`).
     let model = match selected {
         Model::Polach => ModelChoice::Polach(Polach { stiffness, large_creepage: None }),
-        Model::KalkerLinear => ModelChoice::KalkerLinear(KalkerLinear),
-        Model::ShenHedrickElkins => ModelChoice::ShenHedrickElkins(ShenHedrickElkins),
         Model::Fastsim => {
             let bound = match enumeration(
                 "fastsim_traction_bound",
@@ -232,9 +231,12 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
             exact.validate().map_err(|e| reported(e, &counts))?;
             ModelChoice::Exact(exact)
         }
-        Model::ExactTable => ModelChoice::ExactTable(
-            ExactTable::new().map_err(|e| format!("creep_force_model = {creep_force_model} (exact_table): {e}"))?,
-        ),
+        _ => {
+            let rung = ModelChoice::rung_of_fmu_value(creep_force_model)
+                .expect("the Model enumeration is the registry's (model_description tests)");
+            (rung.default_model)()
+                .map_err(|e| format!("creep_force_model = {creep_force_model} ({}): {e}", rung.name))?
+        }
     };
     Ok(Scene {
         model,
@@ -360,43 +362,37 @@ pub fn contact_input(values: &Values) -> ContactInput {
         .contact_input(&scene_input(&values.inputs))
 }
 
-/// The inputs as the core's scene input (the wheelset's, for profiles, bound to `_`).
+/// The inputs as the core's scene input: each of its fields is the input of the same name, listed
+/// once; the wheelset's inputs (profiles only) are bound to `_`, so an input added to
+/// `modelDescription.xml` stops the build here until it is mapped.
 pub fn scene_input(inputs: &Inputs) -> SceneInput {
-    let Inputs {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
-        normal_force,
-        semi_axis_a,
-        semi_axis_b,
-        friction_coefficient,
-        rolling_speed,
-        wheel_angular_speed,
-        wheel_rolling_radius,
-        lateral_slip_velocity,
-        spin_angular_velocity,
-        wheelset_lateral_displacement: _,
-        wheelset_vertical_position: _,
-        wheelset_roll_angle: _,
-        wheelset_yaw_angle: _,
-        vertical_force: _,
-        wheelset_lateral_velocity: _,
-        wheelset_yaw_rate: _,
-    } = *inputs;
-    SceneInput {
-        creepage_longitudinal,
-        creepage_lateral,
-        spin_creepage,
-        normal_force,
-        semi_axis_a,
-        semi_axis_b,
-        friction_coefficient,
-        rolling_speed,
-        wheel_angular_speed,
-        wheel_rolling_radius,
-        lateral_slip_velocity,
-        spin_angular_velocity,
+    macro_rules! scene_input_of {
+        ($($field:ident),*; unused: $($unused:ident),*) => {{
+            let Inputs { $($field,)* $($unused: _,)* } = *inputs;
+            SceneInput { $($field),* }
+        }};
     }
+    scene_input_of!(
+        creepage_longitudinal,
+        creepage_lateral,
+        spin_creepage,
+        normal_force,
+        semi_axis_a,
+        semi_axis_b,
+        friction_coefficient,
+        rolling_speed,
+        wheel_angular_speed,
+        wheel_rolling_radius,
+        lateral_slip_velocity,
+        spin_angular_velocity;
+        unused: wheelset_lateral_displacement,
+        wheelset_vertical_position,
+        wheelset_roll_angle,
+        wheelset_yaw_angle,
+        vertical_force,
+        wheelset_lateral_velocity,
+        wheelset_yaw_rate
+    )
 }
 
 /// The outputs from one patch's scene output and a wheel's outputs (the one not computed all
@@ -512,6 +508,26 @@ mod tests {
         values
     }
 
+    /// The `creep_force_model` enumeration of `modelDescription.xml` is the core's list of rungs:
+    /// the same names with the same values, in the same order.
+    #[test]
+    fn the_model_enumeration_is_the_registry_of_rungs() {
+        let registered: Vec<(&str, i32)> = ModelChoice::RUNGS.iter().map(|rung| (rung.name, rung.fmu_value)).collect();
+        let declared: Vec<(&str, i32)> = Model::ITEMS.iter().map(|&(name, value, _)| (name, value)).collect();
+        assert_eq!(declared, registered);
+    }
+
+    /// With the start values, each choice of `creep_force_model` is its rung's default model.
+    #[test]
+    fn each_model_choice_at_the_start_values_is_its_rungs_default() {
+        for rung in ModelChoice::RUNGS {
+            let mut parameters = Values::default().parameters;
+            parameters.creep_force_model = rung.fmu_value;
+            let scene = scene_of(&parameters).unwrap();
+            assert_eq!(scene.model, (rung.default_model)().unwrap(), "{}", rung.name);
+        }
+    }
+
     #[test]
     fn default_scene_equals_the_core_with_the_start_values() {
         let values = Values::default();
@@ -588,32 +604,30 @@ mod tests {
         values.parameters.exact_elements_longitudinal = 12;
         values.parameters.exact_elements_lateral = 10;
         let input = contact_input(&values);
-        let models = [
-            (Model::Polach, ModelChoice::Polach(Polach::default())),
-            (Model::KalkerLinear, ModelChoice::KalkerLinear(KalkerLinear)),
-            (Model::ShenHedrickElkins, ModelChoice::ShenHedrickElkins(ShenHedrickElkins)),
-            (
-                Model::Fastsim,
-                ModelChoice::Fastsim(Fastsim::new(7, 9, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap()),
-            ),
-            (Model::Exact, ModelChoice::Exact(ExactTheory::new(12, 10))),
-            (Model::ExactTable, ModelChoice::ExactTable(ExactTable::new().unwrap())),
-        ];
-        assert_eq!(models.len(), Model::ITEMS.len());
-        let mut spin_moments = Vec::new();
-        for (item, model) in models {
-            values.parameters.creep_force_model = item as i32;
+        // The rungs with parameters of their own at the parameters above, every other at its default.
+        for rung in ModelChoice::RUNGS {
+            let model = match Model::from_value(rung.fmu_value).unwrap() {
+                Model::Fastsim => ModelChoice::Fastsim(
+                    Fastsim::new(7, 9, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap(),
+                ),
+                Model::Exact => ModelChoice::Exact(ExactTheory::new(12, 10)),
+                _ => (rung.default_model)().unwrap(),
+            };
+            values.parameters.creep_force_model = rung.fmu_value;
             let expected = model.creep_forces(&input).unwrap();
             let outputs = outputs(&values);
-            assert_eq!(outputs.force_longitudinal, expected.force_longitudinal, "{item:?}");
-            assert_eq!(outputs.force_lateral, expected.force_lateral, "{item:?}");
-            assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation, "{item:?}");
-            assert_eq!(outputs.spin_moment, expected.spin_moment.unwrap_or(0.0), "{item:?}");
-            spin_moments.push(outputs.spin_moment);
+            let name = rung.name;
+            assert_eq!(outputs.force_longitudinal, expected.force_longitudinal, "{name}");
+            assert_eq!(outputs.force_lateral, expected.force_lateral, "{name}");
+            assert_eq!(outputs.adhesion_utilisation, expected.adhesion_utilisation, "{name}");
+            assert_eq!(outputs.spin_moment, expected.spin_moment.unwrap_or(0.0), "{name}");
+            // A rung with a spin moment opposes the spin (φ > 0 → M_z < 0 here); the others give 0.
+            if rung.spin_moment {
+                assert!(outputs.spin_moment < 0.0, "{name}: {}", outputs.spin_moment);
+            } else {
+                assert_eq!(outputs.spin_moment, 0.0, "{name}");
+            }
         }
-        // Polach and SHE have none; the others do, and oppose the spin (φ > 0 → M_z < 0 here).
-        assert_eq!((spin_moments[0], spin_moments[2]), (0.0, 0.0));
-        assert!([1, 3, 4, 5].iter().all(|&i| spin_moments[i] < 0.0), "{spin_moments:?}");
     }
 
     #[test]

@@ -3,9 +3,7 @@
 //! current friction coefficient and load — after a drop of μ or Q, and at rest (each of those
 //! cases gave |F| > μQ before the bound: μ 0.3 → 0.05, F_x = −25051 N against μQ = 5000 N).
 
-mod c_abi;
-
-use c_abi::{Fmu, OK};
+use fmu_test_master::{Fmu, OK};
 use wheel_rail_contact_fmu::ffi::{fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2SetupExperiment};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, Switch};
 

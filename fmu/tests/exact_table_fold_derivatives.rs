@@ -3,9 +3,7 @@
 //! the outputs of fmi2DoStep. On a fold the outputs have a kink (or, by a symmetry, are flat)
 //! and the derivative must be one of the one-sided ones (README, "Directional derivatives").
 
-mod c_abi;
-
-use c_abi::{Fmu, INPUTS as CONTACT, OK};
+use fmu_test_master::{Fmu, INPUTS as CONTACT, OK};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model};
 
 /// The default scene (Q = 100 kN, a = 7.2 mm, b = 5.4 mm, μ = 0.3) with creepages ξ, η, φ.
@@ -47,7 +45,7 @@ fn output(fmu: &Stepping, inputs: &[f64; 7], unknown: u32) -> f64 {
     }
 }
 
-/// J·e_known at `inputs` (ξ, η, φ, Q, a, b, μ: `c_abi::INPUTS`), and the second-order one-sided differences (3F₀ − 4F(±h) + F(±2h))/(∓2h)
+/// J·e_known at `inputs` (ξ, η, φ, Q, a, b, μ: `fmu_test_master::INPUTS`), and the second-order one-sided differences (3F₀ − 4F(±h) + F(±2h))/(∓2h)
 /// forward and backward with step `h` of input `k` (index into [`CONTACT`]); NaN for a side
 /// outside the domain.
 fn derivative_and_sides(fmu: &Stepping, inputs: [f64; 7], k: usize, unknown: u32, h: f64) -> (f64, f64, f64) {

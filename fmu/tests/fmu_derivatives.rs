@@ -2,11 +2,9 @@
 //! that transforms the inputs; for the exact theory, confined to the declared
 //! `<ModelStructure>` dependencies; taken at the current inputs, never of a stored output.
 
-mod c_abi;
-
 use std::f64::consts::PI;
 
-use c_abi::{Fmu, MessageLog, ERROR, OK};
+use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact_fmu::model_description::{
     value_reference as vr, Causality, Model, Switch, TractionLaw, VARIABLES,
 };

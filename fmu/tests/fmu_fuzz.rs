@@ -5,19 +5,17 @@
 //! deserialised. Every call must return a valid fmi2Status (never fmi2Fatal: that would be a
 //! panic caught at the boundary, i.e. a bug), no panic may escape (it would abort the test
 //! process), outputs read after a successful step are finite, and every log message is
-//! well-formed (see `c_abi::count_message`).
+//! well-formed (see `fmu_test_master::count_message`).
 //!
 //! Budget: `FMU_FUZZ_CALLS` calls (default 1 000 000, about a second) from seed
 //! `FMU_FUZZ_SEED` (default fixed, so CI is reproducible). A failure prints the seed and the
 //! call number; rerun with that seed to reproduce. Longer runs: see the README.
 
-mod c_abi;
-
 use std::collections::BTreeMap;
 use std::ffi::{c_char, CString};
 use std::ptr::{null, null_mut};
 
-use c_abi::{callbacks, LogCounter};
+use fmu_test_master::{callbacks, LogCounter};
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
 use wheel_rail_contact_fmu::ffi::*;

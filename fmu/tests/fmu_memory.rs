@@ -4,12 +4,10 @@
 //! first 100. Measured with a counting global allocator, so any allocation kept across steps
 //! shows, not only a leak at the end.
 
-mod c_abi;
-
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicIsize, Ordering};
 
-use c_abi::{Fmu, OK};
+use fmu_test_master::{Fmu, OK};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model};
 
 /// The system allocator, counting the bytes currently allocated.

@@ -1,9 +1,7 @@
 //! FMU state through the C ABI: rolled-back runs repeat bit for bit, serialised states continue
 //! bit for bit in a fresh instance, and damaged byte strings are rejected without effect.
 
-mod c_abi;
-
-use c_abi::{bits, run_scene, Fmu, MessageLog, ERROR, OK, OUTPUTS};
+use fmu_test_master::{bits, run_scene, Fmu, MessageLog, ERROR, OK, OUTPUTS};
 use wheel_rail_contact::ModelMemory;
 use wheel_rail_contact_fmu::ffi::{
     fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetFMUstate, fmi2SetupExperiment, fmi2Terminate,

@@ -6,9 +6,7 @@
 //! inputs, and the reference is a run without the detour: a roll-back that lost or ignored the
 //! relaxed forces would show.
 
-mod c_abi;
-
-use c_abi::{bits, run_scene, Fmu, OK};
+use fmu_test_master::{bits, run_scene, Fmu, OK};
 use wheel_rail_contact_fmu::ffi::{fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2SetupExperiment};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, Switch};
 

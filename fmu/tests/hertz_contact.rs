@@ -5,9 +5,7 @@
 //! of a/b = 20 blamed `semi_axis_a`/`semi_axis_b`, printed Hertz's values as theirs and never
 //! stated a/b.
 
-mod c_abi;
-
-use c_abi::{Fmu, MessageLog, ERROR, OK};
+use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch};
 

@@ -1,9 +1,7 @@
 //! The log through the C ABI: a category selection filters the call traces, never the message of
 //! a failing call.
 
-mod c_abi;
-
-use c_abi::{Fmu, MessageLog, ERROR, OK};
+use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact_fmu::model_description::value_reference as vr;
 
 const FATAL: u32 = wheel_rail_contact_fmu::fmi2::fmi2Status_fmi2Fatal;

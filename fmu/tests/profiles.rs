@@ -3,11 +3,9 @@
 //! against the core's own evaluation, lift-off, the left wheel as the right one mirrored, and
 //! no directional derivatives.
 
-mod c_abi;
-
 use std::ffi::CString;
 
-use c_abi::{Fmu, MessageLog, ERROR, OK};
+use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact::geometry::{
     builtin_profile, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
     WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,

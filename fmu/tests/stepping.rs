@@ -1,8 +1,6 @@
 //! fmi2DoStep's edges through the C ABI: a step end that overflows, and zero outputs.
 
-mod c_abi;
-
-use c_abi::{Fmu, MessageLog, ERROR, OK};
+use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact_fmu::model_description::value_reference as vr;
 
 /// A step whose end time overflows is an error naming the values, and changes nothing.

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+use wheel_rail_contact::{ContactInput, CreepForceModel, ModelChoice, Polach};
 use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
 use wheel_rail_contact_fmu::options;
 use wheel_rail_contact_fmu::scene::contact_input;
@@ -110,7 +110,7 @@ fn dependencies_text() -> String {
     html
 }
 
-/// The table of [`options::OPTION_USES`] (declared once, in the adapter) as HTML.
+/// The table of [`options::option_uses`] (declared once, in the adapter and the rungs) as HTML.
 fn option_table_html() -> String {
     let line = |tag: &str, cells: &[String]| {
         let cells: String = cells.iter().map(|cell| format!("<{tag}>{cell}</{tag}>")).collect();
@@ -125,6 +125,22 @@ fn option_table_html() -> String {
     html
 }
 
+/// Each rung's paragraph (declared beside its code, `ModelChoice::RUNGS`), as a list; the start
+/// value of `creep_force_model` marked as the default.
+fn model_list_html() -> String {
+    let default = VARIABLES.iter().find_map(|v| match v.kind {
+        Kind::Enumeration { declared_type: "Model", start, .. } => Some(start),
+        _ => None,
+    });
+    let mut html = String::from("<ul>\n");
+    for rung in ModelChoice::RUNGS {
+        let marker = if Some(rung.fmu_value) == default { " (default)" } else { "" };
+        writeln!(html, "<li><code>{}</code>{marker}: {}</li>", rung.name, rung.documentation).unwrap();
+    }
+    html.push_str("</ul>");
+    html
+}
+
 /// The model choice and the scene options: what each does, its variables, equations and sources.
 const OPTIONS_HTML: &str = r#"<h2>Models (parameter <code>creep_force_model</code>)</h2>
 <p>All models take the same inputs and give the same outputs; the one chosen is built once when the
@@ -132,39 +148,7 @@ parameters are fixed (fmi2ExitInitializationMode) and again only if a parameter 
 chosen cost nothing per step. <code>creep_force_model</code> and every option switch are <i>fixed</i> parameters: set them
 before fmi2ExitInitializationMode. Their validity is checked there (fmi2Error naming the variable and value);
 parameters of an option that is off, and of models not chosen, are not used and not checked.</p>
-<ul>
-<li><code>polach</code> (default): Polách's method, above. No spin moment: <code>spin_moment</code> = 0.</li>
-<li><code>kalker_linear</code>: Kalker's linear theory (Kalker 1967; 1990, Table E.3): F<sub>x</sub> = −G c² C11 ξ,
-F<sub>y</sub> = −G c² C22 η − G c³ C23 φ, M<sub>z</sub> = G c³ C23 η − G c⁴ C33 φ, c = √(ab). Not friction-limited
-(the theory's definition): the utilisation can exceed 1.</li>
-<li><code>shen_hedrick_elkins</code>: Shen, Hedrick &amp; Elkins (1983): the linear forces scaled so that their
-resultant follows F = μQ(β − β²/3 + β³/27), β = F′/(μQ) &lt; 3, else μQ. No spin moment: <code>spin_moment</code> = 0.</li>
-<li><code>fastsim</code>: Kalker's FASTSIM (VSD 11, 1982) on <code>fastsim_strips</code> × <code>fastsim_elements</code>
-(default 20 × 20, about 3 µs per step); <code>fastsim_traction_bound</code> parabolic (Kalker's choice, default) or
-elliptic (Hertz); <code>fastsim_flexibility</code> <code>three_blended</code> (default: L1 = 8a/(3G C11),
-L2 = 8a/(3G C22), L3 = πa√(a/b)/(4G C23) blended towards one combined flexibility as the creepage grows, as
-CONTACT's <code>simpflex</code> does), <code>three</code> (separately) or <code>single_weighted</code> (Kalker's
-single L). Gives M<sub>z</sub>. First-order in the grid: see docs/trade in the source repository for the error
-against the exact theory per grid.</li>
-<li><code>exact</code>: Kalker's exact theory of steady rolling (Kalker 1990; as in Vollebregt's CONTACT): Love's
-influence coefficients on a rectangular grid of <code>exact_elements_longitudinal</code> ×
-<code>exact_elements_lateral</code> elements over the potential contact area 2.2a × 2.2b, Hertzian pressure,
-Coulomb's law; solved by an active-set Newton method whose linear steps (GMRES) apply the influence coefficients
-as FFT convolutions, O(N log N) per product. Gives M<sub>z</sub>. Each step starts from the previous step's
-tractions (scaled to the new μp<sub>0</sub> and ellipse), so a co-simulation with slowly varying creepage needs
-a few iterations per step. The default 200 × 50 (the error comes almost entirely from the element length along
-the rolling direction) is within 0.005 μQ of the converged theory over the trade report's 270 cases, spin
-included, at about 70 ms per step; 40 × 40 costs about 5 ms per step and is within about 0.02 μQ.
-<b>For offline or low-rate use.</b></li>
-<li><code>exact_table</code>: Kalker's exact theory interpolated from a table compiled into this FMU (made by the
-exact solver above; the idea of Kalker's USETAB, 1996). By Kalker's similarity law the forces in units of μQ (and
-M<sub>z</sub> in μQc) depend only on a/b, ν and the creepages scaled by μp<sub>0</sub>/G with Kalker's coefficients;
-the table spans a/b ∈ [0.1, 10] (outside: an error naming both semi-axes), ν ∈ [0, 0.5] and every creepage up
-to full sliding, which it reaches continuously (computed analytically). Multilinear interpolation: |F| ≤ μQ,
-continuous, the problem's symmetries exact, Kalker's linear theory at small creepage. About 1.3 × a Polach step;
-on 1000 random held-out contacts within 0.0012 μQ (median) and 0.024 μQ (max) of the exact theory. Gives
-M<sub>z</sub>.</li>
-</ul>
+{model_list}
 
 <h2>Option: Polach 2005 traction law (parameter <code>traction_law</code>)</h2>
 <p>Polách, “Creep forces in simulations of traction vehicles running on adhesion limit”, Wear 258 (2005)
@@ -485,6 +469,7 @@ be freed. Instances are independent; there is no global state.</li>
 "#,
         table = variables_table(),
         options = OPTIONS_HTML
+            .replace("{model_list}", &model_list_html())
             .replace("{option_table}", &option_table_html())
             .replace("{profile_figures}", &profile_figure::DISPLACEMENTS.map(profile_figure::figure).concat()),
         dependencies = dependencies_text(),

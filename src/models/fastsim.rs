@@ -44,7 +44,8 @@
 
 use std::f64::consts::PI;
 
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients};
+use crate::models::rung::Rung;
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, ModelChoice};
 
 /// Largest number of strips or elements per strip (10⁸ elements: far beyond convergence).
 pub const MAX_DIVISIONS: usize = 10_000;
@@ -130,6 +131,29 @@ pub struct Fastsim {
     /// 1 / (discrete ∫∫ bound dX dY): makes the discrete pressure carry exactly Q.
     load_normalisation: f64,
 }
+
+/// FASTSIM's rung of the ladder.
+pub const RUNG: Rung = Rung {
+    name: "fastsim",
+    fmu_value: 4,
+    type_name: "Fastsim",
+    fmu_parameters: &["fastsim_strips", "fastsim_elements", "fastsim_traction_bound", "fastsim_flexibility"],
+    spin_moment: true,
+    friction_limited: true,
+    offline: false,
+    summary: "Kalker's simplified theory, any strips × elements, parabolic or elliptic bound, three (blended as CONTACT does) or one flexibility; CONTACT's own grid as an option",
+    source: "Kalker 1982; CONTACT",
+    documentation: "Kalker's FASTSIM (VSD 11, 1982) on <code>fastsim_strips</code> × <code>fastsim_elements</code>
+(default 20 × 20); <code>fastsim_traction_bound</code> parabolic (Kalker's choice, default) or
+elliptic (Hertz); <code>fastsim_flexibility</code> <code>three_blended</code> (default: L1 = 8a/(3G C11),
+L2 = 8a/(3G C22), L3 = πa√(a/b)/(4G C23) blended towards one combined flexibility as the creepage grows, as
+CONTACT's <code>simpflex</code> does), <code>three</code> (separately) or <code>single_weighted</code> (Kalker's
+single L). Gives M<sub>z</sub>. First-order in the grid: its error against the exact theory and its time per grid
+are measured in docs/trade/README.md in the source repository (<code>cargo run --release -p lab --bin trade_report</code>).",
+    default_model: || {
+        Ok(ModelChoice::Fastsim(Fastsim::new(20, 20, TractionBound::Parabolic, Flexibility::ThreeBlended)?))
+    },
+};
 
 /// FASTSIM's output: the forces and moment, and the share of the contact area in adhesion.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

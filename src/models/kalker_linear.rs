@@ -19,12 +19,30 @@
 
 use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::kalker_coefficients::spin_moment_c33_at;
+use crate::models::rung::Rung;
 use crate::numerics::{value, Scalar};
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients};
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, ModelChoice};
 
 /// Kalker's linear theory: F_x, F_y and M_z proportional to the creepages.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct KalkerLinear;
+
+/// Kalker's linear theory's rung of the ladder.
+pub const RUNG: Rung = Rung {
+    name: "kalker_linear",
+    fmu_value: 2,
+    type_name: "KalkerLinear",
+    fmu_parameters: &[],
+    spin_moment: true,
+    friction_limited: false,
+    offline: false,
+    summary: "F, M_z proportional to the creepages (C11, C22, C23, C33); not friction-limited",
+    source: "Kalker 1967/1990, Table E.3",
+    documentation: "Kalker's linear theory (Kalker 1967; 1990, Table E.3): F<sub>x</sub> = −G c² C11 ξ,
+F<sub>y</sub> = −G c² C22 η − G c³ C23 φ, M<sub>z</sub> = G c³ C23 η − G c⁴ C33 φ, c = √(ab). Not friction-limited
+(the theory's definition): the utilisation can exceed 1.",
+    default_model: || Ok(ModelChoice::KalkerLinear(KalkerLinear)),
+};
 
 /// Linear-theory stiffnesses G c^n C_ij of one contact, each held finite.
 pub(crate) struct LinearTheory<D> {

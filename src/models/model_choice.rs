@@ -1,41 +1,76 @@
 //! One type for "whichever rung of the ladder the user picked": enum dispatch, so a caller (the
 //! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
 
-use crate::models::exact::{ExactTheory, GridSize, WarmStart};
-use crate::models::exact_table::ExactTable;
-use crate::models::fastsim::Fastsim;
-use crate::models::kalker_linear::KalkerLinear;
-use crate::models::shen_hedrick_elkins::ShenHedrickElkins;
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, Polach, Polach2005, ShapeCache};
+use crate::models::exact::{GridSize, WarmStart};
+use crate::models::ModelChoice;
+use crate::{
+    ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, Polach, Polach2005, Rung, ShapeCache,
+};
 
-/// The selected creep-force model with its options.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ModelChoice {
-    /// Polach's method (no spin moment: `spin_moment` is `None`).
-    Polach(Polach),
-    /// Kalker's linear theory (not friction-limited).
-    KalkerLinear(KalkerLinear),
-    /// Shen–Hedrick–Elkins cubic saturation of the linear theory.
-    ShenHedrickElkins(ShenHedrickElkins),
-    /// Kalker's FASTSIM with its grid and options.
-    Fastsim(Fastsim),
-    /// Kalker's exact theory on its grid (slow: offline or low-rate use; see [`ExactTheory`]).
-    Exact(ExactTheory),
-    /// Kalker's exact theory interpolated from its table (see [`ExactTable`]).
-    ExactTable(ExactTable),
+/// Defines [`ModelChoice`] from the list of rungs in `src/models/mod.rs` (one line per rung:
+/// variant, model type, module declaring its `RUNG`): the enum, [`ModelChoice::RUNGS`],
+/// [`ModelChoice::rung`] and the dispatch of [`CreepForceModel`], so that registering a rung is
+/// that one line.
+macro_rules! ladder {
+    ($($(#[$doc:meta])* $variant:ident($model:ty) = $module:ident,)*) => {
+        /// The selected creep-force model with its options.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub enum ModelChoice {
+            $($(#[$doc])* $variant($model),)*
+        }
+
+        impl ModelChoice {
+            /// Every rung, in the order of their FMU values: the one list the FMU's enumeration,
+            /// its documentation, the README's ladder table, the tests and the benchmarks are
+            /// made from or checked against.
+            pub const RUNGS: &'static [&'static $crate::Rung] = &[$(&$module::RUNG),*];
+
+            /// The rung this model is.
+            pub fn rung(&self) -> &'static $crate::Rung {
+                match self {
+                    $(Self::$variant(_) => &$module::RUNG,)*
+                }
+            }
+        }
+
+        impl $crate::CreepForceModel for ModelChoice {
+            #[inline]
+            fn creep_forces(
+                &self,
+                input: &$crate::ContactInput,
+            ) -> Result<$crate::CreepForces, $crate::InvalidInput> {
+                match self {
+                    $(Self::$variant(model) => model.creep_forces(input),)*
+                }
+            }
+
+            /// The chosen model's own derivative (each model's: exact by dual numbers where it
+            /// has one, a central difference where it has not). Without this the trait's default
+            /// (a central difference) would replace the exact ones.
+            #[inline]
+            fn directional_derivative(
+                &self,
+                input: &$crate::ContactInput,
+                direction: &$crate::ContactInput,
+            ) -> Result<$crate::CreepForces, $crate::InvalidInput> {
+                match self {
+                    $(Self::$variant(model) => model.directional_derivative(input, direction),)*
+                }
+            }
+        }
+    };
 }
+pub(crate) use ladder;
 
 impl ModelChoice {
+    /// The rung of this value of the FMU's `creep_force_model`, if any.
+    pub fn rung_of_fmu_value(value: i32) -> Option<&'static Rung> {
+        Self::RUNGS.iter().copied().find(|rung| rung.fmu_value == value)
+    }
+
     /// Short name, as in the FMU's `model` enumeration and the trade report.
     pub fn name(&self) -> &'static str {
-        match self {
-            Self::Polach(_) => "polach",
-            Self::KalkerLinear(_) => "kalker_linear",
-            Self::ShenHedrickElkins(_) => "shen_hedrick_elkins",
-            Self::Fastsim(_) => "fastsim",
-            Self::Exact(_) => "exact",
-            Self::ExactTable(_) => "exact_table",
-        }
+        self.rung().name
     }
 }
 
@@ -156,35 +191,30 @@ impl ModelChoice {
     }
 }
 
-impl CreepForceModel for ModelChoice {
-    #[inline]
-    fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
-        match self {
-            Self::Polach(model) => model.creep_forces(input),
-            Self::KalkerLinear(model) => model.creep_forces(input),
-            Self::ShenHedrickElkins(model) => model.creep_forces(input),
-            Self::Fastsim(model) => model.creep_forces(input),
-            Self::Exact(model) => model.creep_forces(input),
-            Self::ExactTable(model) => model.creep_forces(input),
-        }
-    }
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-    /// The chosen model's own derivative: exact (dual numbers) for Polach, Kalker's linear
-    /// theory, Shen–Hedrick–Elkins and the exact theory's table, FASTSIM's central difference. Without this the trait's
-    /// default (a central difference) would replace the exact ones.
-    #[inline]
-    fn directional_derivative(
-        &self,
-        input: &ContactInput,
-        direction: &ContactInput,
-    ) -> Result<CreepForces, InvalidInput> {
-        match self {
-            Self::Polach(model) => model.directional_derivative(input, direction),
-            Self::KalkerLinear(model) => model.directional_derivative(input, direction),
-            Self::ShenHedrickElkins(model) => model.directional_derivative(input, direction),
-            Self::Fastsim(model) => model.directional_derivative(input, direction),
-            Self::Exact(model) => model.directional_derivative(input, direction),
-            Self::ExactTable(model) => model.directional_derivative(input, direction),
+    /// The FMU's values are 1, 2, … in the list's order, and each rung's default model is that
+    /// rung (a rung registered in `RUNGS` but answered by another `rung()` arm fails here).
+    #[test]
+    fn every_rung_is_listed_once_in_the_order_of_its_value() {
+        for (index, rung) in ModelChoice::RUNGS.iter().enumerate() {
+            assert_eq!(rung.fmu_value, index as i32 + 1, "{}", rung.name);
+            let model = (rung.default_model)().unwrap_or_else(|e| panic!("{}: {e}", rung.name));
+            assert_eq!((model.rung().name, model.rung().fmu_value), (rung.name, rung.fmu_value));
+            assert_eq!(ModelChoice::rung_of_fmu_value(rung.fmu_value).map(|r| r.name), Some(rung.name));
+            assert_eq!(
+                model.creep_forces(&crate::reference_cases::FASTSIM_CASE).map(|f| f.spin_moment.is_some()),
+                Ok(rung.spin_moment),
+                "{}",
+                rung.name
+            );
         }
+        assert!(ModelChoice::rung_of_fmu_value(0).is_none());
+        let mut names: Vec<_> = ModelChoice::RUNGS.iter().map(|rung| rung.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), ModelChoice::RUNGS.len());
     }
 }

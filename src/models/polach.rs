@@ -12,8 +12,9 @@ use std::f64::consts::PI;
 
 use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::models::polach2005::LargeCreepage;
+use crate::models::rung::Rung;
 use crate::numerics::{magnitude, value, Scalar};
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, MeasuredCurve};
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, MeasuredCurve, ModelChoice};
 
 /// Largest gradient ε used. Beyond it the force is saturated to within 1e-150 relative, and
 /// ε² stays finite, so `ε/(1+ε²)` and `(1+ε²)²` can neither overflow nor become NaN.
@@ -41,6 +42,21 @@ pub struct Polach {
     /// is the original method and costs one branch.
     pub large_creepage: Option<LargeCreepage>,
 }
+
+/// Polach's rung of the ladder: the FMU's default model.
+pub const RUNG: Rung = Rung {
+    name: "polach",
+    fmu_value: 1,
+    type_name: "Polach",
+    fmu_parameters: &["stiffness_source", "measured_peak_adhesion", "measured_creepage_at_peak", "measured_kinetic_friction"],
+    spin_moment: false,
+    friction_limited: true,
+    offline: false,
+    summary: "Polach's analytical solution, Kalker's or a measured curve's stiffness (`MeasuredCurve`), optional Polach 2005 falling friction (`LargeCreepage`)",
+    source: "Polach 1999 (the paper in `docs/reference/`, equations cited by number, errata E1–E8)",
+    documentation: "Polách's method, above. No spin moment: <code>spin_moment</code> = 0.",
+    default_model: || Ok(ModelChoice::Polach(Polach::default())),
+};
 
 impl CreepForceModel for Polach {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {

@@ -20,8 +20,9 @@
 
 use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::models::kalker_linear::LinearTheory;
+use crate::models::rung::Rung;
 use crate::numerics::{magnitude, value, Scalar};
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelChoice};
 
 /// β at which the cubic reaches μQ with zero slope.
 const FULL_SLIP_RATIO: f64 = 3.0;
@@ -29,6 +30,22 @@ const FULL_SLIP_RATIO: f64 = 3.0;
 /// Shen–Hedrick–Elkins: Kalker's linear forces with a cubic saturation to μQ.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ShenHedrickElkins;
+
+/// Shen–Hedrick–Elkins' rung of the ladder.
+pub const RUNG: Rung = Rung {
+    name: "shen_hedrick_elkins",
+    fmu_value: 3,
+    type_name: "ShenHedrickElkins",
+    fmu_parameters: &[],
+    spin_moment: false,
+    friction_limited: true,
+    offline: false,
+    summary: "the linear forces with a cubic saturation to μQ",
+    source: "Shen, Hedrick & Elkins 1983",
+    documentation: "Shen, Hedrick &amp; Elkins (1983): the linear forces scaled so that their
+resultant follows F = μQ(β − β²/3 + β³/27), β = F′/(μQ) &lt; 3, else μQ. No spin moment: <code>spin_moment</code> = 0.",
+    default_model: || Ok(ModelChoice::ShenHedrickElkins(ShenHedrickElkins)),
+};
 
 impl CreepForceModel for ShenHedrickElkins {
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {

@@ -2,8 +2,7 @@
 #![allow(dead_code)] // each test crate uses its own subset
 
 use wheel_rail_contact::scene::SceneOutput;
-use wheel_rail_contact::{ContactInput, ExactTable, Fastsim, Flexibility, ModelChoice, Polach, TractionBound};
-use wheel_rail_contact::{KalkerLinear, ShenHedrickElkins};
+use wheel_rail_contact::{ContactInput, Fastsim, Flexibility, ModelChoice, TractionBound};
 
 pub use wheel_rail_contact::reference_cases as published;
 
@@ -59,24 +58,26 @@ pub fn fastsim(n: usize, bound: TractionBound) -> Fastsim {
     Fastsim::new(n, n, bound, Flexibility::ThreeBlended).unwrap()
 }
 
-/// Every saturating model (friction-limited), with a name for messages.
-pub fn saturating_models() -> Vec<ModelChoice> {
-    vec![
-        ModelChoice::Polach(Polach::default()),
-        ModelChoice::ShenHedrickElkins(ShenHedrickElkins),
-        ModelChoice::Fastsim(fastsim(20, TractionBound::Parabolic)),
+/// Every rung for real-time use at its default (`ModelChoice::RUNGS`; the exact theory's default
+/// grid is for offline use, so the tests that include it choose a small grid themselves), and
+/// FASTSIM with its other bound and flexibilities.
+pub fn all_models() -> Vec<ModelChoice> {
+    let mut models: Vec<ModelChoice> = ModelChoice::RUNGS
+        .iter()
+        .filter(|rung| !rung.offline)
+        .map(|rung| (rung.default_model)().unwrap_or_else(|e| panic!("{}: {e}", rung.name)))
+        .collect();
+    models.extend([
         ModelChoice::Fastsim(fastsim(20, TractionBound::Elliptic)),
         ModelChoice::Fastsim(Fastsim::new(20, 20, TractionBound::Parabolic, Flexibility::Three).unwrap()),
         ModelChoice::Fastsim(Fastsim::new(15, 25, TractionBound::Parabolic, Flexibility::SingleWeighted).unwrap()),
-        ModelChoice::ExactTable(ExactTable::new().expect("the compiled-in table is valid")),
-    ]
+    ]);
+    models
 }
 
-/// Every model of the ladder.
-pub fn all_models() -> Vec<ModelChoice> {
-    let mut models = saturating_models();
-    models.push(ModelChoice::KalkerLinear(KalkerLinear));
-    models
+/// The models of [`all_models`] whose forces are bounded by μQ.
+pub fn saturating_models() -> Vec<ModelChoice> {
+    all_models().into_iter().filter(|model| model.rung().friction_limited).collect()
 }
 
 /// A direction with no rate at all; tests set the rates they need.

@@ -15,10 +15,16 @@ def document(top="", grid="", tables=""):
     return f"{top}\n{GRID}{grid}\n{tables}\n"
 
 
+def every_model(interface):
+    """The FMU's models, as its modelDescription.xml declares them (checked against the core's list
+    of rungs by the adapter's tests)."""
+    return ", ".join(interface["variables"]["creep_force_model"]["items"])
+
+
 @pytest.mark.parametrize("text, message", [
     (document(top='chunksize = 5'), "chunksize: unknown key (did you mean chunk_size?)"),
-    (document(top='models = ["polach", "exakt"]'), "models[1]: 'exakt' is not a creep_force_model (polach, kalker_linear, "
-                                     "shen_hedrick_elkins, fastsim, exact, exact_table)"),
+    (document(top='models = ["polach", "exakt"]'),
+     lambda interface: f"models[1]: 'exakt' is not a creep_force_model ({every_model(interface)})"),
     (document(top='models = []'), "models: must be a non-empty list"),
     (document(top='outputs = ["force_longitudinal", "force_lateal"]'), "outputs[1]: unknown output 'force_lateal' "
                                                          "(did you mean force_lateral?)"),
@@ -57,6 +63,8 @@ def document(top="", grid="", tables=""):
      "plot.error_map.x: 'semi_axis_b' is not a [grid] axis"),
 ])
 def test_a_malformed_study_names_the_key(interface, text, message):
+    if callable(message):
+        message = message(interface)
     with pytest.raises(spec.StudyError) as raised:
         spec.parse(tomllib.loads(text), interface)
     assert str(raised.value).startswith(message), str(raised.value)

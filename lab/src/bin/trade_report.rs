@@ -13,10 +13,12 @@ use std::hint::black_box;
 use std::time::Instant;
 use wheel_rail_contact::{
     ContactInput, CreepForceModel, CreepForces, Discretisation, ExactTable, ExactTheory, Fastsim, Flexibility,
-    KalkerCoefficients, KalkerLinear, Polach, ShenHedrickElkins, TractionBound,
+    KalkerCoefficients, TractionBound,
 };
 
 use lab::random_contacts::{random_contact, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
+use wheel_rail_contact::models::{fastsim, polach};
+use wheel_rail_contact::ModelChoice;
 
 /// CONTACT's published cases, the same definitions the tests use.
 use wheel_rail_contact::reference_cases::{
@@ -149,14 +151,18 @@ fn bound_name(bound: TractionBound) -> &'static str {
     }
 }
 
-/// Every model measured: Polach first (the speed ratios refer to it).
+/// Every model measured: each real-time rung at its default (`ModelChoice::RUNGS`, Polach first:
+/// the speed ratios refer to it) but FASTSIM, which is measured on `grids` with both bounds.
 fn ladder(grids: &[usize]) -> Vec<Model> {
-    let mut models: Vec<Model> = vec![
-        ("polach".to_owned(), Box::new(Polach::default())),
-        ("kalker_linear".to_owned(), Box::new(KalkerLinear)),
-        ("shen_hedrick_elkins".to_owned(), Box::new(ShenHedrickElkins)),
-        ("exact_table".to_owned(), Box::new(ExactTable::new().expect("the compiled-in table is valid"))),
-    ];
+    let mut models: Vec<Model> = ModelChoice::RUNGS
+        .iter()
+        .filter(|rung| !rung.offline && rung.name != fastsim::RUNG.name)
+        .map(|rung| {
+            let model = (rung.default_model)().unwrap_or_else(|e| panic!("{}: {e}", rung.name));
+            (rung.name.to_owned(), Box::new(model) as Box<dyn CreepForceModel>)
+        })
+        .collect();
+    assert_eq!(models[0].0, polach::RUNG.name, "the speed ratios refer to Polach's");
     for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {
         for &n in grids {
             models.push((format!("fastsim_{}_{n}x{n}", bound_name(bound)), Box::new(fastsim(n, bound))));

@@ -24,18 +24,17 @@
 //!
 //! Cost: O(N log N) per iteration for N elements (four 2-D FFTs of the zero-padded grid per
 //! operator product, as many per preconditioner application), 40–120 products per cold solve
-//! on 40 × 40 … 160 × 160. Measured CPU time per cold solve, one thread (CONTACT's spin case /
-//! pure ξ in partial slip; `benches/exact.rs` on a shared 2-core machine): 6–10 ms at 40 × 40,
-//! 30–40 ms at 80 × 80, 0.15–0.26 s at 160 × 160; a warm-started step of a slowly varying
-//! co-simulation on 40 × 40 ≈ 4.5 ms (30 products). Every solve is bounded ([`MAX_ITERATIONS`]
+//! on 40 × 40 … 160 × 160. The time per solve, cold and warm-started, one thread, is measured by
+//! `cargo bench --bench exact` (CONTACT's spin case, pure ξ in partial slip, a slowly varying
+//! co-simulation) and per grid over the trade report's cases in docs/trade/README.md. Every solve is bounded ([`MAX_ITERATIONS`]
 //! Newton steps, [`MAX_PRODUCTS`] products; twice that for a warm start and the cold solve
 //! racing it), and a warm-started one by about twice a cold solve (see below).
 //!
 //! Grid: the grid error is first order in the element size and comes almost entirely from the
 //! element length δx along the rolling direction (n_x × n_y = 320 × 40 is within 0.0005 μQ of
 //! 320 × 320 on CONTACT's spin case, pure ξ and a/b = 10), so grids with more elements along x
-//! are the cheap way to accuracy: 200 × 50 is within 0.0041 μQ (max over the trade report's
-//! 270 cases, spin included; docs/trade/) of the converged solution, 80 × 80 within 0.010.
+//! are the cheap way to accuracy: the trade report (docs/trade/README.md) gives each grid's error
+//! against the converged solution over its cases, spin included, 200 × 50 among them.
 //!
 //! Warm starts: a solution's tractions, kept by the caller as a [`WarmStart`] and passed to
 //! [`ExactTheory::solve_from`], start the next solve. They are stored in units of μp₀ on a grid
@@ -58,7 +57,8 @@ use std::f64::consts::PI;
 
 use rayon::prelude::*;
 
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+use crate::models::rung::Rung;
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelChoice};
 pub use coefficients::LinearCoefficients;
 use grid::ContactGrid;
 pub use grid::GridSize;
@@ -79,8 +79,8 @@ pub enum ElementState {
 
 /// Largest number of elements along either axis (the "[1, 400]" of the validation message):
 /// bounds the memory (the Newton solver keeps 60 vectors of the grid's size: 215 MB peak at
-/// 400 × 400) and the time of a solve (CONTACT's spin case cold at 400 × 400: 4.5 s, 203
-/// products, on a shared 2-core machine; at most [`MAX_PRODUCTS`] products, ≈ 90 s). Raised from
+/// 400 × 400) and the time of a solve (at most [`MAX_PRODUCTS`] operator products; CONTACT's spin
+/// case cold at 400 × 400 takes 203). Raised from
 /// 200 with the FFT solver, for reference solutions on 320 × 320 and 400 × 400.
 pub const MAX_ELEMENTS_PER_AXIS: usize = 400;
 /// Smallest number of elements along an axis for which a solve without a start begins with the
@@ -106,6 +106,34 @@ pub struct ExactTheory {
     /// Elements over the potential contact area.
     pub grid: GridSize,
 }
+
+/// The exact theory's rung of the ladder: the top one, the reference of the others.
+pub const RUNG: Rung = Rung {
+    name: "exact",
+    fmu_value: 5,
+    type_name: "ExactTheory",
+    fmu_parameters: &["exact_elements_longitudinal", "exact_elements_lateral"],
+    spin_moment: true,
+    friction_limited: true,
+    offline: true,
+    summary: "Kalker's exact theory of steady rolling on half-spaces (Love's influence coefficients as FFT convolutions, active-set Newton–GMRES; Gauss–Seidel kept as the test oracle), forces, M_z, traction field, adhesion/slip areas; its own linear coefficients C11 … C33 (`linear_coefficients`, checked against Kalker's table row by row)",
+    source: "Kalker 1990; CONTACT",
+    documentation: "Kalker's exact theory of steady rolling (Kalker 1990; as in Vollebregt's CONTACT): Love's
+influence coefficients on a rectangular grid of <code>exact_elements_longitudinal</code> ×
+<code>exact_elements_lateral</code> elements over the potential contact area 2.2a × 2.2b, Hertzian pressure,
+Coulomb's law; solved by an active-set Newton method whose linear steps (GMRES) apply the influence coefficients
+as FFT convolutions, O(N log N) per product. Gives M<sub>z</sub>. Each step starts from the previous step's
+tractions (scaled to the new μp<sub>0</sub> and ellipse), so a co-simulation with slowly varying creepage needs
+a few iterations per step. The default 200 × 50 spends its elements along the rolling direction, where almost
+all of the error comes from; its error against the converged theory and its time per evaluation, and those of
+other grids, are measured in docs/trade/README.md in the source repository (<code>cargo run --release -p lab --bin trade_report</code>).
+<b>For offline or low-rate use.</b>",
+    default_model: || {
+        let exact = ExactTheory::new(200, 50);
+        exact.validate()?;
+        Ok(ModelChoice::Exact(exact))
+    },
+};
 
 impl Default for ExactTheory {
     /// CONTACT's published grid: 44 × 44 elements, 40 × 40 of them inside the ellipse.

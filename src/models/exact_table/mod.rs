@@ -41,8 +41,9 @@ mod table;
 use std::sync::OnceLock;
 
 use crate::creep_force_model::{dual_derivative, NoForceBoundary};
+use crate::models::rung::Rung;
 use crate::numerics::Scalar;
-use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput};
+use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelChoice};
 pub use table::{Table, TableAxes, TableError, A_OVER_B_RANGE, FORMAT_VERSION};
 
 /// The table compiled into this library (empty when `data/exact_table.bin` was missing when it
@@ -54,6 +55,28 @@ const COMPILED_IN: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/exact_table
 pub struct ExactTable {
     table: &'static Table,
 }
+
+/// The exact theory's table's rung of the ladder.
+pub const RUNG: Rung = Rung {
+    name: "exact_table",
+    fmu_value: 6,
+    type_name: "ExactTable",
+    fmu_parameters: &[],
+    spin_moment: true,
+    friction_limited: true,
+    offline: false,
+    summary: "Kalker's exact theory tabulated by our solver over a/b ∈ [0.1, 10], ν ∈ [0, 0.5] and every creepage (similarity-scaled, folded by the symmetries, full sliding analytic), multilinear: F, M_z at about Polach's cost; `cargo fmu exact-table` regenerates `data/exact_table.bin`",
+    source: "Kalker 1990; Kalker's USETAB (1996) idea; [docs/exact_table.md](docs/exact_table.md)",
+    documentation: "Kalker's exact theory interpolated from a table compiled into this FMU (made by the
+exact solver above; the idea of Kalker's USETAB, 1996). By Kalker's similarity law the forces in units of μQ (and
+M<sub>z</sub> in μQc) depend only on a/b, ν and the creepages scaled by μp<sub>0</sub>/G with Kalker's coefficients;
+the table spans a/b ∈ [0.1, 10] (outside: an error naming both semi-axes), ν ∈ [0, 0.5] and every creepage up
+to full sliding, which it reaches continuously (computed analytically). Multilinear interpolation: |F| ≤ μQ,
+continuous, the problem's symmetries exact, Kalker's linear theory at small creepage. Gives M<sub>z</sub>. Its
+time per evaluation and its error against the exact theory on random held-out contacts are measured in
+docs/trade/README.md in the source repository (<code>cargo run --release -p lab --bin trade_report</code>).",
+    default_model: || Ok(ModelChoice::ExactTable(ExactTable::new()?)),
+};
 
 impl ExactTable {
     /// The model with the table compiled into this library, read and checked on the first call.

@@ -3,7 +3,6 @@
 //! mapping, variable table, GUID, `<ModelStructure>` indices and the FMU-state layout tag
 //! (`src/model_description.rs` includes the result).
 
-#[path = "build/model_description.rs"]
 mod model_description;
 
 fn main() {

@@ -1,7 +1,8 @@
 //! A small master over the FMU's C exports (the `extern "C"` functions of
 //! `wheel_rail_contact_fmu::ffi`, called in-process exactly as a master calls the shared
-//! library), shared by the C-ABI integration tests and the leak-check example.
-#![allow(dead_code)] // each test binary uses part of it
+//! library), shared by the adapter's C-ABI integration tests, its leak-check example and its
+//! step benchmark. A workspace crate (not published) so that each of them depends on it instead
+//! of including its source.
 
 use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
@@ -252,6 +253,9 @@ impl Fmu {
         state
     }
 
+    // Safe on purpose, as the C ABI a master calls is: the FMU must check the state it is given
+    // (the tests hand it states of other instances and freed ones), not trust the caller.
+    #[allow(clippy::not_unsafe_ptr_arg_deref)]
     pub fn set_state(&self, state: fmi2FMUstate) -> fmi2Status {
         // SAFETY: live instance; `state` from this FMU.
         unsafe { fmi2SetFMUstate(self.c, state) }
@@ -263,6 +267,9 @@ impl Fmu {
         assert!(state.is_null());
     }
 
+    // Safe on purpose, as the C ABI a master calls is: the FMU must check the state it is given
+    // (the tests hand it states of other instances and freed ones), not trust the caller.
+    #[allow(clippy::not_unsafe_ptr_arg_deref)]
     pub fn serialize(&self, state: fmi2FMUstate) -> Vec<u8> {
         let mut size = 0;
         // SAFETY: live instance and state; the buffer has the size the FMU asked for.
