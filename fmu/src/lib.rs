@@ -9,6 +9,8 @@
 //!   outputs, directional derivatives).
 //! - [`profiles`]: `contact_geometry = profiles`: the profiles read (the adapter's only file
 //!   I/O) and placed, the wheel's inputs and outputs.
+//! - [`resources`]: the FMU's resources directory from the master's resource URI, and files
+//!   named relative to it.
 //! - [`mode`]: the Co-Simulation state machine: modes, and the typed call table saying which
 //!   modes allow each call.
 //! - [`logging`]: statuses, and which messages reach the master's logger.
@@ -28,5 +30,6 @@ pub mod mode;
 pub mod model_description;
 pub mod options;
 pub mod profiles;
+pub mod resources;
 pub mod scene;
 pub mod snapshot;

@@ -12,7 +12,9 @@
 use super::model_description::{
     Inputs, Parameters, Strings, VerticalContact as VerticalChoice, WheelSide as SideChoice,
 };
+use super::resources::file_path;
 use super::scene::enumeration;
+use std::path::Path;
 use wheel_rail_contact::geometry::{
     builtin_profile, parse_profile, PatchForces, ProfileFormat, ProfilePoints, SmoothProfile, TrackDimensions,
     VerticalContact, WheelInput, WheelOnRail, WheelOutput, WheelRailContact, WheelSide, WheelsetPosition,
@@ -30,8 +32,9 @@ pub struct ProfileContact {
     vertical: VerticalChoice,
 }
 
-/// The points of the profile `variable` names: a built-in one, or the file at that path.
-fn profile_points(variable: &str, value: &str) -> Result<ProfilePoints, String> {
+/// The points of the profile `variable` names: a built-in one, or the file at that path (a
+/// relative one in the FMU's `resources` first, then in the working directory).
+fn profile_points(variable: &str, value: &str, resources: Option<&Path>) -> Result<ProfilePoints, String> {
     if BUILTIN_PROFILE_NAMES.contains(&value) {
         return builtin_profile(value).map_err(|e| format!("{variable} = \"{value}\": {e}"));
     }
@@ -42,19 +45,33 @@ fn profile_points(variable: &str, value: &str) -> Result<ProfilePoints, String> 
             BUILTIN_PROFILE_NAMES.join(", ")
         ));
     };
-    let text = std::fs::read_to_string(value)
-        .map_err(|e| format!("{variable} = \"{value}\": the file cannot be read ({e})"))?;
+    let path = file_path(value, resources);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        let looked_in = match resources {
+            Some(directory) if Path::new(value).is_relative() => {
+                format!(" (looked in the FMU's resources {} and the working directory)", directory.display())
+            }
+            _ => String::new(),
+        };
+        format!("{variable} = \"{value}\": the file cannot be read ({e}){looked_in}")
+    })?;
     parse_profile(&text, format).map_err(|e| format!("{variable} = \"{value}\": {e}"))
 }
 
-fn smooth_profile(variable: &str, value: &str) -> Result<SmoothProfile, String> {
-    SmoothProfile::new(&profile_points(variable, value)?).map_err(|e| format!("{variable} = \"{value}\": {e}"))
+fn smooth_profile(variable: &str, value: &str, resources: Option<&Path>) -> Result<SmoothProfile, String> {
+    SmoothProfile::new(&profile_points(variable, value, resources)?)
+        .map_err(|e| format!("{variable} = \"{value}\": {e}"))
 }
 
 impl ProfileContact {
     /// Reads and places the profiles and builds the wheel with `scene` (its model, traction
     /// law, relaxation and material); the error names the variable and value.
-    pub fn new(parameters: &Parameters, strings: &Strings, scene: Scene) -> Result<Self, String> {
+    pub fn new(
+        parameters: &Parameters,
+        strings: &Strings,
+        scene: Scene,
+        resources: Option<&Path>,
+    ) -> Result<Self, String> {
         let side = match enumeration("wheel_side", parameters.wheel_side, SideChoice::from_value, SideChoice::ITEMS)? {
             SideChoice::Right => WheelSide::Right,
             SideChoice::Left => WheelSide::Left,
@@ -74,8 +91,8 @@ impl ProfileContact {
             rail_cant: parameters.rail_cant,
         };
         let geometry = WheelOnRail::new(
-            smooth_profile("wheel_profile", &strings.wheel_profile)?,
-            smooth_profile("rail_profile", &strings.rail_profile)?,
+            smooth_profile("wheel_profile", &strings.wheel_profile, resources)?,
+            smooth_profile("rail_profile", &strings.rail_profile, resources)?,
             dimensions,
             side,
             scene.shear_modulus,

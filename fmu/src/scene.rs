@@ -9,6 +9,8 @@
 //! explicitly) and the outputs built by one struct literal without `..` ([`outputs`]), so a
 //! variable added to or removed from `modelDescription.xml` stops the build until it is mapped here.
 
+use std::path::{Path, PathBuf};
+
 use super::model_description::{
     ContactGeometry, Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters,
     StiffnessSource as StiffnessChoice, Strings, Switch, TractionBound as TractionBoundChoice,
@@ -49,9 +51,17 @@ pub struct ModelCache {
     scene_cache: SceneCache,
     /// The same per patch of the wheel.
     wheel_cache: WheelCache,
+    /// The FMU's resources directory, where relative profile paths are looked up first.
+    resources: Option<PathBuf>,
 }
 
 impl ModelCache {
+    /// An empty cache whose profiles are looked up in `resources` first (see
+    /// [`crate::resources::file_path`]).
+    pub fn new(resources: Option<PathBuf>) -> Self {
+        Self { resources, ..Self::default() }
+    }
+
     /// Forgets the scene: the next evaluation builds it from the parameters it is given.
     #[inline]
     pub fn parameters_changed(&mut self) {
@@ -65,8 +75,10 @@ impl ModelCache {
         parameters: &Parameters,
         strings: &Strings,
     ) -> Result<(&Contact, &mut SceneCache, &mut WheelCache), String> {
-        let (built_for, built_strings, contact) =
-            self.built.get_or_insert_with(|| (*parameters, strings.clone(), contact_of(parameters, strings)));
+        let resources = self.resources.as_deref();
+        let (built_for, built_strings, contact) = self
+            .built
+            .get_or_insert_with(|| (*parameters, strings.clone(), contact_of(parameters, strings, resources)));
         // A NaN parameter never equals itself (`parameters != parameters`): such a scene is an
         // error, reported alike whether cached or rebuilt.
         #[allow(clippy::eq_op)]
@@ -264,7 +276,7 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
 /// The contact the parameters select: the scene, or the wheel on its rail with that scene's
 /// model, traction law, relaxation, material and regularisation speed (its creepages always
 /// from the wheelset's motion, its ellipses from the profiles).
-fn contact_of(parameters: &Parameters, strings: &Strings) -> Result<Contact, String> {
+fn contact_of(parameters: &Parameters, strings: &Strings, resources: Option<&Path>) -> Result<Contact, String> {
     let scene = scene_of(parameters)?;
     let geometry = parameters.contact_geometry;
     Ok(match enumeration("contact_geometry", geometry, ContactGeometry::from_value, ContactGeometry::ITEMS)? {
@@ -272,7 +284,7 @@ fn contact_of(parameters: &Parameters, strings: &Strings) -> Result<Contact, Str
         ContactGeometry::Profiles => {
             let regularisation_speed = parameters.regularisation_speed;
             let scene = Scene { creepages: CreepageSource::Kinematics { regularisation_speed }, ..scene };
-            Contact::Profiles(Box::new(ProfileContact::new(parameters, strings, scene)?))
+            Contact::Profiles(Box::new(ProfileContact::new(parameters, strings, scene, resources)?))
         }
     })
 }

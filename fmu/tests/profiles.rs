@@ -161,6 +161,42 @@ fn a_missing_or_malformed_profile_is_an_error_naming_the_file_and_the_reason() {
 }
 
 #[test]
+fn a_relative_profile_path_is_read_from_the_fmus_resources() {
+    // An FMU unzipped into a directory with a space, as masters do, its wheel profile packed
+    // under resources/profiles/: the master passes the location as a percent-encoded file URI.
+    let root = std::env::temp_dir().join(format!("wrc unzipped {}", std::process::id()));
+    let resources = root.join("resources");
+    std::fs::create_dir_all(resources.join("profiles")).unwrap();
+    std::fs::write(resources.join("profiles/wheel.prw"), include_str!("../../data/profiles/MBench_S1002_v3.prw"))
+        .unwrap();
+    let location = format!("file://{}/", resources.to_str().unwrap().replace(' ', "%20"));
+    let outputs = |wheel: &str, location: Option<&str>| {
+        let log = MessageLog::default();
+        let fmu = Fmu::instantiate_logged_at("packed", &log, location);
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+        assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE], &[wheel]), OK);
+        assert_eq!(fmu.set_real(&WHEELSET, &CASE_11), OK);
+        let status = exit_initialisation(&fmu);
+        let message = log.last().map(|(_, message)| message).unwrap_or_default();
+        let forces = if status == OK { fmu.get_real(&[vr::TRACK_FORCE_Y, vr::TRACK_FORCE_Z]) } else { Vec::new() };
+        (status, forces, message)
+    };
+    let (status, packed, _) = outputs("profiles/wheel.prw", Some(&location));
+    assert_eq!(status, OK);
+    // The same profile as the built-in one: the same wheel, bit for bit.
+    assert_eq!(packed, outputs("MBench_S1002", None).1);
+    // Without the resource location, the relative path is the working directory's: not there.
+    let (status, _, message) = outputs("profiles/wheel.prw", None);
+    assert_eq!(status, ERROR);
+    assert!(message.contains("the file cannot be read") && !message.contains("resources"), "{message}");
+    // Not packed either: the message says where it looked.
+    let (status, _, message) = outputs("profiles/other.prw", Some(&location));
+    assert_eq!(status, ERROR);
+    assert!(message.contains("looked in the FMU's resources") && message.contains("working directory"), "{message}");
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
 fn the_outputs_are_the_cores_wheel_on_its_rail() {
     let log = MessageLog::default();
     let fmu = profiles(SideChoice::Right, &CASE_11, &log);

@@ -235,7 +235,8 @@ wheelset's position and motion, as CONTACT's module 1 computes them.</p>
 <ul>
 <li><b>Profiles</b>: the String parameters <code>wheel_profile</code> and <code>rail_profile</code>, each a file path
 (SIMPACK <code>.prw</code>/<code>.prr</code>, MiniProf <code>.whl</code>/<code>.ban</code>, the format from the extension; a
-relative path is relative to the master's working directory) or a built-in name (<code>MBench_S1002</code>,
+relative path is looked up in the FMU's <code>resources/</code> first, where a profile packed into the FMU
+is found wherever the master unzips it, then in the master's working directory) or a built-in name (<code>MBench_S1002</code>,
 <code>MBench_UIC60</code>: the Manchester benchmark's S1002 wheel and UIC60 rail inclined 1:40, the defaults). Both are
 given for the right side, y lateral and z downward in their own coordinates; the left wheel
 (<code>wheel_side</code> = left, 0) uses them mirrored, as CONTACT does, and reports lateral positions and contact

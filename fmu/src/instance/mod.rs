@@ -22,6 +22,7 @@
 
 use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
 
 mod derivative;
 mod fmu_state;
@@ -34,6 +35,7 @@ pub use values::ValueType;
 use crate::logging::{status_category, LogFilter, LogSink, Status};
 use crate::mode::{Call, Mode, Modes, LIVE};
 use crate::model_description::{self, Values, LOG_CATEGORIES};
+use crate::resources::resource_directory;
 use crate::scene::ModelCache;
 use crate::snapshot::Snapshot;
 use wheel_rail_contact::scene::Evaluation;
@@ -56,6 +58,8 @@ pub(crate) const PANIC_CATEGORY_FOR_TESTS: &str = "panicForTests";
 pub struct Instance {
     name: String,
     resource_location: Option<String>,
+    /// The directory it names, if it names one: where relative profile paths are looked up first.
+    resources: Option<PathBuf>,
     /// Mode, time, values and model state: exactly what an FMU state saves and restores.
     run: Snapshot,
     /// A cache derived from the parameters (not state: it is refitted whenever they differ).
@@ -96,16 +100,25 @@ impl Instance {
             sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
             return None;
         }
+        let resources = resource_location.map(resource_directory);
         let mut instance = Instance {
             name: instance_name.to_owned(),
             resource_location: resource_location.map(str::to_owned),
+            resources: resources.clone().and_then(Result::ok),
             run: Snapshot::instantiated(),
-            model: ModelCache::default(),
+            model: ModelCache::new(resources.clone().and_then(Result::ok)),
             returned_strings: Vec::new(),
             log_filter: LogFilter::new(logging_on, None),
             sink,
         };
         instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
+        if let Some(Err(reason)) = resources {
+            // Not an error: only a relative profile path needs the directory, and is then also
+            // looked up in the working directory.
+            instance.trace(|| {
+                format!("fmi2Instantiate: {reason}; relative profile paths are read from the working directory")
+            });
+        }
         Some(instance)
     }
 
@@ -281,7 +294,7 @@ impl Instance {
         }
         self.trace(|| CALL.name().to_owned());
         self.run = Snapshot::instantiated();
-        self.model = ModelCache::default();
+        self.model = ModelCache::new(self.resources.clone());
         Status::Ok
     }
 

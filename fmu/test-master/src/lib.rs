@@ -113,11 +113,16 @@ pub struct Fmu {
 
 impl Fmu {
     pub fn instantiate(name: &str, counter: Option<&LogCounter>) -> Fmu {
-        Self::with_callbacks(name, callbacks(counter))
+        Self::with_callbacks(name, callbacks(counter), None)
     }
 
     /// An instance whose messages are recorded in `log` (which must outlive it).
     pub fn instantiate_logged(name: &str, log: &MessageLog) -> Fmu {
+        Self::instantiate_logged_at(name, log, None)
+    }
+
+    /// [`Self::instantiate_logged`] with `resource_location` passed to fmi2Instantiate.
+    pub fn instantiate_logged_at(name: &str, log: &MessageLog, resource_location: Option<&str>) -> Fmu {
         type Named =
             extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
         type Variadic =
@@ -132,15 +137,26 @@ impl Fmu {
                 stepFinished: None,
                 componentEnvironment: (log as *const MessageLog).cast_mut().cast(),
             },
+            resource_location,
         )
     }
 
-    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions) -> Fmu {
+    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions, resource_location: Option<&str>) -> Fmu {
         let callbacks = Box::new(callbacks);
         let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
-        // SAFETY: valid strings and callbacks.
+        let location = resource_location.map(|location| CString::new(location).unwrap());
+        let location_pointer = location.as_ref().map_or(null(), |location| location.as_ptr());
+        // SAFETY: valid strings (or NULL for the location) and callbacks.
         let c = unsafe {
-            fmi2Instantiate(name.as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, 0, 0)
+            fmi2Instantiate(
+                name.as_ptr(),
+                fmi2Type_fmi2CoSimulation,
+                guid.as_ptr(),
+                location_pointer,
+                &*callbacks,
+                0,
+                0,
+            )
         };
         assert!(!c.is_null());
         Fmu { c, _callbacks: callbacks }
