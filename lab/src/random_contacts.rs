@@ -19,7 +19,7 @@ impl Uniform {
         Self(seed)
     }
 
-    pub fn next(&mut self) -> f64 {
+    pub fn sample(&mut self) -> f64 {
         self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
@@ -50,9 +50,9 @@ pub fn contact_along(a_over_b: f64, poisson_ratio: f64, level: f64, z: f64, angl
 /// [0, 0.5], the creepage direction uniform on the sphere of (ξ/ξ*, η/η*, φ/φ*), its size
 /// log-uniform from 0.01 to 30 × the characteristic creepage.
 pub fn random_contact(uniform: &mut Uniform, span: f64) -> ContactInput {
-    let a_over_b = 10f64.powf(span * (2.0 * uniform.next() - 1.0));
-    let poisson_ratio = 0.5 * uniform.next();
-    let level = 10f64.powf(-2.0 + uniform.next() * (30f64.log10() + 2.0));
-    let (z, angle) = (2.0 * uniform.next() - 1.0, 2.0 * std::f64::consts::PI * uniform.next());
+    let a_over_b = 10f64.powf(span * (2.0 * uniform.sample() - 1.0));
+    let poisson_ratio = 0.5 * uniform.sample();
+    let level = 10f64.powf(-2.0 + uniform.sample() * (30f64.log10() + 2.0));
+    let (z, angle) = (2.0 * uniform.sample() - 1.0, 2.0 * std::f64::consts::PI * uniform.sample());
     contact_along(a_over_b, poisson_ratio, level, z, angle)
 }

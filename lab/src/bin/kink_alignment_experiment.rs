@@ -185,7 +185,7 @@ fn main() {
         Vec::new()
     };
     let mut uniform = Uniform::new(4242);
-    let mut next = || uniform.next();
+    let mut next = || uniform.sample();
     for _ in 0..random {
         points.push([10f64.powf(2.0 * next() - 1.0), 0.5 * next(), next(), 2.0 * next() - 1.0, 0.3 + 0.6 * next()]);
     }

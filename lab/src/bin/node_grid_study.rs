@@ -37,11 +37,11 @@ fn main() {
     let (l, c) = (FRICTION * NORMAL_FORCE, MEAN_SEMI_AXIS);
     let mut cases = Vec::new();
     for i in 0..n {
-        let a_over_b = 10f64.powf(low + (high - low) * (i as f64 + uniform.next()) / n as f64);
-        let poisson_ratio = 0.5 * uniform.next();
-        let level = 0.4 + 1.6 * uniform.next();
-        let z = (0.3 + 0.7 * uniform.next()) * if uniform.next() < 0.5 { -1.0 } else { 1.0 };
-        let angle = 2.0 * std::f64::consts::PI * uniform.next();
+        let a_over_b = 10f64.powf(low + (high - low) * (i as f64 + uniform.sample()) / n as f64);
+        let poisson_ratio = 0.5 * uniform.sample();
+        let level = 0.4 + 1.6 * uniform.sample();
+        let z = (0.3 + 0.7 * uniform.sample()) * if uniform.sample() < 0.5 { -1.0 } else { 1.0 };
+        let angle = 2.0 * std::f64::consts::PI * uniform.sample();
         cases.push(contact_along(a_over_b, poisson_ratio, level, z, angle));
     }
     let solve = |(nx, ny): (usize, usize)| -> Vec<Option<[f64; 3]>> {
