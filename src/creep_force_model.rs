@@ -8,6 +8,47 @@ use crate::{ContactInput, CreepForces, InvalidInput};
 ///
 /// Implementations validate the input (returning [`InvalidInput`]), return zero force when
 /// [`ContactInput::transmits_no_force`], and never return NaN or infinity for a valid input.
+///
+/// Every rung implements it; a model's derivative agrees with [`central_difference`] where its
+/// forces are smooth:
+///
+/// ```
+/// use wheel_rail_contact::{central_difference, ContactInput, CreepForceModel, KalkerLinear, Polach};
+///
+/// let contact = ContactInput {
+///     creepage_longitudinal: 1e-3,
+///     creepage_lateral: 0.0,
+///     spin_creepage: 0.0,
+///     normal_force: 82e3,
+///     semi_axis_a: 8e-3,
+///     semi_axis_b: 4e-3,
+///     friction_coefficient: 0.3,
+///     shear_modulus: 82e9,
+///     poisson_ratio: 0.25,
+/// };
+/// // The rate of ξ alone: Kalker's dF_x/dξ = −G ab C11 exactly (C11 = 5.10 at a/b = 2, ν = 0.25).
+/// let along_xi = ContactInput {
+///     creepage_longitudinal: 1.0,
+///     normal_force: 0.0,
+///     semi_axis_a: 0.0,
+///     semi_axis_b: 0.0,
+///     friction_coefficient: 0.0,
+///     shear_modulus: 0.0,
+///     poisson_ratio: 0.0,
+///     ..contact
+/// };
+/// let exact = KalkerLinear.directional_derivative(&contact, &along_xi).unwrap();
+/// assert!((exact.force_longitudinal + 82e9 * 32e-6 * 5.10).abs() < 1e-3);
+/// let models: [&dyn CreepForceModel; 2] = [&KalkerLinear, &Polach::default()];
+/// for model in models {
+///     let exact = model.directional_derivative(&contact, &along_xi).unwrap();
+///     let numeric = central_difference(model, &contact, &along_xi).unwrap();
+///     assert!((exact.force_longitudinal / numeric.force_longitudinal - 1.0).abs() < 1e-6);
+/// }
+/// // A rate of ν is refused: the tables have no derivative in it.
+/// let error = KalkerLinear.directional_derivative(&contact, &ContactInput { poisson_ratio: 1.0, ..along_xi });
+/// assert_eq!(error.unwrap_err().variable, "poisson_ratio");
+/// ```
 pub trait CreepForceModel {
     /// Evaluates the forces for one contact patch.
     fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput>;

@@ -24,6 +24,35 @@ use crate::numerics::{value, Scalar};
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, KalkerCoefficients, ModelChoice};
 
 /// Kalker's linear theory: F_x, F_y and M_z proportional to the creepages.
+///
+/// a = 8 mm, b = 4 mm (a/b = 2: Table E.3's row b/a = 0.5), ν = 0.25 (a table column): C11 =
+/// 5.10, C22 = 4.90, C23 = 2.62 as Kalker prints them, so F_x = −G ab C11 ξ = −13.383 MN · ξ:
+///
+/// ```
+/// use wheel_rail_contact::{ContactInput, CreepForceModel, KalkerLinear};
+///
+/// let contact = |xi: f64, eta: f64, phi: f64| ContactInput {
+///     creepage_longitudinal: xi,
+///     creepage_lateral: eta,
+///     spin_creepage: phi,
+///     normal_force: 82e3,
+///     semi_axis_a: 8e-3,
+///     semi_axis_b: 4e-3,
+///     friction_coefficient: 0.3,
+///     shear_modulus: 82e9,
+///     poisson_ratio: 0.25,
+/// };
+/// let forces = KalkerLinear.creep_forces(&contact(1e-3, 0.0, 0.0)).unwrap();
+/// assert!((forces.force_longitudinal + 82e9 * 32e-6 * 5.10 * 1e-3).abs() < 1e-6);
+/// // Not friction-limited: twice the creepage, twice the force, beyond μQ = 24.6 kN.
+/// let doubled = KalkerLinear.creep_forces(&contact(2e-3, 0.0, 0.0)).unwrap();
+/// assert_eq!(doubled.force_longitudinal, 2.0 * forces.force_longitudinal);
+/// assert!(doubled.adhesion_utilisation > 1.0);
+/// // Spin: F_y = −G c³ C23 φ, with c = √(ab).
+/// let spin = KalkerLinear.creep_forces(&contact(0.0, 0.0, 0.05)).unwrap();
+/// assert!((spin.force_lateral + 82e9 * 32e-6_f64.powf(1.5) * 2.62 * 0.05).abs() < 1e-6);
+/// assert!(spin.spin_moment.unwrap() < 0.0, "M_z = −G c⁴ C33 φ opposes the spin");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct KalkerLinear;
 

@@ -34,6 +34,45 @@ pub enum StiffnessSource {
 }
 
 /// Polach's method with a choice of stiffness source and, optionally, his 2005 extension.
+///
+/// Pure spin Φ = 1 /m on a = 8 mm, b = 4 mm, Q = 82 kN, μ = 0.3, G = 82 GPa, ν = 0.25: eqs.
+/// (21)–(25) (with ERRATA E2, E4) give K_S = 6.4474, ε_s = 0.65387, K_M = −0.21390 and F_y =
+/// −19 083.66 N, computed by hand outside the code (`tests/data/paper_hand_values.py`), half of
+/// Kalker's linear value: the spin force saturates.
+///
+/// ```
+/// use wheel_rail_contact::models::polach::{spin_moment_factor, PolachShape, ShapeCache};
+/// use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
+///
+/// let contact = |xi: f64, eta: f64, phi: f64| ContactInput {
+///     creepage_longitudinal: xi,
+///     creepage_lateral: eta,
+///     spin_creepage: phi,
+///     normal_force: 82e3,
+///     semi_axis_a: 8e-3,
+///     semi_axis_b: 4e-3,
+///     friction_coefficient: 0.3,
+///     shear_modulus: 82e9,
+///     poisson_ratio: 0.25,
+/// };
+/// let spin = Polach::default().creep_forces(&contact(0.0, 0.0, 1.0)).unwrap();
+/// assert!((spin.force_lateral / -19083.659328199366 - 1.0).abs() < 1e-9);
+/// assert_eq!((spin.force_longitudinal, spin.spin_moment), (0.0, None));
+/// // Eq. (20)'s K_M in its closed form −(2/3) ε/(1 + ε²)².
+/// assert!((spin_moment_factor(0.65387_f64) + 0.21390).abs() < 1e-5);
+/// // The resulting creepage s_C (eqs. 21, 22): spin enlarging η counts, a·Φ = 8e-3.
+/// assert!((Polach::resulting_creepage(0.0, 1e-3, 1.0, 8e-3) - 9e-3).abs() < 1e-15);
+/// // Saturation: |F| → μQ at large creepage, bounded by it everywhere.
+/// let sliding = Polach::default().creep_forces(&contact(0.5, 0.0, 0.0)).unwrap();
+/// assert!(sliding.adhesion_utilisation > 0.99 && sliding.adhesion_utilisation <= 1.0);
+/// // The same forces, bit for bit, with the shape factors cached across calls of one shape.
+/// let mut cache = ShapeCache::default();
+/// for xi in [1e-4, 1e-3, 1e-2] {
+///     let cached = Polach::default().creep_forces_with_cache(&contact(xi, 0.0, 0.0), &mut cache).unwrap();
+///     assert_eq!(cached, Polach::default().creep_forces(&contact(xi, 0.0, 0.0)).unwrap());
+/// }
+/// assert_eq!(PolachShape::new(2.0, 0.25), PolachShape::new(2.0, 0.25));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Polach {
     /// Where the contact stiffness comes from.

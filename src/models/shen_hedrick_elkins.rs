@@ -28,6 +28,31 @@ use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelChoic
 const FULL_SLIP_RATIO: f64 = 3.0;
 
 /// Shen–Hedrick–Elkins: Kalker's linear forces with a cubic saturation to μQ.
+///
+/// On the contact of [`KalkerLinear`](crate::KalkerLinear)'s example (μQ = 24.6 kN, G ab C11 =
+/// 13.383 MN): the linear force F' at β = F'/(μQ) = 1.5 becomes μQ(β − β²/3 + β³/27) =
+/// 0.875 μQ = 21 525 N, and μQ from β = 3 on:
+///
+/// ```
+/// use wheel_rail_contact::{ContactInput, CreepForceModel, ShenHedrickElkins};
+///
+/// let contact = |xi: f64, eta: f64, phi: f64| ContactInput {
+///     creepage_longitudinal: xi,
+///     creepage_lateral: eta,
+///     spin_creepage: phi,
+///     normal_force: 82e3,
+///     semi_axis_a: 8e-3,
+///     semi_axis_b: 4e-3,
+///     friction_coefficient: 0.3,
+///     shear_modulus: 82e9,
+///     poisson_ratio: 0.25,
+/// };
+/// let stiffness = 82e9 * 32e-6 * 5.10;
+/// let at = |beta: f64| ShenHedrickElkins.creep_forces(&contact(beta * 24.6e3 / stiffness, 0.0, 0.0)).unwrap();
+/// assert!((at(1.5).force_longitudinal + 21525.0).abs() < 1e-6);
+/// assert!((at(4.0).force_longitudinal + 24.6e3).abs() < 1e-6 && at(4.0).adhesion_utilisation == 1.0);
+/// assert_eq!(at(1.5).spin_moment, None, "the paper saturates the forces only");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ShenHedrickElkins;
 
