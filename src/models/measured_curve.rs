@@ -24,6 +24,23 @@ use crate::numerics::Scalar;
 const RATIO_EXCESS_RANGE: (f64, f64) = (1e-15, 1e12);
 
 /// A creep curve fitted to a measured peak, ready to set Polach's stiffness.
+///
+/// A peak F_max/Q = 0.36 at s_max = 3e-3 with kinetic friction 0.3: eqs. (33)–(35) solved by an
+/// independent script (`tests/data/paper_hand_values.py`: k = f_s/f_k = 4.459546, ε_max =
+/// 6.276695), and eq. (36)'s C = 3 Q f_k ε_max / (2π a² b s_max):
+///
+/// ```
+/// use wheel_rail_contact::{MeasuredCurve, MeasuredCurveError};
+///
+/// let curve = MeasuredCurve::from_peak(0.36, 3e-3, 0.3).unwrap();
+/// assert!((curve.friction_ratio() - 4.45954602211261).abs() < 1e-7);
+/// assert!((curve.gradient_at_peak() - 6.276695363863038).abs() < 1e-6);
+/// let (q, a, b) = (82e3, 8e-3, 4e-3);
+/// let expected = 3.0 * q * 0.3 * curve.gradient_at_peak() / (2.0 * std::f64::consts::PI * a * a * b * 3e-3);
+/// assert!((curve.contact_stiffness(q, a, b) / expected - 1.0).abs() < 1e-12);
+/// // A peak below the kinetic friction has no rising curve to fit.
+/// assert!(matches!(MeasuredCurve::from_peak(0.2, 3e-3, 0.3), Err(MeasuredCurveError::PeakNotAboveKineticFriction { .. })));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeasuredCurve {
     friction_ratio: f64,

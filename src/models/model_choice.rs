@@ -62,6 +62,17 @@ macro_rules! ladder {
 }
 pub(crate) use ladder;
 
+/// ```
+/// use wheel_rail_contact::{KalkerLinear, ModelChoice, Polach};
+///
+/// // The ladder in the FMU's order: polach = 1 … exact_table = 6.
+/// let names: Vec<&str> = ModelChoice::RUNGS.iter().map(|rung| rung.name).collect();
+/// assert_eq!(names, ["polach", "kalker_linear", "shen_hedrick_elkins", "fastsim", "exact", "exact_table"]);
+/// let linear = ModelChoice::KalkerLinear(KalkerLinear);
+/// assert_eq!((linear.name(), linear.rung().fmu_value, linear.rung().friction_limited), ("kalker_linear", 2, false));
+/// assert_eq!(ModelChoice::rung_of_fmu_value(1).unwrap().name, ModelChoice::Polach(Polach::default()).name());
+/// assert!(ModelChoice::rung_of_fmu_value(7).is_none());
+/// ```
 impl ModelChoice {
     /// The rung of this value of the FMU's `creep_force_model`, if any.
     pub fn rung_of_fmu_value(value: i32) -> Option<&'static Rung> {

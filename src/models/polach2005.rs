@@ -16,6 +16,27 @@ use crate::numerics::Scalar;
 use crate::InvalidInput;
 
 /// The parameters of Polach's 2005 extension, validated.
+///
+/// Friction falls with the slip velocity w as μ(w) = μ0((1 − A)e^{−Bw} + A) (Polach 2005, eq.
+/// 5): with the dry set (A = 0.4, B = 0.6 s/m) and μ0 = 0.55 it is 0.55 at rest, 0.55(0.6e^{−0.6}
+/// + 0.4) = 0.4011 at 1 m/s and tends to 0.22:
+///
+/// ```
+/// use wheel_rail_contact::models::polach2005::LargeCreepage;
+/// use wheel_rail_contact::Polach2005;
+///
+/// let dry = Polach2005::DRY;
+/// let mu0 = Polach2005::DRY_MAXIMUM_FRICTION;
+/// assert_eq!((dry.adhesion_reduction(), dry.slip_reduction()), (1.0, 0.4));
+/// assert_eq!(dry.friction(mu0, 0.0), 0.55);
+/// assert!((dry.friction(mu0, 1.0) - 0.55 * (0.6 * (-0.6_f64).exp() + 0.4)).abs() < 1e-15);
+/// assert!((dry.friction(mu0, 1e3) - 0.22).abs() < 1e-12);
+/// assert_eq!(Polach2005::WET_MAXIMUM_FRICTION, 0.30);
+/// assert_eq!(Polach2005::new(0.3, 0.1, 0.4, 0.2).unwrap(), Polach2005::WET);
+/// // k_S must not exceed k_A: the error names it.
+/// assert_eq!(Polach2005::new(0.3, 0.5, 0.4, 0.2).unwrap_err().variable, "slip_reduction_factor");
+/// assert!(LargeCreepage::new(dry, 30.0).is_ok() && LargeCreepage::new(dry, f64::NAN).is_err());
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Polach2005 {
     adhesion_reduction: f64,

@@ -73,7 +73,7 @@ fn fast_length(minimum: usize) -> usize {
 }
 
 impl SlipConvolution {
-    pub fn new(table: &InfluenceTable) -> Self {
+    pub(crate) fn new(table: &InfluenceTable) -> Self {
         let (nx, ny) = (table.elements_x, table.elements_y);
         // One more than the wrap-free minimum 2 nx along x, so the kernel can be placed evenly.
         let size_x = fast_length(2 * nx + 1);
@@ -164,7 +164,7 @@ impl SlipConvolution {
 
     /// Slip increments on the nx × ny elements from traction steps on (nx + 1) × ny elements
     /// (column 0 is the element i = −1): out_I = Σ_J T(J − I) Δp_J.
-    pub fn apply(&mut self, steps: [&[f64]; 2], out: [&mut [f64]; 2]) {
+    pub(crate) fn apply(&mut self, steps: [&[f64]; 2], out: [&mut [f64]; 2]) {
         let (nx, ny) = (self.elements_x, self.elements_y);
         self.transform_input(steps, nx + 1);
         let kernel = std::mem::take(&mut self.kernel);
@@ -176,7 +176,7 @@ impl SlipConvolution {
 
     /// The preconditioner: traction steps on the nx × ny elements that would cancel the slip
     /// field `slip` (nx × ny) in an unbounded contact.
-    pub fn apply_inverse(&mut self, slip: [&[f64]; 2], out: [&mut [f64]; 2]) {
+    pub(crate) fn apply_inverse(&mut self, slip: [&[f64]; 2], out: [&mut [f64]; 2]) {
         let (nx, ny) = (self.elements_x, self.elements_y);
         self.transform_input(slip, nx);
         let inverse = std::mem::take(&mut self.inverse);

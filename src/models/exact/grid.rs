@@ -50,7 +50,7 @@ impl ContactGrid {
     /// common factor (→ 1 as the grid is refined) so that the discrete resultant equals the
     /// continuous one, (2π/3) a b p₀ = Q. Then Coulomb's bound sums to μQ exactly and full
     /// slip gives |F| = μQ on every grid.
-    pub fn new(size: GridSize, b_over_a: f64) -> Self {
+    pub(crate) fn new(size: GridSize, b_over_a: f64) -> Self {
         let (elements_x, elements_y) = (size.longitudinal, size.lateral);
         let (length, width) = size.element_sides(1.0, b_over_a);
         let mut pressure = vec![0.0; elements_x * elements_y];
@@ -74,7 +74,7 @@ impl ContactGrid {
     }
 
     /// Centre of element (i, j) in units of a.
-    pub fn centre(&self, i: usize, j: usize) -> (f64, f64) {
+    pub(crate) fn centre(&self, i: usize, j: usize) -> (f64, f64) {
         (
             centre(i, self.elements_x) * POTENTIAL_AREA_HALF_SIZE,
             centre(j, self.elements_y) * POTENTIAL_AREA_HALF_SIZE * self.width_scale(),
@@ -86,7 +86,7 @@ impl ContactGrid {
         self.width * self.elements_y as f64 / (2.0 * POTENTIAL_AREA_HALF_SIZE)
     }
 
-    pub fn element_area(&self) -> f64 {
+    pub(crate) fn element_area(&self) -> f64 {
         self.length * self.width
     }
 }

@@ -51,6 +51,38 @@ pub use table::{Table, TableAxes, TableError, A_OVER_B_RANGE, FORMAT_VERSION};
 const COMPILED_IN: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/exact_table.bin"));
 
 /// Kalker's exact theory interpolated from a precomputed table.
+///
+/// Below creepages of 1e-3 of saturation it blends into Kalker's linear theory (Table E.3:
+/// C11 = 5.10 at a/b = 2, ν = 0.25, F_x = −G ab C11 ξ); above, it is the exact theory within
+/// 0.01 μQ (docs/exact_table.md); at full sliding |F| = μQ:
+///
+/// ```
+/// use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable};
+///
+/// let contact = |xi: f64| ContactInput {
+///     creepage_longitudinal: xi,
+///     creepage_lateral: 0.0,
+///     spin_creepage: 0.0,
+///     normal_force: 82e3,
+///     semi_axis_a: 8e-3,
+///     semi_axis_b: 4e-3,
+///     friction_coefficient: 0.3,
+///     shear_modulus: 82e9,
+///     poisson_ratio: 0.25,
+/// };
+/// let table = ExactTable::new().unwrap();
+/// let linear = |xi: f64| -82e9 * 32e-6 * 5.10 * xi;
+/// let ratio = table.creep_forces(&contact(1e-7)).unwrap().force_longitudinal / linear(1e-7);
+/// assert!((ratio - 1.0).abs() < 2e-3, "{ratio}");
+/// // Near the linear range the error is small against μQ, not against the force: at ξ = 1e-5
+/// // (5e-3 of saturation) the table is 4 % above the linear (and exact) force, 0.02 % of μQ.
+/// let near = table.creep_forces(&contact(1e-5)).unwrap().force_longitudinal;
+/// assert!((near - linear(1e-5)).abs() < 0.01 * 0.3 * 82e3);
+/// let sliding = table.creep_forces(&contact(0.1)).unwrap();
+/// assert!((sliding.force_longitudinal + 0.3 * 82e3).abs() < 0.01 * 0.3 * 82e3);
+/// // The same model from the same table.
+/// assert_eq!(ExactTable::with_table(table.table()).creep_forces(&contact(1e-3)), table.creep_forces(&contact(1e-3)));
+/// ```
 #[derive(Clone, Copy)]
 pub struct ExactTable {
     table: &'static Table,
