@@ -9,6 +9,15 @@ pub const POTENTIAL_AREA_HALF_SIZE: f64 = 1.1;
 
 /// Number of elements of the grid over the potential contact area
 /// 2.2 a (rolling direction) × 2.2 b (lateral).
+///
+/// ```
+/// use wheel_rail_contact::GridSize;
+///
+/// // CONTACT's grid for a = 8 mm, b = 4 mm: 44 × 44 elements of 0.4 × 0.2 mm over 17.6 × 8.8 mm.
+/// let grid = GridSize { longitudinal: 44, lateral: 44 };
+/// let (length, width) = grid.element_sides(8e-3, 4e-3);
+/// assert!((length - 0.4e-3).abs() < 1e-15 && (width - 0.2e-3).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct GridSize {
