@@ -46,6 +46,40 @@
 //! let expected = steady.force_longitudinal * -(-2.0_f64).exp_m1();
 //! assert!((after_1_ms.force_longitudinal / expected - 1.0).abs() < 1e-3);
 //! ```
+//!
+//! Derivatives, the contact input a scene hands its model, and states read back:
+//!
+//! ```
+//! use wheel_rail_contact::scene::{CreepageSource, Scene, SceneError, SceneInput, SceneState};
+//! use wheel_rail_contact::{KalkerLinear, ModelChoice};
+//!
+//! // Kalker's linear theory, a = 8 mm, b = 4 mm, ν = 0.25: dF_x/dξ = −G ab C11, C11 = 5.10.
+//! let scene = Scene::of_model(ModelChoice::KalkerLinear(KalkerLinear), 82e9, 0.25);
+//! let input = SceneInput {
+//!     creepage_longitudinal: 1e-3,
+//!     normal_force: 82e3,
+//!     semi_axis_a: 8e-3,
+//!     semi_axis_b: 4e-3,
+//!     friction_coefficient: 0.3,
+//!     ..SceneInput::default()
+//! };
+//! let contact = scene.contact_input(&input);
+//! assert_eq!((contact.creepage_longitudinal, contact.shear_modulus, contact.poisson_ratio), (1e-3, 82e9, 0.25));
+//! let along_xi = SceneInput { creepage_longitudinal: 1.0, ..SceneInput::default() };
+//! assert_eq!(scene.option_without_derivatives(), None);
+//! let rates = scene.directional_derivative(&input, &along_xi).unwrap();
+//! assert!((rates.force_longitudinal + 82e9 * 32e-6 * 5.10).abs() < 1e-3);
+//! assert_eq!(rates.effective_creepage_longitudinal, 1.0, "the creepage output passes the input through");
+//! // With the creepages from the kinematics the outputs are not the model's forces of the
+//! // inputs: no derivative, and the error says why.
+//! let kinematic = Scene { creepages: CreepageSource::Kinematics { regularisation_speed: 0.01 }, ..scene };
+//! assert!(kinematic.option_without_derivatives().is_some());
+//! assert!(matches!(kinematic.directional_derivative(&input, &along_xi), Err(SceneError::NoDerivativeWith(_))));
+//! // A state read back from a file is checked before use.
+//! assert!(SceneState::with_relaxed_forces([100.0, -50.0]).validate().is_ok());
+//! let error = SceneState::with_relaxed_forces([f64::NAN, 0.0]).validate().unwrap_err();
+//! assert_eq!(error.variable, "relaxed_force_longitudinal");
+//! ```
 
 use std::fmt;
 
