@@ -630,4 +630,27 @@ mod tests {
             }
         }
     }
+
+    /// A concave wheel on a straight or concave rail: the rail does not close the gap, so the
+    /// error names the rail (the wheel is blamed only when a convex rail could have made up
+    /// for it).
+    #[test]
+    fn a_concave_wheel_on_a_rail_that_does_not_close_the_gap_blames_the_rail() {
+        for rail in [0.0, -1.0] {
+            let error = RelativeCurvature::from_profile_curvatures(0.46, -2.0, rail).unwrap_err();
+            assert_eq!((error.variable, error.value), ("rail_profile_curvature", rail));
+        }
+    }
+
+    /// The slenderness limits are inclusive: B/A exactly 1e12 or 1e-12 is still an ellipse.
+    #[test]
+    fn the_slenderness_limits_themselves_are_accepted() {
+        // r = 0.5 m: A = 1 /m exactly, so B = (wheel + rail)/2 sets B/A exactly.
+        for (wheel, rail) in [(0.0, 2e12), (0.0, 2e-12)] {
+            let curvature = RelativeCurvature::from_profile_curvatures(0.5, wheel, rail).unwrap();
+            assert_eq!(curvature.lateral() / curvature.rolling(), 0.5 * rail);
+        }
+        assert!(RelativeCurvature::from_profile_curvatures(0.5, 0.0, 2.0000001e12).is_err());
+        assert!(RelativeCurvature::from_profile_curvatures(0.5, 0.0, 1.9999999e-12).is_err());
+    }
 }
