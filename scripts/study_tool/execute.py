@@ -92,10 +92,14 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
     settings = (prepared.study["outputs"], prepared.study["steps"], prepared.study["step_size"])
 
     cpu_seconds = []
+    # The clocks when the last part was written: the run's end, before a LocalCluster's shut-down
+    # (about a second, as long for 2 workers as for 1), which is not the study's work.
+    ended = {}
 
     def finished(index, cpu):
         cpu_seconds.append(cpu)
         bar.update(len(chunks[index]))
+        ended.update(wall=time.perf_counter(), cpu=time.process_time())
 
     started, client_cpu = time.perf_counter(), time.process_time()
     try:
@@ -113,8 +117,8 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
             started, client_cpu = run_on_dask(prepared, out, pending, settings, scheduler, workers, finished)
     finally:
         bar.close()
-    seconds = time.perf_counter() - started
-    client_cpu = time.process_time() - client_cpu - (sum(cpu_seconds) if serial else 0.0)
+    seconds = ended.get("wall", started) - started
+    client_cpu = ended.get("cpu", client_cpu) - client_cpu - (sum(cpu_seconds) if serial else 0.0)
 
     frame = gather(out, prepared.key, len(chunks))
     return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds,
