@@ -10,11 +10,15 @@ gain on it changes from minute to minute; a speed-up alone mixes Dask's losses w
 control runs pure-Python CPU work (no I/O, no allocation; it fits in each core's cache) in a pool of
 N processes: one of them alone, then all N at once, right before and right after the 1- and
 N-worker runs; the machine's gain is N × (time alone) ÷ (time of N at once), the mean of the two
-measurements, which are both printed so that a load change during the pair shows."""
+measurements, which are both printed so that a load change during the pair shows. With --repeat K
+the pair and its controls run K times (the load comes in bursts) and the median efficiency is
+printed too."""
 
 import multiprocessing
 import os
 import pathlib
+import shutil
+import statistics
 import tempfile
 import time
 
@@ -68,9 +72,10 @@ def study_text(model, points, chunk_size):
             f'outputs = ["force_longitudinal", "force_lateral", "spin_moment"]\n' + GRID.format(points=points))
 
 
-def bench(fmu, models, workers):
-    """Per model: the in-process run, the machine's gain, the 1-worker and `workers`-worker runs,
-    the machine's gain again. Returns per model a dict of the runs' outcomes and the two gains."""
+def bench(fmu, models, workers, repeat=1):
+    """Per model: the in-process run, then `repeat` times the machine's gain, the 1-worker and
+    `workers`-worker runs and the machine's gain again. Returns per model the in-process outcome,
+    and per repetition a dict of the two runs' outcomes, the two gains and the load averages."""
     results = {}
     with tempfile.TemporaryDirectory(prefix="wrc-study-bench-") as directory:
         directory = pathlib.Path(directory)
@@ -81,40 +86,50 @@ def bench(fmu, models, workers):
             prepared = spec.prepare(path, fmu)
 
             def run(label, **options):
-                outcome = execute.run(prepared, directory / f"{model}-{label}", progress=False, **options)
+                out = directory / f"{model}-{label}"
+                outcome = execute.run(prepared, out, progress=False, **options)
                 assert (outcome.frame["status"] == "ok").all()
+                shutil.rmtree(out)  # a repetition computes every chunk again
                 return outcome
 
-            result = {"load": os.getloadavg()[0], "in-process": run("in-process", serial=True)}
-            result["gain before"] = machine_gain(workers)
-            result["1 worker"] = run("1-worker", workers=1)
-            result["N workers"] = run(f"{workers}-workers", workers=workers)
-            result["gain after"] = machine_gain(workers)
-            result["load after"] = os.getloadavg()[0]
-            results[model] = result
+            pairs = []
+            in_process = run("in-process", serial=True)
+            for _ in range(repeat):
+                pair = {"load": os.getloadavg()[0], "gain before": machine_gain(workers)}
+                pair["1 worker"] = run("1-worker", workers=1)
+                pair["N workers"] = run(f"{workers}-workers", workers=workers)
+                pair["gain after"] = machine_gain(workers)
+                pair["load after"] = os.getloadavg()[0]
+                pairs.append(pair)
+            results[model] = (in_process, pairs)
     return results
 
 
-def efficiency(result):
+def efficiency(pair):
     """(speed-up of N workers over 1, the machine's gain (mean), efficiency = their ratio)."""
     rate = lambda outcome: outcome.scenes_computed / outcome.seconds
-    speedup = rate(result["N workers"]) / rate(result["1 worker"])
-    gain = (result["gain before"] + result["gain after"]) / 2
+    speedup = rate(pair["N workers"]) / rate(pair["1 worker"])
+    gain = (pair["gain before"] + pair["gain after"]) / 2
     return speedup, gain, speedup / gain
 
 
 def table(results, workers):
     lines = [f"{'model':<8} {'run':<12} {'scenes':>7} {'seconds':>8} {'scenes/s':>9} {'CPU ms/scene: workers':>22} {'client':>7}"]
-    for model, result in results.items():
-        for label in ("in-process", "1 worker", "N workers"):
-            outcome = result[label]
-            scenes = outcome.scenes_computed
-            name = f"{workers} workers" if label == "N workers" else label
-            lines.append(f"{model:<8} {name:<12} {scenes:>7} {outcome.seconds:>8.2f} {scenes / outcome.seconds:>9.1f} "
-                         f"{1e3 * outcome.cpu_seconds / scenes:>22.3f} {1e3 * outcome.client_cpu_seconds / scenes:>7.3f}")
-        speedup, gain, ratio = efficiency(result)
-        lines.append(f"{model:<8} {workers} workers over 1: {speedup:.2f}x; {workers} processes of pure CPU work over 1 "
-                     f"(the machine now): {result['gain before']:.2f}x before, {result['gain after']:.2f}x after, "
-                     f"mean {gain:.2f}x; efficiency {ratio:.2f} (load average {result['load']:.2f} at the start, "
-                     f"{result['load after']:.2f} at the end)")
+    row = lambda model, name, outcome: (
+        f"{model:<8} {name:<12} {outcome.scenes_computed:>7} {outcome.seconds:>8.2f} "
+        f"{outcome.scenes_computed / outcome.seconds:>9.1f} {1e3 * outcome.cpu_seconds / outcome.scenes_computed:>22.3f} "
+        f"{1e3 * outcome.client_cpu_seconds / outcome.scenes_computed:>7.3f}")
+    for model, (in_process, pairs) in results.items():
+        lines.append(row(model, "in-process", in_process))
+        for pair in pairs:
+            lines.append(row(model, "1 worker", pair["1 worker"]))
+            lines.append(row(model, f"{workers} workers", pair["N workers"]))
+            speedup, gain, ratio = efficiency(pair)
+            lines.append(f"{model:<8} {workers} workers over 1: {speedup:.2f}x; {workers} processes of pure CPU work over 1 "
+                         f"(the machine now): {pair['gain before']:.2f}x before, {pair['gain after']:.2f}x after, "
+                         f"mean {gain:.2f}x; efficiency {ratio:.2f} (load average {pair['load']:.2f} at the start, "
+                         f"{pair['load after']:.2f} at the end)")
+        if len(pairs) > 1:
+            lines.append(f"{model:<8} efficiency, median of {len(pairs)}: "
+                         f"{statistics.median(efficiency(pair)[2] for pair in pairs):.2f}")
     return "\n".join(lines)
