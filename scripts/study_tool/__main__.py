@@ -1,5 +1,5 @@
 """scripts/study run STUDY.toml [--scheduler ADDRESS] [--workers N] [--out DIR] [--serial]
-scripts/study bench [--models polach exact] [--workers 1 2]"""
+scripts/study bench [--models polach exact] [--workers N] [--repeat K]"""
 
 import argparse
 import pathlib
@@ -23,16 +23,21 @@ def main(argv=None):
     run.add_argument("--out", type=pathlib.Path, help="results directory (default: target/studies/NAME, NAME the study's name)")
     run.add_argument("--fmu", type=pathlib.Path, default=FMU, help=f"the FMU (default: {FMU.relative_to(ROOT)})")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
-    bench = commands.add_parser("bench", help="scenes per second per model, in-process and on LocalClusters")
+    bench = commands.add_parser("bench", help="scenes per second per model, in-process and on LocalClusters of 1 and N "
+                                              "workers, and N workers' efficiency")
     bench.add_argument("--models", nargs="+", default=["polach", "exact"])
-    bench.add_argument("--workers", type=int, nargs="+", default=[1, 2], help="LocalCluster sizes (default: 1 2)")
+    bench.add_argument("--workers", type=int, default=2, help="N, the larger LocalCluster's workers (default: 2)")
+    bench.add_argument("--repeat", type=int, default=1, help="K, the repetitions of the 1- and N-worker pair with "
+                                                             "its controls (default: 1); with more, the median efficiency")
     bench.add_argument("--fmu", type=pathlib.Path, default=FMU)
     arguments = parser.parse_args(argv)
     if arguments.command == "bench":
         from . import bench as benchmark
 
-        rows = benchmark.bench(arguments.fmu, arguments.models, arguments.workers)
-        print(benchmark.table(rows, arguments.workers))
+        if arguments.workers < 2 or arguments.repeat < 1:
+            parser.error("bench takes --workers >= 2 and --repeat >= 1")
+        results = benchmark.bench(arguments.fmu, arguments.models, arguments.workers, arguments.repeat)
+        print(benchmark.table(results, arguments.workers))
         return 0
     if arguments.workers is not None and (arguments.workers < 1 or arguments.scheduler or arguments.serial):
         parser.error("--workers takes a number >= 1 and goes with neither --scheduler nor --serial")

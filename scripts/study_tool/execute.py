@@ -62,14 +62,6 @@ def part_path(out, key, index):
     return out / PARTS / f"{key}-{index:06d}.parquet"
 
 
-def write_atomically(table, path):
-    """Writes the table to a temporary file beside `path` and renames it: a part file is either
-    complete or absent, whenever the process is killed."""
-    temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    pq.write_table(table, temporary)
-    os.replace(temporary, path)
-
-
 def start_dask(scheduler, workers):
     """A client of the cluster at `scheduler`, or of a new LocalCluster of `workers` single-threaded
     worker processes (default: one per core). Returns (client, cluster or None)."""
@@ -86,7 +78,7 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
     """Runs every chunk not already written under `out`, then gathers results.parquet. The time
     reported runs from the first chunk's submission (the cluster up, the FMU on the workers) to the
     last chunk's part written; so does the CPU time of this process reported."""
-    out = pathlib.Path(out)
+    out = pathlib.Path(out).resolve()  # a LocalCluster's workers write the parts, from their own directory
     (out / PARTS).mkdir(parents=True, exist_ok=True)
     for stale in (out / PARTS).glob(".*.tmp"):  # left by a run killed while writing a part
         stale.unlink()
@@ -100,38 +92,44 @@ def run(prepared, out, scheduler=None, workers=None, serial=False, progress=True
     settings = (prepared.study["outputs"], prepared.study["steps"], prepared.study["step_size"])
 
     cpu_seconds = []
+    # The clocks when the last part was written: the run's end, before a LocalCluster's shut-down
+    # (about a second, as long for 2 workers as for 1), which is not the study's work.
+    ended = {}
 
-    def finished(index, table):
-        cpu_seconds.append(float(table.schema.metadata[runner.CPU_SECONDS.encode()]))
-        write_atomically(table.replace_schema_metadata(None), part_path(out, prepared.key, index))
+    def finished(index, cpu):
+        cpu_seconds.append(cpu)
         bar.update(len(chunks[index]))
+        ended.update(wall=time.perf_counter(), cpu=time.process_time())
 
     started, client_cpu = time.perf_counter(), time.process_time()
     try:
         if pending and serial:
+            runner.keep_freed_memory()
             directory = runner.unpack_fmu(prepared.fmu_bytes)
             started, client_cpu = time.perf_counter(), time.process_time()
             try:
                 for index in pending:
-                    finished(index, runner.chunk_table(directory, prepared.interface, index * size,
-                                                       pickle.dumps(chunks[index]), *settings))
+                    finished(index, runner.chunk_part(directory, prepared.interface, index * size, pickle.dumps(chunks[index]),
+                                                      *settings, part_path(out, prepared.key, index)))
             finally:
                 shutil.rmtree(directory, ignore_errors=True)
         elif pending:
-            started, client_cpu = run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished)
+            started, client_cpu = run_on_dask(prepared, out, pending, settings, scheduler, workers, finished)
     finally:
         bar.close()
-    seconds = time.perf_counter() - started
-    client_cpu = time.process_time() - client_cpu - (sum(cpu_seconds) if serial else 0.0)
+    seconds = ended.get("wall", started) - started
+    client_cpu = ended.get("cpu", client_cpu) - client_cpu - (sum(cpu_seconds) if serial else 0.0)
 
     frame = gather(out, prepared.key, len(chunks))
     return Outcome(out / RESULTS, frame, len(chunks), len(pending), reused, sum(len(chunks[i]) for i in pending), seconds,
                    sum(cpu_seconds), client_cpu)
 
 
-def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finished):
-    """Submits the pending chunks, hands each result to `finished` as it arrives; returns the wall
-    and CPU clocks' readings when the first chunk was submitted."""
+def run_on_dask(prepared, out, pending, settings, scheduler, workers, finished):
+    """Submits the pending chunks, hands each one's CPU seconds to `finished` as it completes;
+    returns the wall and CPU clocks' readings when the first chunk was submitted. A LocalCluster's
+    workers write their parts themselves (runner.chunk_part); a cluster's by address may not see
+    `out`, so their tables come back and this process writes them."""
     from distributed import as_completed
 
     client, cluster = start_dask(scheduler, workers)
@@ -141,16 +139,25 @@ def run_on_dask(prepared, chunks, pending, settings, scheduler, workers, finishe
         client.register_plugin(runner.FmuOnWorkers(prepared.fmu_bytes), name=plugin)
         started, client_cpu = time.perf_counter(), time.process_time()
         futures = {}
-        chunk_table = ByValue(runner.chunk_table)
+        chunk_table, chunk_part = ByValue(runner.chunk_table), ByValue(runner.chunk_part)
         # Sent to the workers once, not with every chunk (a list, as scatter splits a dict by keys).
         interface, = client.scatter([prepared.interface], broadcast=True)
-        size = prepared.study["chunk_size"]
+        size, chunks = prepared.study["chunk_size"], prepared.chunks
         for index in pending:
-            future = client.submit(chunk_table, ("plugin", plugin), interface, index * size, pickle.dumps(chunks[index]),
-                                   *settings, key=f"wrc-study-{prepared.key}-{index}", pure=False)
+            arguments = (("plugin", plugin), interface, index * size, pickle.dumps(chunks[index]), *settings)
+            key = f"wrc-study-{prepared.key}-{index}"
+            if cluster is None:
+                future = client.submit(chunk_table, *arguments, key=key, pure=False)
+            else:
+                future = client.submit(chunk_part, *arguments, str(part_path(out, prepared.key, index)), key=key, pure=False)
             futures[future] = index
         for future in as_completed(futures):
-            finished(futures.pop(future), future.result())
+            index, result = futures.pop(future), future.result()
+            if cluster is None:
+                runner.write_atomically(result.replace_schema_metadata(None), part_path(out, prepared.key, index))
+                finished(index, float(result.schema.metadata[runner.CPU_SECONDS.encode()]))
+            else:
+                finished(index, result)
         return started, client_cpu
     finally:
         if cluster is None:
@@ -167,5 +174,5 @@ def gather(out, key, count):
     """Every part of the study, in scene order, as one table written atomically to results.parquet."""
     tables = [pq.read_table(part_path(out, key, i)) for i in range(count)]
     table = pa.concat_tables(tables)
-    write_atomically(table, out / RESULTS)
+    runner.write_atomically(table, out / RESULTS)
     return table.to_pandas()
