@@ -20,6 +20,7 @@
 //! search: one dense-table lookup per value reference, a bit test for the state, and a log
 //! filter decided once per fmi2SetDebugLogging.
 
+use std::borrow::Cow;
 use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -28,6 +29,7 @@ mod fmu_state;
 mod step;
 mod values;
 
+pub use fmi2_slave::{InstantiateArguments, StatusKind, Unsupported};
 pub use fmu_state::FmuState;
 pub use values::ValueType;
 
@@ -37,15 +39,6 @@ use crate::model_description::{self, Values, LOG_CATEGORIES};
 use crate::scene::ModelCache;
 use crate::snapshot::Snapshot;
 use wheel_rail_contact::scene::Evaluation;
-
-/// `fmi2StatusKind`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StatusKind {
-    DoStepStatus,
-    PendingStatus,
-    LastSuccessfulTime,
-    Terminated,
-}
 
 /// Under `cfg(test)` only: a log category that makes fmi2SetDebugLogging panic, so that a test
 /// can drive a real panic through an export and see it become fmi2Fatal. Not in any FMU binary.
@@ -64,15 +57,6 @@ pub struct Instance {
     returned_strings: Vec<CString>,
     log_filter: LogFilter,
     sink: Box<dyn LogSink>,
-}
-
-/// What fmi2Instantiate received, decoded.
-pub struct InstantiateArguments<'a> {
-    pub instance_name: &'a str,
-    pub co_simulation: bool,
-    pub guid: &'a str,
-    pub resource_location: Option<&'a str>,
-    pub logging_on: bool,
 }
 
 impl Instance {
@@ -356,19 +340,112 @@ impl Instance {
     }
 }
 
-/// The capabilities this FMU declares false.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Unsupported {
-    RealInputDerivatives,
-    RealOutputDerivatives,
-}
+/// The C exports' view of the instance (see [`crate::ffi`]): each call is the inherent method
+/// of the same name.
+impl fmi2_slave::Slave for Instance {
+    type FmuState = FmuState;
 
-impl Unsupported {
-    fn describe(self) -> (Call, &'static str) {
-        match self {
-            Unsupported::RealInputDerivatives => (Call::SetRealInputDerivatives, "canInterpolateInputs = false"),
-            Unsupported::RealOutputDerivatives => (Call::GetRealOutputDerivatives, "maxOutputDerivativeOrder = 0"),
-        }
+    fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self> {
+        Instance::instantiate(arguments, sink)
+    }
+    fn guarded(&mut self, call: Call, body: impl FnOnce(&mut Self) -> Status) -> Status {
+        Instance::guarded(self, call, body)
+    }
+    fn invalid_argument(&mut self, call: Call, reason: &str) -> Status {
+        Instance::invalid_argument(self, call, reason)
+    }
+    fn unsupported(&mut self, capability: Unsupported) -> Status {
+        Instance::unsupported(self, capability)
+    }
+    fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
+        Instance::set_debug_logging(self, logging_on, categories)
+    }
+    fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status {
+        Instance::setup_experiment(self, start_time, stop_time)
+    }
+    fn enter_initialization_mode(&mut self) -> Status {
+        Instance::enter_initialization_mode(self)
+    }
+    fn exit_initialization_mode(&mut self) -> Status {
+        Instance::exit_initialization_mode(self)
+    }
+    fn terminate(&mut self) -> Status {
+        Instance::terminate(self)
+    }
+    fn reset(&mut self) -> Status {
+        Instance::reset(self)
+    }
+    fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
+        Instance::get_real(self, value_references, values)
+    }
+    fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
+        Instance::get_integer(self, value_references, values)
+    }
+    fn get_boolean(&mut self, value_references: &[u32], _values: &mut [i32]) -> Status {
+        self.get_absent_type(Call::GetBoolean, ValueType::Boolean, value_references)
+    }
+    fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status> {
+        Instance::get_string(self, value_references)
+    }
+    fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
+        Instance::set_real(self, value_references, values)
+    }
+    fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status {
+        Instance::set_integer(self, value_references, values)
+    }
+    fn set_boolean(&mut self, value_references: &[u32], _values: &[i32]) -> Status {
+        self.set_absent_type(Call::SetBoolean, ValueType::Boolean, value_references)
+    }
+    fn set_string(&mut self, value_references: &[u32], values: &[Cow<'_, str>]) -> Status {
+        Instance::set_string(self, value_references, values)
+    }
+    fn get_fmu_state(&mut self) -> Result<FmuState, Status> {
+        Instance::get_fmu_state(self)
+    }
+    fn set_fmu_state(&mut self, state: &FmuState) -> Status {
+        Instance::set_fmu_state(self, state)
+    }
+    fn free_fmu_state(&mut self) -> Status {
+        Instance::free_fmu_state(self)
+    }
+    fn serialized_fmu_state_size(&mut self, state: &FmuState) -> Result<usize, Status> {
+        Instance::serialized_fmu_state_size(self, state)
+    }
+    fn serialize_fmu_state(&mut self, state: &FmuState, bytes: &mut [u8]) -> Status {
+        Instance::serialize_fmu_state(self, state, bytes)
+    }
+    fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState, Status> {
+        Instance::deserialize_fmu_state(self, bytes)
+    }
+    fn get_directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        known_rates: &[f64],
+        unknown_rates: &mut [f64],
+    ) -> Status {
+        Instance::get_directional_derivative(self, unknowns, knowns, known_rates, unknown_rates)
+    }
+    fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
+        Instance::do_step(self, current_communication_point, communication_step_size)
+    }
+    fn cancel_step(&mut self) -> Status {
+        Instance::cancel_step(self)
+    }
+    fn get_status(&mut self, kind: StatusKind) -> Status {
+        Instance::get_status(self, kind)
+    }
+    fn get_real_status(&mut self, kind: StatusKind) -> Result<f64, Status> {
+        Instance::get_real_status(self, kind)
+    }
+    fn get_integer_status(&mut self, kind: StatusKind) -> Status {
+        Instance::get_integer_status(self, kind)
+    }
+    fn get_boolean_status(&mut self, kind: StatusKind) -> Result<bool, Status> {
+        Instance::get_boolean_status(self, kind)
+    }
+    fn get_string_status(&mut self, kind: StatusKind) -> Status {
+        Instance::get_string_status(self, kind)
     }
 }
 
