@@ -10,17 +10,26 @@
 //!   `unsafe`;
 //! - [`mode`]: the Co-Simulation state machine: modes and the call table saying which modes
 //!   allow each call;
-//! - [`logging`]: statuses, the logger sink and the log filter.
+//! - [`instance`]: a generic instance (lifecycle, Get/Set, step checks, FMU states) around a
+//!   [`instance::Model`] with Real variables only, implementing [`Slave`];
+//! - [`logging`]: statuses, the logger sink and the log filter;
+//! - [`variables`]: the types of the variable tables generated from a `modelDescription.xml`, and
+//!   `build` (feature `build`, for build scripts): the generator itself, which also checks the
+//!   XML against the rules of the standard that masters rely on.
 //!
 //! A model crate implements [`Slave`] (safe code only) and writes `export_fmi2!(MyInstance);` in
 //! one module.
 
 #![deny(unsafe_code)]
 
+#[cfg(feature = "build")]
+pub mod build;
 pub mod ffi;
 pub mod fmi2;
+pub mod instance;
 pub mod logging;
 pub mod mode;
+pub mod variables;
 
 use std::borrow::Cow;
 use std::ffi::CString;
@@ -46,11 +55,12 @@ pub struct InstantiateArguments<'a> {
     pub logging_on: bool,
 }
 
-/// The optional Co-Simulation capabilities the FMUs of this workspace declare false.
+/// The optional capabilities an FMU of this workspace may declare false.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Unsupported {
     RealInputDerivatives,
     RealOutputDerivatives,
+    DirectionalDerivative,
 }
 
 impl Unsupported {
@@ -60,6 +70,9 @@ impl Unsupported {
         match self {
             Unsupported::RealInputDerivatives => (Call::SetRealInputDerivatives, "canInterpolateInputs = false"),
             Unsupported::RealOutputDerivatives => (Call::GetRealOutputDerivatives, "maxOutputDerivativeOrder = 0"),
+            Unsupported::DirectionalDerivative => {
+                (Call::GetDirectionalDerivative, "providesDirectionalDerivative = false")
+            }
         }
     }
 }
