@@ -4,8 +4,10 @@
 //! holds its values and computes. [`Instance`] implements [`Slave`], so a cdylib needs nothing
 //! but `export_fmi2!(fmi2_slave::instance::Instance<MyModel>)`.
 //!
-//! Rules (FMI 2.0.4, section 4.2.4) as the contact FMU keeps them (`fmu/src/instance`), with the
-//! same messages: a call outside the states that allow it returns `Error` and logs
+//! Rules (FMI 2.0.4, section 4.2.4), shared with the contact FMU's own instance
+//! (`fmu/src/instance`) through the functions here that check arguments and word messages
+//! ([`instantiate_problem`], [`experiment_problem`], [`step_end`], [`panic_message`],
+//! [`discard_message`], [`unknown_categories_message`]): a call outside the states that allow it returns `Error` and logs
 //! `fmi2XXX: illegal call in state YYY`, the state unchanged; an invalid value is reported where
 //! the model computes (ExitInitializationMode, DoStep, GetReal of an output in initialization
 //! mode) as `Error` naming the variable and value, and the instance keeps its state so that the
@@ -28,6 +30,75 @@ use crate::{InstantiateArguments, Slave, StatusKind, Unsupported};
 /// Two communication points closer than this (relative to max(1, |t|)) are the same: masters
 /// compute t + h in their own rounding.
 pub const TIME_TOLERANCE: f64 = 1e-9;
+
+/// fmi2Instantiate's arguments checked for an FMU with this GUID and model identifier: why they
+/// are refused (an empty name, Model Exchange, another GUID), if they are.
+pub fn instantiate_problem(arguments: &InstantiateArguments, guid: &str, model_identifier: &str) -> Option<String> {
+    if arguments.instance_name.trim().is_empty() {
+        Some("instanceName must not be empty".to_owned())
+    } else if !arguments.co_simulation {
+        Some(format!("this FMU supports Co-Simulation only (modelIdentifier {model_identifier})"))
+    } else if arguments.guid != guid {
+        Some(format!("fmuGUID {} does not match this FMU's GUID {guid}", arguments.guid))
+    } else {
+        None
+    }
+}
+
+/// fmi2SetupExperiment's times checked: why they are refused, if they are.
+pub fn experiment_problem(start_time: f64, stop_time: Option<f64>) -> Option<String> {
+    if !start_time.is_finite() {
+        return Some(format!("startTime = {start_time} is invalid: must be finite"));
+    }
+    stop_time
+        .filter(|stop| stop.is_nan() || *stop < start_time)
+        .map(|stop| format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"))
+}
+
+/// fmi2DoStep's arguments checked against the instance's `time` and `stop_time`: the step's end,
+/// or why the step is refused.
+pub fn step_end(time: f64, stop_time: Option<f64>, t: f64, h: f64) -> Result<f64, String> {
+    if !(h > 0.0 && h.is_finite()) {
+        return Err(format!("communicationStepSize = {h} is invalid: must be finite and > 0"));
+    }
+    let tolerance = TIME_TOLERANCE * time.abs().max(1.0);
+    let on_time = (t - time).abs() <= tolerance; // false for a NaN t
+    if !on_time {
+        return Err(format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
+    }
+    let end = t + h;
+    if !end.is_finite() {
+        return Err(format!(
+            "the step would end at {end}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is not finite"
+        ));
+    }
+    match stop_time.filter(|stop| end > stop + tolerance) {
+        Some(stop) => Err(format!("the step would end at {end}, after stopTime = {stop}")),
+        None => Ok(end),
+    }
+}
+
+/// The message of a panic caught in `call`.
+pub fn panic_message(call: Call, payload: &(dyn std::any::Any + Send)) -> String {
+    let reason = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".to_owned());
+    format!("{call}: internal error ({reason}); this instance can only be freed")
+}
+
+/// The message of an fmi2GetXXXStatus asked for a kind there is nothing to report on.
+pub fn discard_message(call: Call, kind: StatusKind) -> String {
+    format!("{call}: no {kind:?} to report: fmi2DoStep never returns fmi2Pending or fmi2Discard")
+}
+
+/// The warning of an fmi2SetDebugLogging that named categories the FMU does not have, if it did.
+pub fn unknown_categories_message(categories: &[&str], known: &[&str]) -> Option<String> {
+    let unknown: Vec<&&str> = categories.iter().filter(|c| !known.contains(c)).collect();
+    (!unknown.is_empty())
+        .then(|| format!("{}: unknown log categories {unknown:?} ignored; known: {known:?}", Call::SetDebugLogging))
+}
 
 /// A model with Real variables only, as the generated interface and its physics give it.
 pub trait Model: Clone + Default {
@@ -215,8 +286,7 @@ impl<M: Model> Instance<M> {
     }
 
     fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
-        let message = format!("{call}: no {kind:?} to report: fmi2DoStep never returns fmi2Pending or fmi2Discard");
-        self.emit(Status::Discard, &message);
+        self.emit(Status::Discard, &discard_message(call, kind));
         Status::Discard
     }
 }
@@ -226,20 +296,11 @@ impl<M: Model> Slave for Instance<M> {
 
     /// `None` (after logging why) for a wrong GUID, an empty name or Model Exchange.
     fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Self> {
-        let InstantiateArguments { instance_name, co_simulation, guid, resource_location, logging_on } = arguments;
-        let problem = if instance_name.trim().is_empty() {
-            Some("instanceName must not be empty".to_owned())
-        } else if !co_simulation {
-            Some(format!("this FMU supports Co-Simulation only (modelIdentifier {})", M::MODEL_IDENTIFIER))
-        } else if guid != M::GUID {
-            Some(format!("fmuGUID {guid} does not match this FMU's GUID {}", M::GUID))
-        } else {
-            None
-        };
-        if let Some(problem) = problem {
+        if let Some(problem) = instantiate_problem(&arguments, M::GUID, M::MODEL_IDENTIFIER) {
             sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
             return None;
         }
+        let InstantiateArguments { instance_name, resource_location, logging_on, .. } = arguments;
         let mut instance = Instance {
             name: instance_name.to_owned(),
             run: FmuState::instantiated(),
@@ -258,15 +319,7 @@ impl<M: Model> Slave for Instance<M> {
             Ok(status) => status,
             Err(payload) => {
                 self.run.mode = Mode::Fatal;
-                let reason = payload
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| payload.downcast_ref::<String>().cloned())
-                    .unwrap_or_else(|| "unknown panic".to_owned());
-                self.emit(
-                    Status::Fatal,
-                    &format!("{call}: internal error ({reason}); this instance can only be freed"),
-                );
+                self.emit(Status::Fatal, &panic_message(call, payload.as_ref()));
                 Status::Fatal
             }
         }
@@ -294,14 +347,13 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         self.log_filter = LogFilter::new(logging_on, (!categories.is_empty()).then_some(categories));
-        let unknown: Vec<&&str> = categories.iter().filter(|c| !M::LOG_CATEGORIES.contains(c)).collect();
         self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
-        if unknown.is_empty() {
-            Status::Ok
-        } else {
-            let message = format!("{CALL}: unknown log categories {unknown:?} ignored; known: {:?}", M::LOG_CATEGORIES);
-            self.emit(Status::Warning, &message);
-            Status::Warning
+        match unknown_categories_message(categories, M::LOG_CATEGORIES) {
+            None => Status::Ok,
+            Some(message) => {
+                self.emit(Status::Warning, &message);
+                Status::Warning
+            }
         }
     }
 
@@ -311,11 +363,8 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
-        if !start_time.is_finite() {
-            return self.fail(CALL, &format!("startTime = {start_time} is invalid: must be finite"));
-        }
-        if let Some(stop) = stop_time.filter(|stop| stop.is_nan() || *stop < start_time) {
-            return self.fail(CALL, &format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"));
+        if let Some(problem) = experiment_problem(start_time, stop_time) {
+            return self.fail(CALL, &problem);
         }
         self.run.time = start_time;
         self.run.stop_time = stop_time;
@@ -490,25 +539,10 @@ impl<M: Model> Slave for Instance<M> {
         }
         let (t, h) = (current_communication_point, communication_step_size);
         self.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
-        if !(h > 0.0 && h.is_finite()) {
-            return self.fail(CALL, &format!("communicationStepSize = {h} is invalid: must be finite and > 0"));
-        }
-        let tolerance = TIME_TOLERANCE * self.run.time.abs().max(1.0);
-        let on_time = (t - self.run.time).abs() <= tolerance; // false for a NaN t
-        if !on_time {
-            let time = self.run.time;
-            return self.fail(CALL, &format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
-        }
-        let end = t + h;
-        if !end.is_finite() {
-            return self.fail(
-                CALL,
-                &format!("the step would end at {end}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is not finite"),
-            );
-        }
-        if let Some(stop) = self.run.stop_time.filter(|stop| end > stop + tolerance) {
-            return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
-        }
+        let end = match step_end(self.run.time, self.run.stop_time, t, h) {
+            Ok(end) => end,
+            Err(problem) => return self.fail(CALL, &problem),
+        };
         match self.run.model.step(t, h) {
             Ok(()) => {
                 self.run.time = end;

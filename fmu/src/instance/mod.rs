@@ -6,7 +6,8 @@
 //! Safe code only: `ffi` turns C arguments into slices and strings and calls these methods, so
 //! unit tests drive every rule here without the C boundary.
 //!
-//! Rules (FMI 2.0.4, section 4.2.4, Co-Simulation state machine):
+//! Rules (FMI 2.0.4, section 4.2.4, Co-Simulation state machine), the argument checks and their
+//! messages shared with the slave layer's generic instance (`fmi2_slave::instance`):
 //! - a call outside the states that allow it returns `Error` and logs
 //!   `fmi2XXX: illegal call in state YYY`; the state does not change;
 //! - an invalid value (NaN, a ≤ 0, …) is reported where outputs are computed
@@ -38,6 +39,7 @@ use crate::mode::{Call, Mode, Modes, LIVE};
 use crate::model_description::{self, Values, LOG_CATEGORIES};
 use crate::scene::ModelCache;
 use crate::snapshot::Snapshot;
+use fmi2_slave::instance as rules;
 use wheel_rail_contact::scene::Evaluation;
 
 /// Under `cfg(test)` only: a log category that makes fmi2SetDebugLogging panic, so that a test
@@ -63,19 +65,9 @@ impl Instance {
     /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name or Model
     /// Exchange.
     pub fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Instance> {
-        let InstantiateArguments { instance_name, co_simulation, guid, resource_location, logging_on } = arguments;
-        let problem = if instance_name.trim().is_empty() {
-            Some("instanceName must not be empty".to_owned())
-        } else if !co_simulation {
-            Some(format!(
-                "this FMU supports Co-Simulation only (modelIdentifier {})",
-                model_description::MODEL_IDENTIFIER
-            ))
-        } else if guid != model_description::GUID {
-            Some(format!("fmuGUID {guid} does not match this FMU's GUID {}", model_description::GUID))
-        } else {
-            None
-        };
+        let problem =
+            rules::instantiate_problem(&arguments, model_description::GUID, model_description::MODEL_IDENTIFIER);
+        let InstantiateArguments { instance_name, resource_location, logging_on, .. } = arguments;
         if let Some(problem) = problem {
             sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
             return None;
@@ -127,13 +119,7 @@ impl Instance {
     #[cold]
     fn panicked(&mut self, call: Call, payload: &(dyn std::any::Any + Send)) -> Status {
         self.run.mode = Mode::Fatal;
-        let reason = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "unknown panic".to_owned());
-        let message = format!("{call}: internal error ({reason}); this instance can only be freed");
-        self.emit(Status::Fatal, &message);
+        self.emit(Status::Fatal, &rules::panic_message(call, payload));
         Status::Fatal
     }
 
@@ -191,14 +177,13 @@ impl Instance {
         }
         let selection = if categories.is_empty() { None } else { Some(categories) };
         self.log_filter = LogFilter::new(logging_on, selection);
-        let unknown: Vec<&&str> = categories.iter().filter(|c| !LOG_CATEGORIES.contains(c)).collect();
         self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
-        if unknown.is_empty() {
-            Status::Ok
-        } else {
-            let message = format!("{CALL}: unknown log categories {unknown:?} ignored; known: {LOG_CATEGORIES:?}");
-            self.emit(Status::Warning, &message);
-            Status::Warning
+        match rules::unknown_categories_message(categories, LOG_CATEGORIES) {
+            None => Status::Ok,
+            Some(message) => {
+                self.emit(Status::Warning, &message);
+                Status::Warning
+            }
         }
     }
 
@@ -209,11 +194,8 @@ impl Instance {
             return status;
         }
         self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
-        if !start_time.is_finite() {
-            return self.fail(CALL, &format!("startTime = {start_time} is invalid: must be finite"));
-        }
-        if let Some(stop) = stop_time.filter(|stop| stop.is_nan() || *stop < start_time) {
-            return self.fail(CALL, &format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"));
+        if let Some(problem) = rules::experiment_problem(start_time, stop_time) {
+            return self.fail(CALL, &problem);
         }
         self.run.time = start_time;
         self.run.stop_time = stop_time;
@@ -270,8 +252,7 @@ impl Instance {
     }
 
     fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
-        let message = format!("{call}: no {kind:?} to report: fmi2DoStep never returns fmi2Pending or fmi2Discard");
-        self.emit(Status::Discard, &message);
+        self.emit(Status::Discard, &rules::discard_message(call, kind));
         Status::Discard
     }
 
