@@ -180,29 +180,13 @@ impl<M: Model> FmuState<M> {
 
 /// One instance of an FMU whose model is `M`.
 pub struct Instance<M> {
-    name: String,
     run: FmuState<M>,
-    /// What the last fmi2GetString returned (always empty: no String variables).
-    returned_strings: Vec<CString>,
     log_filter: LogFilter,
+    /// The master's logger (with its own copy of the instance name).
     sink: Box<dyn LogSink>,
 }
 
 impl<M: Model> Instance<M> {
-    /// The name the master gave.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    pub fn state(&self) -> Mode {
-        self.run.mode
-    }
-
-    /// The model, with its values as last set or computed.
-    pub fn model(&self) -> &M {
-        &self.run.model
-    }
-
     fn emit(&mut self, status: Status, message: &str) {
         if self.log_filter.passes(status) {
             self.sink.log(status, status_category(status), message);
@@ -300,14 +284,9 @@ impl<M: Model> Slave for Instance<M> {
             sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
             return None;
         }
-        let InstantiateArguments { instance_name, resource_location, logging_on, .. } = arguments;
-        let mut instance = Instance {
-            name: instance_name.to_owned(),
-            run: FmuState::instantiated(),
-            returned_strings: Vec::new(),
-            log_filter: LogFilter::new(logging_on, None),
-            sink,
-        };
+        let InstantiateArguments { resource_location, logging_on, .. } = arguments;
+        let mut instance =
+            Instance { run: FmuState::instantiated(), log_filter: LogFilter::new(logging_on, None), sink };
         instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
         Some(instance)
     }
@@ -445,7 +424,7 @@ impl<M: Model> Slave for Instance<M> {
     /// No String variables: only n = 0 succeeds.
     fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status> {
         self.prepare_get(Call::GetString, value_references, false, "String")?;
-        Ok(&self.returned_strings)
+        Ok(&[])
     }
 
     fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
