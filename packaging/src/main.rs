@@ -3,13 +3,14 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use packaging::fmu::{package, workspace_root, Profile, Reach};
+use packaging::fmu::{package, workspace_root, Profile, Reach, CONTACT, UNITS};
 use packaging::{default_scene, exact_table, reference};
 
 const USAGE: &str = "usage: cargo fmu [COMMAND]
   all        (default) package, then scene
-  package    build the release library for every platform whose toolchain is present (linux64,
-             win64), check each, and write target/fmu/wheel_rail_contact.fmu
+  package    build the release libraries for every platform whose toolchain is present (linux64,
+             win64), check each, and write target/fmu/wheel_rail_contact.fmu and
+             target/fmu/wheelset.fmu
   scene      run the default scene (a creepage sweep) through target/fmu/wheel_rail_contact.fmu:
              prints a table, writes target/fmu/default_scene.csv and .svg
   reference  read CSV of FMU inputs and parameters (header: their names; optional step_size for
@@ -24,18 +25,20 @@ fn out_dir() -> PathBuf {
 }
 
 fn fmu_path() -> PathBuf {
-    out_dir().join(format!("{}.fmu", wheel_rail_contact_fmu::model_description::MODEL_IDENTIFIER))
+    out_dir().join(format!("{}.fmu", CONTACT.model_identifier))
 }
 
 fn run_package() -> Result<(), String> {
-    let packaged = package(Profile::Release, Reach::EveryToolchainPresent, &out_dir())?;
-    for binary in &packaged.binaries {
-        println!("{}: {}", binary.platform.folder(), binary.summary);
+    for unit in &UNITS {
+        let packaged = package(unit, Profile::Release, Reach::EveryToolchainPresent, &out_dir())?;
+        for binary in &packaged.binaries {
+            println!("{} {}: {}", unit.model_identifier, binary.platform.folder(), binary.summary);
+        }
+        for skipped in &packaged.skipped {
+            println!("{} {}: skipped, {}", unit.model_identifier, skipped.platform.folder(), skipped.reason);
+        }
+        println!("wrote {}", packaged.fmu.display());
     }
-    for skipped in &packaged.skipped {
-        println!("{}: skipped, {}", skipped.platform.folder(), skipped.reason);
-    }
-    println!("wrote {}", packaged.fmu.display());
     Ok(())
 }
 

@@ -6,7 +6,7 @@ use std::process::Command;
 
 use packaging::fmu::{
     build_shared_library, check_library, exported_functions, glibc_versions_needed, package, Linkage, Platform,
-    Profile, Reach, FMI2_FUNCTIONS, GLIBC_BASELINE,
+    Profile, Reach, CONTACT, FMI2_FUNCTIONS, GLIBC_BASELINE,
 };
 
 /// `objdump -T`: the dynamic symbol table, one symbol a line, its version in the second last
@@ -25,7 +25,7 @@ fn objdump_dynamic_symbols(library: &std::path::Path) -> Vec<Vec<String>> {
 #[test]
 #[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn glibc_versions_and_exports_agree_with_objdump_and_a_too_new_glibc_is_refused() {
-    let library = build_shared_library(Profile::Dev).unwrap();
+    let library = build_shared_library(&CONTACT, Profile::Dev).unwrap();
     let bytes = std::fs::read(&library).unwrap();
     let symbols = objdump_dynamic_symbols(&library);
 
@@ -87,7 +87,7 @@ fn which(program: &str) -> std::path::PathBuf {
 #[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn the_documentation_states_the_glibc_its_linux_binary_needs() {
     let directory = tempfile::tempdir().unwrap();
-    let packaged = package(Profile::Dev, Reach::ThisMachine, directory.path()).unwrap();
+    let packaged = package(&CONTACT, Profile::Dev, Reach::ThisMachine, directory.path()).unwrap();
     let mut archive = zip::ZipArchive::new(std::fs::File::open(&packaged.fmu).unwrap()).unwrap();
     let read = |archive: &mut zip::ZipArchive<std::fs::File>, name: &str| {
         let mut bytes = Vec::new();
@@ -101,4 +101,28 @@ fn the_documentation_states_the_glibc_its_linux_binary_needs() {
         format!("needs glibc ≥ {major}.{minor} (the newest glibc symbol version it uses; built with plain cargo");
     assert!(documentation.contains(&stated), "{stated}");
     assert_eq!(documentation.matches("needs glibc ≥").count(), 1);
+}
+
+/// The wheelset FMU, packaged as `cargo fmu` packages it: its generated model description (the
+/// standard `<ModelStructure>`, its GUID) and its binary, named after its model identifier,
+/// exporting exactly the 34 functions.
+#[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
+fn the_wheelset_fmu_is_packaged_beside_the_contact_unit() {
+    use packaging::fmu::WHEELSET;
+    use packaging::wheelset_interface::GUID;
+    let directory = tempfile::tempdir().unwrap();
+    let packaged = package(&WHEELSET, Profile::Dev, Reach::ThisMachine, directory.path()).unwrap();
+    assert_eq!(packaged.fmu, directory.path().join("wheelset.fmu"));
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(&packaged.fmu).unwrap()).unwrap();
+    let mut read = |name: &str| {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut archive.by_name(name).unwrap(), &mut bytes).unwrap();
+        bytes
+    };
+    let description = String::from_utf8(read("modelDescription.xml")).unwrap();
+    assert!(description.contains(&format!("guid=\"{GUID}\"")));
+    assert!(description.contains("<Unknown index=\"28\" dependencies=\"\" dependenciesKind=\"\"/>"), "{description}");
+    let exports = exported_functions(&read("binaries/linux64/wheelset.so")).unwrap();
+    assert_eq!(exports, FMI2_FUNCTIONS.iter().map(|name| name.to_string()).collect::<BTreeSet<_>>());
 }

@@ -1,6 +1,6 @@
-//! What building needs: the core (a Rust user's dependency), the FMU's cdylib and the packaging
-//! tool (`cargo fmu`, the README's first command) must build with cargo alone — no bindgen, so no
-//! libclang, and no crate that compiles C. Read from `cargo tree` over normal and build
+//! What building needs: the core (a Rust user's dependency), the FMUs' cdylibs (the contact
+//! unit's and the wheelset's) and the packaging tool (`cargo fmu`, the README's first command)
+//! must build with cargo alone — no bindgen, so no libclang, and no crate that compiles C. Read from `cargo tree` over normal and build
 //! dependencies (dev-dependencies, which only the tests build, are allowed them).
 
 use std::process::Command;
@@ -25,7 +25,7 @@ fn build_graph(package: &str) -> Vec<String> {
 
 #[test]
 fn the_core_the_cdylib_and_cargo_fmu_build_with_cargo_alone() {
-    for package in ["wheel-rail-contact", "wheel-rail-contact-fmu", "packaging"] {
+    for package in ["wheel-rail-contact", "wheel-rail-contact-fmu", "wheelset", "packaging"] {
         let graph = build_graph(package);
         assert!(graph.iter().any(|name| name == package), "{package}: {graph:?}");
         let forbidden: Vec<&String> = graph.iter().filter(|name| FORBIDDEN.contains(&name.as_str())).collect();

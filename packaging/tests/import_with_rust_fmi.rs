@@ -8,13 +8,13 @@ use fmi::schema::fmi2::Causality;
 use fmi::traits::{FmiImport, FmiInstance};
 use packaging::default_scene::{default_creepages, sweep};
 use packaging::documentation::default_contact_input;
-use packaging::fmu::{package, Profile, Reach};
+use packaging::fmu::{package, Profile, Reach, CONTACT};
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID, VARIABLES};
 
 fn packaged_fmu() -> (tempfile::TempDir, std::path::PathBuf) {
     let directory = tempfile::tempdir().unwrap();
-    let fmu = package(Profile::Dev, Reach::ThisMachine, directory.path()).unwrap().fmu;
+    let fmu = package(&CONTACT, Profile::Dev, Reach::ThisMachine, directory.path()).unwrap().fmu;
     (directory, fmu)
 }
 

@@ -6,7 +6,8 @@
 //! Safe code only: `ffi` turns C arguments into slices and strings and calls these methods, so
 //! unit tests drive every rule here without the C boundary.
 //!
-//! Rules (FMI 2.0.4, section 4.2.4, Co-Simulation state machine):
+//! Rules (FMI 2.0.4, section 4.2.4, Co-Simulation state machine), the argument checks and their
+//! messages shared with the slave layer's generic instance (`fmi2_slave::instance`):
 //! - a call outside the states that allow it returns `Error` and logs
 //!   `fmi2XXX: illegal call in state YYY`; the state does not change;
 //! - an invalid value (NaN, a ≤ 0, …) is reported where outputs are computed
@@ -20,6 +21,7 @@
 //! search: one dense-table lookup per value reference, a bit test for the state, and a log
 //! filter decided once per fmi2SetDebugLogging.
 
+use std::borrow::Cow;
 use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
@@ -29,6 +31,7 @@ mod fmu_state;
 mod step;
 mod values;
 
+pub use fmi2_slave::{InstantiateArguments, StatusKind, Unsupported};
 pub use fmu_state::FmuState;
 pub use values::ValueType;
 
@@ -38,16 +41,8 @@ use crate::model_description::{self, Values, LOG_CATEGORIES};
 use crate::resources::resource_directory;
 use crate::scene::ModelCache;
 use crate::snapshot::Snapshot;
+use fmi2_slave::instance as rules;
 use wheel_rail_contact::scene::Evaluation;
-
-/// `fmi2StatusKind`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StatusKind {
-    DoStepStatus,
-    PendingStatus,
-    LastSuccessfulTime,
-    Terminated,
-}
 
 /// Under `cfg(test)` only: a log category that makes fmi2SetDebugLogging panic, so that a test
 /// can drive a real panic through an export and see it become fmi2Fatal. Not in any FMU binary.
@@ -70,32 +65,13 @@ pub struct Instance {
     sink: Box<dyn LogSink>,
 }
 
-/// What fmi2Instantiate received, decoded.
-pub struct InstantiateArguments<'a> {
-    pub instance_name: &'a str,
-    pub co_simulation: bool,
-    pub guid: &'a str,
-    pub resource_location: Option<&'a str>,
-    pub logging_on: bool,
-}
-
 impl Instance {
     /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name or Model
     /// Exchange.
     pub fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Instance> {
-        let InstantiateArguments { instance_name, co_simulation, guid, resource_location, logging_on } = arguments;
-        let problem = if instance_name.trim().is_empty() {
-            Some("instanceName must not be empty".to_owned())
-        } else if !co_simulation {
-            Some(format!(
-                "this FMU supports Co-Simulation only (modelIdentifier {})",
-                model_description::MODEL_IDENTIFIER
-            ))
-        } else if guid != model_description::GUID {
-            Some(format!("fmuGUID {guid} does not match this FMU's GUID {}", model_description::GUID))
-        } else {
-            None
-        };
+        let problem =
+            rules::instantiate_problem(&arguments, model_description::GUID, model_description::MODEL_IDENTIFIER);
+        let InstantiateArguments { instance_name, resource_location, logging_on, .. } = arguments;
         if let Some(problem) = problem {
             sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
             return None;
@@ -156,13 +132,7 @@ impl Instance {
     #[cold]
     fn panicked(&mut self, call: Call, payload: &(dyn std::any::Any + Send)) -> Status {
         self.run.mode = Mode::Fatal;
-        let reason = payload
-            .downcast_ref::<&str>()
-            .map(|s| s.to_string())
-            .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "unknown panic".to_owned());
-        let message = format!("{call}: internal error ({reason}); this instance can only be freed");
-        self.emit(Status::Fatal, &message);
+        self.emit(Status::Fatal, &rules::panic_message(call, payload));
         Status::Fatal
     }
 
@@ -220,14 +190,13 @@ impl Instance {
         }
         let selection = if categories.is_empty() { None } else { Some(categories) };
         self.log_filter = LogFilter::new(logging_on, selection);
-        let unknown: Vec<&&str> = categories.iter().filter(|c| !LOG_CATEGORIES.contains(c)).collect();
         self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
-        if unknown.is_empty() {
-            Status::Ok
-        } else {
-            let message = format!("{CALL}: unknown log categories {unknown:?} ignored; known: {LOG_CATEGORIES:?}");
-            self.emit(Status::Warning, &message);
-            Status::Warning
+        match rules::unknown_categories_message(categories, LOG_CATEGORIES) {
+            None => Status::Ok,
+            Some(message) => {
+                self.emit(Status::Warning, &message);
+                Status::Warning
+            }
         }
     }
 
@@ -238,11 +207,8 @@ impl Instance {
             return status;
         }
         self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
-        if !start_time.is_finite() {
-            return self.fail(CALL, &format!("startTime = {start_time} is invalid: must be finite"));
-        }
-        if let Some(stop) = stop_time.filter(|stop| stop.is_nan() || *stop < start_time) {
-            return self.fail(CALL, &format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"));
+        if let Some(problem) = rules::experiment_problem(start_time, stop_time) {
+            return self.fail(CALL, &problem);
         }
         self.run.time = start_time;
         self.run.stop_time = stop_time;
@@ -299,8 +265,7 @@ impl Instance {
     }
 
     fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
-        let message = format!("{call}: no {kind:?} to report: fmi2DoStep never returns fmi2Pending or fmi2Discard");
-        self.emit(Status::Discard, &message);
+        self.emit(Status::Discard, &rules::discard_message(call, kind));
         Status::Discard
     }
 
@@ -369,19 +334,112 @@ impl Instance {
     }
 }
 
-/// The capabilities this FMU declares false.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Unsupported {
-    RealInputDerivatives,
-    RealOutputDerivatives,
-}
+/// The C exports' view of the instance (see [`crate::ffi`]): each call is the inherent method
+/// of the same name.
+impl fmi2_slave::Slave for Instance {
+    type FmuState = FmuState;
 
-impl Unsupported {
-    fn describe(self) -> (Call, &'static str) {
-        match self {
-            Unsupported::RealInputDerivatives => (Call::SetRealInputDerivatives, "canInterpolateInputs = false"),
-            Unsupported::RealOutputDerivatives => (Call::GetRealOutputDerivatives, "maxOutputDerivativeOrder = 0"),
-        }
+    fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self> {
+        Instance::instantiate(arguments, sink)
+    }
+    fn guarded(&mut self, call: Call, body: impl FnOnce(&mut Self) -> Status) -> Status {
+        Instance::guarded(self, call, body)
+    }
+    fn invalid_argument(&mut self, call: Call, reason: &str) -> Status {
+        Instance::invalid_argument(self, call, reason)
+    }
+    fn unsupported(&mut self, capability: Unsupported) -> Status {
+        Instance::unsupported(self, capability)
+    }
+    fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
+        Instance::set_debug_logging(self, logging_on, categories)
+    }
+    fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status {
+        Instance::setup_experiment(self, start_time, stop_time)
+    }
+    fn enter_initialization_mode(&mut self) -> Status {
+        Instance::enter_initialization_mode(self)
+    }
+    fn exit_initialization_mode(&mut self) -> Status {
+        Instance::exit_initialization_mode(self)
+    }
+    fn terminate(&mut self) -> Status {
+        Instance::terminate(self)
+    }
+    fn reset(&mut self) -> Status {
+        Instance::reset(self)
+    }
+    fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
+        Instance::get_real(self, value_references, values)
+    }
+    fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
+        Instance::get_integer(self, value_references, values)
+    }
+    fn get_boolean(&mut self, value_references: &[u32], _values: &mut [i32]) -> Status {
+        self.get_absent_type(Call::GetBoolean, ValueType::Boolean, value_references)
+    }
+    fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status> {
+        Instance::get_string(self, value_references)
+    }
+    fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
+        Instance::set_real(self, value_references, values)
+    }
+    fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status {
+        Instance::set_integer(self, value_references, values)
+    }
+    fn set_boolean(&mut self, value_references: &[u32], _values: &[i32]) -> Status {
+        self.set_absent_type(Call::SetBoolean, ValueType::Boolean, value_references)
+    }
+    fn set_string(&mut self, value_references: &[u32], values: &[Cow<'_, str>]) -> Status {
+        Instance::set_string(self, value_references, values)
+    }
+    fn get_fmu_state(&mut self) -> Result<FmuState, Status> {
+        Instance::get_fmu_state(self)
+    }
+    fn set_fmu_state(&mut self, state: &FmuState) -> Status {
+        Instance::set_fmu_state(self, state)
+    }
+    fn free_fmu_state(&mut self) -> Status {
+        Instance::free_fmu_state(self)
+    }
+    fn serialized_fmu_state_size(&mut self, state: &FmuState) -> Result<usize, Status> {
+        Instance::serialized_fmu_state_size(self, state)
+    }
+    fn serialize_fmu_state(&mut self, state: &FmuState, bytes: &mut [u8]) -> Status {
+        Instance::serialize_fmu_state(self, state, bytes)
+    }
+    fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState, Status> {
+        Instance::deserialize_fmu_state(self, bytes)
+    }
+    fn get_directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        known_rates: &[f64],
+        unknown_rates: &mut [f64],
+    ) -> Status {
+        Instance::get_directional_derivative(self, unknowns, knowns, known_rates, unknown_rates)
+    }
+    fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
+        Instance::do_step(self, current_communication_point, communication_step_size)
+    }
+    fn cancel_step(&mut self) -> Status {
+        Instance::cancel_step(self)
+    }
+    fn get_status(&mut self, kind: StatusKind) -> Status {
+        Instance::get_status(self, kind)
+    }
+    fn get_real_status(&mut self, kind: StatusKind) -> Result<f64, Status> {
+        Instance::get_real_status(self, kind)
+    }
+    fn get_integer_status(&mut self, kind: StatusKind) -> Status {
+        Instance::get_integer_status(self, kind)
+    }
+    fn get_boolean_status(&mut self, kind: StatusKind) -> Result<bool, Status> {
+        Instance::get_boolean_status(self, kind)
+    }
+    fn get_string_status(&mut self, kind: StatusKind) -> Status {
+        Instance::get_string_status(self, kind)
     }
 }
 

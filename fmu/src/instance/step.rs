@@ -8,10 +8,6 @@ use crate::model_description::Outputs;
 use crate::scene::compute_outputs;
 use wheel_rail_contact::scene::Evaluation;
 
-/// Two communication points closer than this (relative to max(1, |t|)) are the same: masters
-/// compute t + h in their own rounding.
-const TIME_TOLERANCE: f64 = 1e-9;
-
 impl Instance {
     /// Brings the outputs up to date: `Ok(Status::Ok)`, or `Ok(Status::Warning)` after logging
     /// why the outputs are to be used with care (an exact solve that stopped at its limits).
@@ -47,25 +43,10 @@ impl Instance {
         }
         let (t, h) = (current_communication_point, communication_step_size);
         self.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
-        if !(h > 0.0 && h.is_finite()) {
-            return self.fail(CALL, &format!("communicationStepSize = {h} is invalid: must be finite and > 0"));
-        }
-        let tolerance = TIME_TOLERANCE * self.run.time.abs().max(1.0);
-        let on_time = (t - self.run.time).abs() <= tolerance; // false for a NaN t
-        if !on_time {
-            let time = self.run.time;
-            return self.fail(CALL, &format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
-        }
-        let end = t + h;
-        if !end.is_finite() {
-            return self.fail(
-                CALL,
-                &format!("the step would end at {end}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is not finite"),
-            );
-        }
-        if let Some(stop) = self.run.stop_time.filter(|stop| end > stop + tolerance) {
-            return self.fail(CALL, &format!("the step would end at {end}, after stopTime = {stop}"));
-        }
+        let end = match fmi2_slave::instance::step_end(self.run.time, self.run.stop_time, t, h) {
+            Ok(end) => end,
+            Err(problem) => return self.fail(CALL, &problem),
+        };
         match self.update_outputs(CALL, Evaluation::Step(h)) {
             Ok(status) => {
                 self.run.time = end;

@@ -24,12 +24,12 @@ pub trait LogSink {
 /// logError). The selection filters the call traces (status OK, category logCalls) only: they
 /// pass with debug logging on and no category given, `logCalls` or `logAll` selected.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct LogFilter {
+pub struct LogFilter {
     passes: [bool; 5],
 }
 
 impl LogFilter {
-    pub(crate) fn new(debug_logging: bool, categories: Option<&[&str]>) -> LogFilter {
+    pub fn new(debug_logging: bool, categories: Option<&[&str]>) -> LogFilter {
         let passes = |status: Status| match (status, debug_logging, categories) {
             (Status::Warning | Status::Discard | Status::Error | Status::Fatal, _, _) => true,
             (Status::Ok, false, _) => false,
@@ -42,7 +42,7 @@ impl LogFilter {
     }
 
     #[inline]
-    pub(crate) fn passes(&self, status: Status) -> bool {
+    pub fn passes(&self, status: Status) -> bool {
         self.passes[status as usize]
     }
 }
@@ -50,7 +50,7 @@ impl LogFilter {
 /// Every status, in the order of their discriminants.
 const STATUSES: [Status; 5] = [Status::Ok, Status::Warning, Status::Discard, Status::Error, Status::Fatal];
 
-pub(crate) fn status_category(status: Status) -> &'static str {
+pub fn status_category(status: Status) -> &'static str {
     match status {
         Status::Ok => "logCalls",
         Status::Warning => "logStatusWarning",

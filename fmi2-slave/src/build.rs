@@ -145,7 +145,7 @@ fn read_enumerations(root: roxmltree::Node) -> Vec<EnumerationType> {
     for simple_type in elements(definitions, "SimpleType") {
         let name = simple_type.attribute("name").unwrap_or_default().to_owned();
         let Some(enumeration) = child(simple_type, "Enumeration") else {
-            fail(format!("SimpleType {name}: only Enumeration types are supported by build/model_description.rs"))
+            fail(format!("SimpleType {name}: only Enumeration types are supported by fmi2_slave::build"))
         };
         let items = elements(enumeration, "Item")
             .map(|item| {
@@ -207,10 +207,10 @@ fn read_variables(
             "Integer" => BaseType::Integer,
             "Enumeration" => BaseType::Enumeration,
             "String" => BaseType::String,
-            other => fail(format!("variable {name}: type {other} is not supported yet by build/model_description.rs")),
+            other => fail(format!("variable {name}: type {other} is not supported yet by fmi2_slave::build")),
         };
         if base_type == BaseType::String && causality != Causality::Parameter {
-            fail(format!("variable {name}: only parameters can be Strings (build/model_description.rs)"));
+            fail(format!("variable {name}: only parameters can be Strings (fmi2_slave::build)"));
         }
         let declared_type = type_element.attribute("declaredType").map(str::to_owned);
         if base_type == BaseType::Enumeration && !enumerations.iter().any(|e| Some(&e.name) == declared_type.as_ref()) {
@@ -465,8 +465,9 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
     )
     .unwrap();
     write_strings(source, variables);
-    writeln!(source, "/// Every value of one instance but the Strings ([`Strings`]): plain data, no pointers.")
-        .unwrap();
+    let strings =
+        if variables.iter().any(|v| v.base_type == BaseType::String) { " but the Strings ([`Strings`])" } else { "" };
+    writeln!(source, "/// Every value of one instance{strings}: plain data, no pointers.").unwrap();
     writeln!(source, "#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]")
         .unwrap();
     writeln!(source, "pub struct Values {{\n    pub inputs: Inputs,\n    pub parameters: Parameters,\n    pub outputs: Outputs,\n}}\n")
@@ -475,8 +476,12 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
 
 /// The String variables (parameters only) in their own struct: owned text is not `Copy`, and
 /// the value structs are (the instance compares and copies them on the hot path).
+/// Nothing for a model without String variables.
 fn write_strings(source: &mut String, variables: &[Variable]) {
     let strings: Vec<&Variable> = variables.iter().filter(|v| v.base_type == BaseType::String).collect();
+    if strings.is_empty() {
+        return;
+    }
     writeln!(
         source,
         "/// The String parameters (owned copies of what fmi2SetString gave).\n#[derive(Debug, Clone, PartialEq, \
@@ -531,6 +536,10 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
     {
         let rust = if kind == "real" { "f64" } else { "i32" };
         let matching: Vec<&Variable> = variables.iter().filter(|v| types.contains(&v.base_type)).collect();
+        // A model without variables of the kind gets no accessors (no code that can only say None).
+        if matching.is_empty() {
+            continue;
+        }
         // The reading accessor and the writing one differ only in their references.
         for (suffix, doc, receiver, reference) in
             [("", "", "&self", ""), ("_mut", ", for writing", "&mut self", "&mut ")]

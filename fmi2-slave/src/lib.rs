@@ -1,0 +1,143 @@
+//! # fmi2-slave
+//!
+//! The model-independent half of an FMI 2.0 Co-Simulation FMU, shared by every FMU of this
+//! workspace so that none copies another's C boundary:
+//!
+//! - [`fmi2`]: the FMI 2.0 C types;
+//! - [`ffi`]: the 34 `fmi2*` functions as generic Rust (pointer checks, C strings and slices,
+//!   panic catching, FMU-state boxing) over a [`Slave`], and [`export_fmi2!`], which expands to
+//!   the `#[no_mangle] extern "C"` exports of one cdylib for its slave type. The only file with
+//!   `unsafe`;
+//! - [`mode`]: the Co-Simulation state machine: modes and the call table saying which modes
+//!   allow each call;
+//! - [`instance`]: a generic instance (lifecycle, Get/Set, step checks, FMU states) around a
+//!   [`instance::Model`] with Real variables only, implementing [`Slave`];
+//! - [`logging`]: statuses, the logger sink and the log filter;
+//! - [`variables`]: the types of the variable tables generated from a `modelDescription.xml`, and
+//!   `build` (feature `build`, for build scripts): the generator itself, which also checks the
+//!   XML against the rules of the standard that masters rely on.
+//!
+//! A model crate implements [`Slave`] (safe code only) and writes `export_fmi2!(MyInstance);` in
+//! one module.
+
+#![deny(unsafe_code)]
+
+#[cfg(feature = "build")]
+pub mod build;
+pub mod ffi;
+pub mod fmi2;
+pub mod instance;
+pub mod logging;
+pub mod mode;
+pub mod variables;
+
+use std::borrow::Cow;
+use std::ffi::CString;
+
+use logging::{LogSink, Status};
+use mode::Call;
+
+/// `fmi2StatusKind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StatusKind {
+    DoStepStatus,
+    PendingStatus,
+    LastSuccessfulTime,
+    Terminated,
+}
+
+/// What fmi2Instantiate received, decoded.
+pub struct InstantiateArguments<'a> {
+    pub instance_name: &'a str,
+    pub co_simulation: bool,
+    pub guid: &'a str,
+    pub resource_location: Option<&'a str>,
+    pub logging_on: bool,
+}
+
+/// The optional capabilities an FMU of this workspace may declare false.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unsupported {
+    RealInputDerivatives,
+    RealOutputDerivatives,
+    DirectionalDerivative,
+}
+
+impl Unsupported {
+    /// The call that asks for the capability, and the capability flag in `modelDescription.xml`
+    /// that says it is absent.
+    pub fn describe(self) -> (Call, &'static str) {
+        match self {
+            Unsupported::RealInputDerivatives => (Call::SetRealInputDerivatives, "canInterpolateInputs = false"),
+            Unsupported::RealOutputDerivatives => (Call::GetRealOutputDerivatives, "maxOutputDerivativeOrder = 0"),
+            Unsupported::DirectionalDerivative => {
+                (Call::GetDirectionalDerivative, "providesDirectionalDerivative = false")
+            }
+        }
+    }
+}
+
+/// One FMU instance as the C exports see it: one safe method per FMI 2.0 call, after [`ffi`] has
+/// checked the pointers and turned them into slices and strings.
+///
+/// Contract: a method checks the state machine itself (an illegal call is `Error`, logged as
+/// `fmi2XXX: illegal call in state YYY`) and logs every non-OK status it returns through the
+/// sink it was instantiated with; [`Slave::guarded`] runs each call (except fmi2Instantiate and
+/// fmi2FreeInstance, which [`ffi`] guards itself) and turns a panic into `Fatal`.
+pub trait Slave: Sized {
+    /// The object behind an `fmi2FMUstate` pointer (boxed by [`ffi`]).
+    type FmuState;
+
+    /// fmi2Instantiate: `None` (after logging why through `sink`) when the arguments are refused.
+    fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self>;
+    /// Runs one FMI call; a panic inside `body` becomes `Fatal`, is logged, and leaves the
+    /// instance accepting nothing but fmi2FreeInstance.
+    fn guarded(&mut self, call: Call, body: impl FnOnce(&mut Self) -> Status) -> Status;
+    /// An argument [`ffi`] found unusable (a NULL pointer with n > 0, an unknown enum value).
+    fn invalid_argument(&mut self, call: Call, reason: &str) -> Status;
+    /// A capability the FMU declares false.
+    fn unsupported(&mut self, capability: Unsupported) -> Status;
+
+    fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status;
+    fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status;
+    fn enter_initialization_mode(&mut self) -> Status;
+    fn exit_initialization_mode(&mut self) -> Status;
+    fn terminate(&mut self) -> Status;
+    fn reset(&mut self) -> Status;
+
+    fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status;
+    fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status;
+    fn get_boolean(&mut self, value_references: &[u32], values: &mut [i32]) -> Status;
+    /// The texts as C strings, kept by the instance until its next fmi2GetString.
+    fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status>;
+    fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status;
+    fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status;
+    fn set_boolean(&mut self, value_references: &[u32], values: &[i32]) -> Status;
+    fn set_string(&mut self, value_references: &[u32], values: &[Cow<'_, str>]) -> Status;
+
+    fn get_fmu_state(&mut self) -> Result<Self::FmuState, Status>;
+    fn set_fmu_state(&mut self, state: &Self::FmuState) -> Status;
+    /// Whether fmi2FreeFMUstate is legal now ([`ffi`] releases the memory).
+    fn free_fmu_state(&mut self) -> Status;
+    fn serialized_fmu_state_size(&mut self, state: &Self::FmuState) -> Result<usize, Status>;
+    /// `bytes` must have exactly the serialized size.
+    fn serialize_fmu_state(&mut self, state: &Self::FmuState, bytes: &mut [u8]) -> Status;
+    fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<Self::FmuState, Status>;
+
+    /// `unknown_rates` = J·`known_rates`, J = ∂(unknowns)/∂(knowns).
+    fn get_directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        known_rates: &[f64],
+        unknown_rates: &mut [f64],
+    ) -> Status;
+
+    fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status;
+    fn cancel_step(&mut self) -> Status;
+    fn get_status(&mut self, kind: StatusKind) -> Status;
+    fn get_real_status(&mut self, kind: StatusKind) -> Result<f64, Status>;
+    fn get_integer_status(&mut self, kind: StatusKind) -> Status;
+    fn get_boolean_status(&mut self, kind: StatusKind) -> Result<bool, Status>;
+    fn get_string_status(&mut self, kind: StatusKind) -> Status;
+}

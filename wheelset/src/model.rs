@@ -1,0 +1,214 @@
+//! The FMU's values ↔ the physics: the slave layer's [`Model`] for the wheelset.
+//!
+//! The outputs are the state (y, ψ, ẏ, ψ̇, Ω, and V): ExitInitializationMode sets them from the
+//! initial-value parameters, with Ω = V/r_c (both wheels on their centred rolling radius, so the
+//! run starts without longitudinal creepage, docs/wheelset.md); DoStep advances them with
+//! [`physics::advance`] under the inputs held. Errors name the variable, the value and the time.
+
+use fmi2_slave::instance::Model;
+
+use crate::model_description::{self, Causality, Inputs, Outputs, Parameters, Values, VARIABLES};
+use crate::physics::{self, Loads, State, WheelsetError};
+
+/// One wheelset's values: inputs, parameters and the outputs, which are its state.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Wheelset {
+    pub values: Values,
+}
+
+impl Wheelset {
+    fn physics_parameters(parameters: &Parameters) -> physics::Parameters {
+        let Parameters {
+            mass,
+            yaw_inertia,
+            spin_inertia,
+            longitudinal_stiffness,
+            longitudinal_damping,
+            lateral_stiffness,
+            lateral_damping,
+            lateral_semi_spacing,
+            forward_speed,
+            centred_rolling_radius: _,
+            derailment_displacement,
+            initial_lateral_displacement: _,
+            initial_yaw_angle: _,
+            initial_lateral_velocity: _,
+            initial_yaw_rate: _,
+        } = *parameters;
+        physics::Parameters {
+            mass,
+            yaw_inertia,
+            spin_inertia,
+            longitudinal_stiffness,
+            longitudinal_damping,
+            lateral_stiffness,
+            lateral_damping,
+            lateral_semi_spacing,
+            forward_speed,
+            derailment_displacement,
+        }
+    }
+
+    fn state(outputs: &Outputs) -> State {
+        State {
+            lateral_displacement: outputs.wheelset_lateral_displacement,
+            yaw_angle: outputs.wheelset_yaw_angle,
+            lateral_velocity: outputs.wheelset_lateral_velocity,
+            yaw_rate: outputs.wheelset_yaw_rate,
+            wheel_angular_speed: outputs.wheel_angular_speed,
+        }
+    }
+
+    fn outputs(state: &State, forward_speed: f64) -> Outputs {
+        Outputs {
+            wheelset_lateral_displacement: state.lateral_displacement,
+            wheelset_yaw_angle: state.yaw_angle,
+            wheelset_lateral_velocity: state.lateral_velocity,
+            wheelset_yaw_rate: state.yaw_rate,
+            rolling_speed: forward_speed,
+            wheel_angular_speed: state.wheel_angular_speed,
+        }
+    }
+
+    /// The loads on the wheelset: both wheels' forces and moments summed (module doc of
+    /// [`physics`]); every input finite, and each wheel pressed onto its rail (track z is down,
+    /// so a wheel carrying load has track_force_z < 0; ≥ 0 is lift-off, which the model cannot
+    /// go on from).
+    fn loads(&self, time: f64) -> Result<Loads, String> {
+        for input in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
+            let value = self.values.real(input.value_reference).unwrap_or(f64::NAN);
+            if !value.is_finite() {
+                let unit = input.unit.unwrap_or("");
+                return Err(format!("{} = {value} {unit} at t = {time} s is invalid: must be finite", input.name));
+            }
+        }
+        let Inputs {
+            left_track_force_x: _,
+            left_track_force_y,
+            left_track_force_z,
+            left_track_moment_x: _,
+            left_track_moment_y,
+            left_track_moment_z,
+            right_track_force_x: _,
+            right_track_force_y,
+            right_track_force_z,
+            right_track_moment_x: _,
+            right_track_moment_y,
+            right_track_moment_z,
+        } = self.values.inputs;
+        for (name, force) in [("left_track_force_z", left_track_force_z), ("right_track_force_z", right_track_force_z)]
+        {
+            if force >= 0.0 {
+                return Err(format!(
+                    "the wheel lifts off the rail at t = {time} s: {name} = {force} N (a wheel carrying load has \
+                     track_force_z < 0, track z pointing down)"
+                ));
+            }
+        }
+        Ok(Loads {
+            lateral_force: left_track_force_y + right_track_force_y,
+            axle_moment: left_track_moment_y + right_track_moment_y,
+            yaw_moment: left_track_moment_z + right_track_moment_z,
+        })
+    }
+}
+
+/// A physics error as the FMU reports it: the variable's FMU name and the time.
+fn describe(error: WheelsetError, time: f64) -> String {
+    match error {
+        WheelsetError::Derailed { lateral_displacement, limit } => format!(
+            "the wheelset derails at t = {time} s: wheelset_lateral_displacement = {lateral_displacement} m is beyond \
+             derailment_displacement = {limit} m"
+        ),
+        other => format!("{other} (at t = {time} s)"),
+    }
+}
+
+impl Model for Wheelset {
+    const GUID: &'static str = model_description::GUID;
+    const MODEL_IDENTIFIER: &'static str = model_description::MODEL_IDENTIFIER;
+    const LOG_CATEGORIES: &'static [&'static str] = model_description::LOG_CATEGORIES;
+    const STATE_LAYOUT_TAG: u64 = model_description::STATE_LAYOUT_TAG;
+
+    fn variable(value_reference: u32) -> Option<&'static fmi2_slave::variables::Variable> {
+        model_description::variable(value_reference)
+    }
+
+    fn real(&self, value_reference: u32) -> Option<f64> {
+        self.values.real(value_reference)
+    }
+
+    fn real_mut(&mut self, value_reference: u32) -> Option<&mut f64> {
+        self.values.real_mut(value_reference)
+    }
+
+    /// The parameters checked, the outputs from the initial values; the start must lie within
+    /// the derailment bound.
+    fn initialize(&mut self) -> Result<(), String> {
+        let parameters = self.values.parameters;
+        let physics = Self::physics_parameters(&parameters);
+        physics.check().map_err(|e| e.to_string())?;
+        let radius = parameters.centred_rolling_radius;
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(format!("centred_rolling_radius = {radius} is invalid: must be finite and > 0"));
+        }
+        let initial = [
+            ("initial_lateral_displacement", parameters.initial_lateral_displacement),
+            ("initial_yaw_angle", parameters.initial_yaw_angle),
+            ("initial_lateral_velocity", parameters.initial_lateral_velocity),
+            ("initial_yaw_rate", parameters.initial_yaw_rate),
+        ];
+        if let Some((name, value)) = initial.iter().find(|(_, value)| !value.is_finite()) {
+            return Err(format!("{name} = {value} is invalid: must be finite"));
+        }
+        let limit = parameters.derailment_displacement;
+        if parameters.initial_lateral_displacement.abs() > limit {
+            return Err(format!(
+                "initial_lateral_displacement = {} is invalid: must be within derailment_displacement = {limit}",
+                parameters.initial_lateral_displacement
+            ));
+        }
+        let state = State {
+            lateral_displacement: parameters.initial_lateral_displacement,
+            yaw_angle: parameters.initial_yaw_angle,
+            lateral_velocity: parameters.initial_lateral_velocity,
+            yaw_rate: parameters.initial_yaw_rate,
+            ..State::rolling(parameters.forward_speed, radius)
+        };
+        self.values.outputs = Self::outputs(&state, parameters.forward_speed);
+        Ok(())
+    }
+
+    fn step(&mut self, time: f64, step: f64) -> Result<(), String> {
+        let loads = self.loads(time)?;
+        let parameters = Self::physics_parameters(&self.values.parameters);
+        let next = physics::advance(&parameters, &Self::state(&self.values.outputs), &loads, step)
+            .map_err(|error| describe(error, time + step))?;
+        self.values.outputs = Self::outputs(&next, parameters.forward_speed);
+        Ok(())
+    }
+
+    /// Every Real in the order of [`VARIABLES`], as little-endian f64: the outputs are the state,
+    /// so this is all of it.
+    fn to_bytes(&self) -> Vec<u8> {
+        VARIABLES.iter().flat_map(|v| self.values.real(v.value_reference).unwrap_or(f64::NAN).to_le_bytes()).collect()
+    }
+
+    fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
+        if bytes.len() != 8 * VARIABLES.len() {
+            return Err(format!(
+                "{} bytes of values, not the {} of this FMU's variables",
+                bytes.len(),
+                8 * VARIABLES.len()
+            ));
+        }
+        let mut model = Wheelset::default();
+        for (variable, chunk) in VARIABLES.iter().zip(bytes.chunks_exact(8)) {
+            let value = f64::from_le_bytes(chunk.try_into().expect("8 bytes"));
+            if let Some(field) = model.values.real_mut(variable.value_reference) {
+                *field = value;
+            }
+        }
+        Ok(model)
+    }
+}

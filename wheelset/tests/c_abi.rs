@@ -1,0 +1,330 @@
+//! The wheelset FMU through its C exports, called in-process as a master calls the shared
+//! library: the life cycle, the pointer checks, errors that name the variable, the time and the
+//! value, FMU states, a free oscillation against its closed form, and a seeded fuzz of calls.
+
+use std::ffi::{CStr, CString};
+use std::ptr::{null, null_mut};
+use std::sync::Mutex;
+
+use fmi2_slave::fmi2::*;
+use wheelset::ffi::*;
+use wheelset::model_description::{value_reference as vr, GUID};
+
+const OK: fmi2Status = fmi2Status_fmi2OK;
+const ERROR: fmi2Status = fmi2Status_fmi2Error;
+
+/// Every message the FMU logged, as (status, text).
+#[derive(Default)]
+struct Log(Mutex<Vec<(fmi2Status, String)>>);
+
+impl Log {
+    fn last(&self) -> String {
+        self.0.lock().unwrap().last().map(|(_, text)| text.clone()).unwrap_or_default()
+    }
+}
+
+/// The logger. Stable Rust cannot define a C-variadic function, so it takes the one argument
+/// that `"%s"` announces as a named parameter (passed identically on x86-64 System V and AArch64
+/// Linux; the contact FMU's tests do the same).
+extern "C" fn record(
+    environment: fmi2ComponentEnvironment,
+    _instance_name: fmi2String,
+    status: fmi2Status,
+    _category: fmi2String,
+    format: fmi2String,
+    text: fmi2String,
+) {
+    // SAFETY: the environment is the test's `Log`; the FMU passes NUL-terminated strings.
+    unsafe {
+        assert_eq!(CStr::from_ptr(format), c"%s");
+        let text = CStr::from_ptr(text).to_str().unwrap().to_owned();
+        (*environment.cast::<Log>()).0.lock().unwrap().push((status, text));
+    }
+}
+
+fn callbacks(log: &Log) -> fmi2CallbackFunctions {
+    type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+    type Variadic = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+    // SAFETY: see `record`.
+    let logger = unsafe { std::mem::transmute::<Named, Variadic>(record) };
+    fmi2CallbackFunctions {
+        logger: Some(logger),
+        allocateMemory: None,
+        freeMemory: None,
+        stepFinished: None,
+        componentEnvironment: (log as *const Log).cast_mut().cast(),
+    }
+}
+
+/// One instance, freed on drop.
+struct Wheelset {
+    c: fmi2Component,
+    _callbacks: Box<fmi2CallbackFunctions>,
+}
+
+impl Wheelset {
+    fn instantiate(log: &Log) -> Wheelset {
+        let callbacks = Box::new(callbacks(log));
+        let guid = CString::new(GUID).unwrap();
+        // SAFETY: valid strings and callbacks that outlive the instance.
+        let c = unsafe {
+            fmi2Instantiate(c"ws".as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, 0, 0)
+        };
+        assert!(!c.is_null(), "{}", log.last());
+        Wheelset { c, _callbacks: callbacks }
+    }
+
+    /// `parameters` set, then initialised at t = 0.
+    fn stepping(log: &Log, parameters: &[(u32, f64)]) -> Wheelset {
+        let fmu = Wheelset::instantiate(log);
+        // SAFETY: `c` is live.
+        unsafe {
+            assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+            assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+        }
+        for &(reference, value) in parameters {
+            assert_eq!(fmu.set(&[reference], &[value]), OK, "{}", log.last());
+        }
+        // SAFETY: `c` is live.
+        assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, OK, "{}", log.last());
+        fmu
+    }
+
+    fn set(&self, references: &[u32], values: &[f64]) -> fmi2Status {
+        // SAFETY: `c` is live; the slices have the same length.
+        unsafe { fmi2SetReal(self.c, references.as_ptr(), references.len(), values.as_ptr()) }
+    }
+
+    fn get(&self, references: &[u32]) -> Vec<f64> {
+        let mut values = vec![f64::NAN; references.len()];
+        // SAFETY: `c` is live; the slices have the same length.
+        let status = unsafe { fmi2GetReal(self.c, references.as_ptr(), references.len(), values.as_mut_ptr()) };
+        assert_eq!(status, OK);
+        values
+    }
+
+    fn do_step(&self, time: f64, step: f64) -> fmi2Status {
+        // SAFETY: `c` is live.
+        unsafe { fmi2DoStep(self.c, time, step, 0) }
+    }
+}
+
+impl Drop for Wheelset {
+    fn drop(&mut self) {
+        // SAFETY: freed once.
+        unsafe { fmi2FreeInstance(self.c) }
+    }
+}
+
+const STATE: [u32; 6] = [
+    vr::WHEELSET_LATERAL_DISPLACEMENT,
+    vr::WHEELSET_YAW_ANGLE,
+    vr::WHEELSET_LATERAL_VELOCITY,
+    vr::WHEELSET_YAW_RATE,
+    vr::ROLLING_SPEED,
+    vr::WHEEL_ANGULAR_SPEED,
+];
+
+#[test]
+fn life_cycle_outputs_start_rolling_on_the_centred_radius() {
+    let log = Log::default();
+    let fmu = Wheelset::stepping(&log, &[(vr::FORWARD_SPEED, 30.0)]);
+    assert_eq!(fmu.get(&STATE), [0.0, 0.0, 0.0, 0.0, 30.0, 30.0 / 0.4599063409]);
+    // At rest, centred, the wheels' loads only: nothing moves.
+    for k in 0..10 {
+        assert_eq!(fmu.do_step(k as f64 * 1e-3, 1e-3), OK, "{}", log.last());
+    }
+    assert_eq!(fmu.get(&STATE), [0.0, 0.0, 0.0, 0.0, 30.0, 30.0 / 0.4599063409]);
+    let mut time = 0.0;
+    // SAFETY: `c` is live; valid out-pointers.
+    unsafe {
+        assert_eq!(fmi2GetRealStatus(fmu.c, fmi2StatusKind_fmi2LastSuccessfulTime, &mut time), OK);
+        assert!((time - 0.01).abs() < 1e-15, "{time}");
+        assert_eq!(fmi2Terminate(fmu.c), OK);
+        assert_eq!(fmi2Reset(fmu.c), OK);
+    }
+    assert!(log.0.lock().unwrap().is_empty());
+}
+
+#[test]
+fn guid_and_pointers_are_checked() {
+    let log = Log::default();
+    let functions = callbacks(&log);
+    // SAFETY: NULL pointers and a wrong GUID are what is being tested.
+    unsafe {
+        let wrong = c"{00000000-0000-0000-0000-000000000000}";
+        assert!(fmi2Instantiate(c"ws".as_ptr(), 1, wrong.as_ptr(), null(), &functions, 0, 0).is_null());
+        assert!(log.last().contains("does not match this FMU's GUID"), "{}", log.last());
+        assert!(fmi2Instantiate(c"ws".as_ptr(), 1, wrong.as_ptr(), null(), null(), 0, 0).is_null());
+        assert_eq!(fmi2DoStep(null_mut(), 0.0, 1e-3, 0), ERROR);
+        assert_eq!(fmi2GetReal(null_mut(), &vr::MASS, 1, &mut 0.0), ERROR);
+        fmi2FreeInstance(null_mut());
+    }
+    let fmu = Wheelset::stepping(&log, &[]);
+    // SAFETY: NULL arrays with n > 0 must be refused; with n = 0 they are legal.
+    unsafe {
+        assert_eq!(fmi2SetReal(fmu.c, &vr::LEFT_TRACK_FORCE_Y, 1, null()), ERROR);
+        assert_eq!(log.last(), "fmi2SetReal: NULL array pointer with n > 0");
+        assert_eq!(fmi2GetReal(fmu.c, null(), 0, null_mut()), OK);
+        assert_eq!(fmi2GetFMUstate(fmu.c, null_mut()), ERROR);
+        assert_eq!(log.last(), "fmi2GetFMUstate: FMUstate is NULL");
+        assert_eq!(fmi2GetDirectionalDerivative(fmu.c, null(), 0, null(), 0, null(), null_mut()), ERROR);
+        assert_eq!(log.last(), "fmi2GetDirectionalDerivative: not supported (providesDirectionalDerivative = false in modelDescription.xml)");
+        let mut value = 0;
+        assert_eq!(fmi2GetInteger(fmu.c, &vr::MASS, 1, &mut value), ERROR);
+        assert_eq!(log.last(), "fmi2GetInteger: value reference 100 (mass) is not a Integer");
+    }
+}
+
+#[test]
+fn bad_values_are_errors_naming_variable_time_and_value() {
+    let log = Log::default();
+    let fmu = Wheelset::stepping(&log, &[]);
+    assert_eq!(fmu.do_step(0.0, 0.5), OK);
+    assert_eq!(fmu.set(&[vr::LEFT_TRACK_FORCE_Y], &[f64::NAN]), OK);
+    assert_eq!(fmu.do_step(0.5, 1e-3), ERROR);
+    assert_eq!(log.last(), "fmi2DoStep: left_track_force_y = NaN N at t = 0.5 s is invalid: must be finite");
+    // The instance kept its state: a good value and it carries on.
+    assert_eq!(fmu.set(&[vr::LEFT_TRACK_FORCE_Y], &[0.0]), OK);
+    assert_eq!(fmu.do_step(0.5, 1e-3), OK);
+    assert_eq!(fmu.set(&[vr::RIGHT_TRACK_FORCE_Z], &[0.0]), OK);
+    assert_eq!(fmu.do_step(0.501, 1e-3), ERROR);
+    assert!(log
+        .last()
+        .starts_with("fmi2DoStep: the wheel lifts off the rail at t = 0.501 s: right_track_force_z = 0 N"));
+    assert_eq!(fmu.set(&[vr::RIGHT_TRACK_FORCE_Z], &[-5e4]), OK);
+    // A fixed parameter after initialisation, an output: refused.
+    assert_eq!(fmu.set(&[vr::MASS], &[1.0]), ERROR);
+    assert_eq!(log.last(), "fmi2SetReal: mass is a fixed parameter and cannot be set after initialization");
+    assert_eq!(fmu.set(&[vr::ROLLING_SPEED], &[1.0]), ERROR);
+    assert_eq!(log.last(), "fmi2SetReal: rolling_speed is an output and cannot be set");
+    // 60 kN to the right on a suspension of 2 × 3.884 MN/m: 7.7 mm static, up to twice that in
+    // the first swing, beyond the 10 mm bound.
+    assert_eq!(fmu.set(&[vr::LEFT_TRACK_FORCE_Y], &[60e3]), OK);
+    // The refused step did not advance the time.
+    let mut time = 0.501;
+    let status = loop {
+        let status = fmu.do_step(time, 1e-3);
+        if status != OK || time > 1.0 {
+            break status;
+        }
+        time += 1e-3;
+    };
+    assert_eq!(status, ERROR);
+    let message = log.last();
+    assert!(message.starts_with("fmi2DoStep: the wheelset derails at t = 0.5"), "{message}");
+    assert!(message.ends_with("m is beyond derailment_displacement = 0.01 m"), "{message}");
+}
+
+#[test]
+fn bad_parameters_keep_it_in_initialization_mode() {
+    let log = Log::default();
+    let fmu = Wheelset::instantiate(&log);
+    // SAFETY: `c` is live.
+    unsafe {
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+        assert_eq!(fmu.set(&[vr::SPIN_INERTIA], &[-112.0]), OK);
+        assert_eq!(fmi2ExitInitializationMode(fmu.c), ERROR);
+        assert_eq!(log.last(), "fmi2ExitInitializationMode: spin_inertia = -112 is invalid: must be finite and > 0");
+        assert_eq!(fmu.set(&[vr::SPIN_INERTIA], &[112.0]), OK);
+        assert_eq!(fmi2ExitInitializationMode(fmu.c), OK);
+    }
+}
+
+/// The free lateral oscillation through the exports: y(t) of the damped oscillator with
+/// ω² = 2 k_y/m, damping 2 c_y/m, from y(0) = 2 mm (the physics' own tests check it finer).
+#[test]
+fn free_lateral_oscillation_through_the_exports() {
+    let log = Log::default();
+    let fmu = Wheelset::stepping(&log, &[(vr::INITIAL_LATERAL_DISPLACEMENT, 2e-3)]);
+    let (k, c) = (2.0 * 3.884e6 / 1813.0, 2.0 * 2.0e3 / 1813.0);
+    let omega_d = (k - c * c / 4.0_f64).sqrt();
+    for step in 0..100 {
+        assert_eq!(fmu.do_step(step as f64 * 1e-3, 1e-3), OK);
+    }
+    let t = 0.1;
+    let expected = 2e-3 * (-c / 2.0 * t).exp() * ((omega_d * t).cos() + c / 2.0 / omega_d * (omega_d * t).sin());
+    let y = fmu.get(&[vr::WHEELSET_LATERAL_DISPLACEMENT])[0];
+    assert!((y - expected).abs() < 1e-6 * 2e-3, "{y} against {expected}");
+}
+
+/// An FMU state taken, serialised, read back and restored: the run continues bit for bit.
+#[test]
+fn fmu_states_round_trip() {
+    let log = Log::default();
+    let fmu = Wheelset::stepping(&log, &[(vr::INITIAL_YAW_ANGLE, 1e-3)]);
+    assert_eq!(fmu.set(&[vr::LEFT_TRACK_MOMENT_Y], &[-100.0]), OK);
+    assert_eq!(fmu.do_step(0.0, 0.01), OK);
+    let mut state: fmi2FMUstate = null_mut();
+    let mut size = 0;
+    // SAFETY: `c` is live; `state` is this FMU's until freed; the buffer has `size` bytes.
+    unsafe {
+        assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
+        assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
+        let mut bytes = vec![0u8; size];
+        assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
+        assert_eq!(fmu.do_step(0.01, 0.01), OK);
+        let first = fmu.get(&STATE);
+        let mut restored: fmi2FMUstate = null_mut();
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut restored), OK);
+        assert_eq!(fmi2SetFMUstate(fmu.c, restored), OK);
+        assert_eq!(fmu.do_step(0.01, 0.01), OK);
+        assert_eq!(fmu.get(&STATE), first);
+        bytes[0] ^= 1;
+        let mut rejected: fmi2FMUstate = null_mut();
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut rejected), ERROR);
+        assert!(
+            log.last().starts_with("fmi2DeSerializeFMUstate: serializedState rejected: layout tag"),
+            "{}",
+            log.last()
+        );
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut restored), OK);
+        assert!(state.is_null() && restored.is_null());
+    }
+}
+
+/// Random calls with random (finite, infinite, NaN) values in random states: every call returns a
+/// status (no panic crosses the C ABI, which would abort the test), and an instance never
+/// reports a non-finite output after a successful step.
+#[test]
+fn seeded_fuzz_is_panic_free() {
+    let log = Log::default();
+    let fmu = Wheelset::instantiate(&log);
+    // A 64-bit linear congruential generator (Knuth's MMIX constants): reproducible, no crate.
+    let mut seed: u64 = 0x5eed;
+    let mut next = move || {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed >> 33
+    };
+    let values = [0.0, 1.0, -1.0, 1e-3, 5e4, -5e4, 1e300, f64::NAN, f64::INFINITY, -f64::INFINITY];
+    let references: Vec<u32> =
+        wheelset::model_description::VARIABLES.iter().map(|v| v.value_reference).chain([999]).collect();
+    for _ in 0..20_000 {
+        let reference = references[next() as usize % references.len()];
+        let value = values[next() as usize % values.len()];
+        // SAFETY: `c` is live; one reference, one value.
+        let status = unsafe {
+            match next() % 8 {
+                0 => fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0),
+                1 => fmi2EnterInitializationMode(fmu.c),
+                2 => fmi2ExitInitializationMode(fmu.c),
+                3 => fmi2SetReal(fmu.c, &reference, 1, &value),
+                4 => fmi2GetReal(fmu.c, &reference, 1, &mut 0.0),
+                5 => {
+                    // At the instance's time where it has one (an error in the other states).
+                    let mut time = 0.0;
+                    fmi2GetRealStatus(fmu.c, fmi2StatusKind_fmi2LastSuccessfulTime, &mut time);
+                    let status = fmi2DoStep(fmu.c, time, value.abs().min(0.01), 0);
+                    if status == OK {
+                        assert!(fmu.get(&STATE).iter().all(|v| v.is_finite()));
+                    }
+                    status
+                }
+                6 => fmi2Reset(fmu.c),
+                _ => fmi2Terminate(fmu.c),
+            }
+        };
+        assert!(status <= fmi2Status_fmi2Error, "status {status}: {}", log.last());
+    }
+}
