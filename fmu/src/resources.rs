@@ -5,9 +5,11 @@
 //! with the `file` scheme. Masters write it in every form RFC 8089 allows and some it does not:
 //! `file:///home/u/x/resources`, `file:/home/u/x/resources`, `file://localhost/…`, percent-encoded
 //! characters (`%20`), Windows drive letters (`file:///C:/x`, `file:/C:/x`, and `file://C:/x`,
-//! where the drive letter stands in the host's place), with or without a trailing slash. The
-//! [`url`] crate reads RFC 8089 and turns it into a path of the platform the binary runs on; the
-//! drive letter in the host's place is repaired first.
+//! where the drive letter stands in the host's place), with or without a trailing slash. They are read
+//! here as RFC 8089 describes them (its appendix E lists the non-standard forms), into a path of
+//! the platform the binary runs on; the percent-encoding is undone by the `percent-encoding`
+//! crate. (The `url` crate would parse them too, but brings Unicode host names' tables into the
+//! binary for a job that has no host name.)
 //!
 //! A relative file name in a parameter (a profile) is looked up in the resources directory
 //! first, so that files packed into the FMU are found wherever the master runs, then in the
@@ -17,22 +19,78 @@ use std::path::{Path, PathBuf};
 
 /// The directory `location` names, or why it names none.
 pub fn resource_directory(location: &str) -> Result<PathBuf, String> {
-    let repaired = drive_letter_as_host(location);
-    let url = url::Url::parse(repaired.as_deref().unwrap_or(location))
-        .map_err(|e| format!("the resource location \"{location}\" is not a URI ({e})"))?;
-    if url.scheme() != "file" {
-        return Err(format!("the resource location \"{location}\" is not a file URI"));
-    }
-    url.to_file_path().map_err(|()| format!("the resource location \"{location}\" names no local directory"))
+    let Some(rest) = location.get(..5).filter(|scheme| scheme.eq_ignore_ascii_case("file:")).map(|_| &location[5..])
+    else {
+        return Err(if has_scheme(location) {
+            format!("the resource location \"{location}\" is not a file URI")
+        } else {
+            format!("the resource location \"{location}\" is not a URI (no scheme)")
+        });
+    };
+    let path = match rest.strip_prefix("//") {
+        Some(authority_and_path) => {
+            let (authority, path) =
+                authority_and_path.split_at(authority_and_path.find('/').unwrap_or(authority_and_path.len()));
+            if authority.is_empty() || authority.eq_ignore_ascii_case("localhost") {
+                path.to_owned()
+            } else if is_drive(authority) {
+                // `file://C:/x`: the drive letter in the host's place (RFC 8089, E.2).
+                format!("/{authority}{path}")
+            } else {
+                return remote(location, authority, path);
+            }
+        }
+        None if rest.starts_with('/') => rest.to_owned(),
+        None => return Err(format!("the resource location \"{location}\" has no absolute path")),
+    };
+    let decoded = percent_encoding::percent_decode_str(&path)
+        .decode_utf8()
+        .map_err(|_| format!("the resource location \"{location}\" is not UTF-8 once percent-decoded"))?;
+    Ok(local_path(&decoded))
 }
 
-/// `file://C:/x` → `file:///C:/x`: a drive letter where the host belongs (RFC 8089 appendix E.2
-/// lists it among the forms in use).
-fn drive_letter_as_host(location: &str) -> Option<String> {
-    let rest = location.get(..7).filter(|scheme| scheme.eq_ignore_ascii_case("file://")).map(|_| &location[7..])?;
-    let bytes = rest.as_bytes();
-    let drive = bytes.len() >= 2 && bytes[0].is_ascii_alphabetic() && (bytes[1] == b':' || bytes[1] == b'|');
-    (drive && (bytes.len() == 2 || bytes[2] == b'/' || bytes[2] == b'\\')).then(|| format!("file:///{rest}"))
+/// `scheme:` at the start (RFC 3986: a letter, then letters, digits, `+`, `-`, `.`).
+fn has_scheme(text: &str) -> bool {
+    let Some((scheme, _)) = text.split_once(':') else { return false };
+    let mut characters = scheme.chars();
+    characters.next().is_some_and(|c| c.is_ascii_alphabetic())
+        && characters.all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+}
+
+/// `C:` or `C|` (a drive letter as RFC 8089's appendix E writes it).
+fn is_drive(text: &str) -> bool {
+    let bytes = text.as_bytes();
+    bytes.len() == 2 && bytes[0].is_ascii_alphabetic() && (bytes[1] == b':' || bytes[1] == b'|')
+}
+
+/// A host other than this machine: a UNC path on Windows, no local directory elsewhere.
+#[cfg(windows)]
+fn remote(location: &str, host: &str, path: &str) -> Result<PathBuf, String> {
+    let decoded = percent_encoding::percent_decode_str(path)
+        .decode_utf8()
+        .map_err(|_| format!("the resource location \"{location}\" is not UTF-8 once percent-decoded"))?;
+    Ok(PathBuf::from(format!(r"\\{host}{}", decoded.replace('/', r"\"))))
+}
+
+#[cfg(not(windows))]
+fn remote(location: &str, _host: &str, _path: &str) -> Result<PathBuf, String> {
+    Err(format!("the resource location \"{location}\" names no local directory (a remote host)"))
+}
+
+/// The decoded URI path as this platform's path: on Windows `/C:/x` and `/C|/x` become `C:\x`.
+#[cfg(windows)]
+fn local_path(path: &str) -> PathBuf {
+    let trimmed = path.strip_prefix('/').filter(|rest| rest.get(..2).is_some_and(is_drive)).unwrap_or(path);
+    let mut text = trimmed.replace('/', r"\");
+    if text.as_bytes().get(1) == Some(&b'|') {
+        text.replace_range(1..2, ":");
+    }
+    PathBuf::from(text)
+}
+
+#[cfg(not(windows))]
+fn local_path(path: &str) -> PathBuf {
+    PathBuf::from(path)
 }
 
 /// Where to read the file a parameter names: an absolute path as it is; a relative one in the
@@ -105,6 +163,8 @@ mod tests {
             ("/home/u/resources", "is not a URI"),
             ("http://example.com/resources", "is not a file URI"),
             ("", "is not a URI"),
+            ("file:resources", "has no absolute path"),
+            ("file:///home/u/%FF", "is not UTF-8"),
         ] {
             let error = resource_directory(location).unwrap_err();
             assert!(error.contains(&format!("\"{location}\"")) && error.contains(reason), "{error}");
