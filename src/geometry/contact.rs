@@ -479,6 +479,7 @@ impl WheelOnRail {
 /// The rotation R_z(ψ)R_x(φ) of a wheelset position and the constants of its contact locus'
 /// equation A sin θ + B cos θ = C (module doc, "Yaw"), with cos γ divided out: A/cos γ = cos ψ,
 /// B/cos γ = sin φ sin ψ, C/cos γ = −tan γ cos φ sin ψ.
+#[derive(Clone, Copy)]
 struct LocusFrame {
     sin_roll: f64,
     cos_roll: f64,
@@ -514,7 +515,8 @@ impl LocusFrame {
     /// slope tan γ; `None` where the locus has no point (|sin θ + β| would exceed 1).
     #[inline(always)]
     fn track_position(&self, wheel: &WheelOnRail, profile_y: f64, height: f64, slope: f64) -> Option<(f64, f64)> {
-        self.track_position_of::<true>(wheel, profile_y, height, slope)
+        let placement = (wheel.dimensions.nominal_radius, wheel.wheel_offset);
+        self.track_position_of::<true>(placement, profile_y, height, slope)
     }
 
     /// [`Self::track_position`]; `YAWED = false` only where the yaw is 0 (`sin_yaw` = 0,
@@ -524,7 +526,7 @@ impl LocusFrame {
     #[inline(always)]
     fn track_position_of<const YAWED: bool>(
         &self,
-        wheel: &WheelOnRail,
+        (nominal_radius, wheel_offset): (f64, f64),
         profile_y: f64,
         height: f64,
         slope: f64,
@@ -533,11 +535,11 @@ impl LocusFrame {
         if ratio.is_nan() || ratio.abs() >= 1.0 {
             return None;
         }
-        let radius = wheel.dimensions.nominal_radius + height;
-        let qy = profile_y + wheel.wheel_offset;
+        let radius = nominal_radius + height;
+        let qy = profile_y + wheel_offset;
         if !YAWED {
             let (ry, rz) = (qy * self.cos_roll - radius * self.sin_roll, qy * self.sin_roll + radius * self.cos_roll);
-            return Some((self.lateral + ry, rz - wheel.dimensions.nominal_radius));
+            return Some((self.lateral + ry, rz - nominal_radius));
         }
         // θ = asin(ratio) − β without trigonometry: sin θ = ratio cos β − √(1 − ratio²) sin β.
         let root = (1.0 - ratio * ratio).sqrt();
@@ -545,7 +547,7 @@ impl LocusFrame {
         let cos_angle = root * self.cos_phase + ratio * self.sin_phase;
         let (qx, qz) = (radius * sin_angle, radius * cos_angle);
         let (ry, rz) = (qy * self.cos_roll - qz * self.sin_roll, qy * self.sin_roll + qz * self.cos_roll);
-        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - wheel.dimensions.nominal_radius))
+        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - nominal_radius))
     }
 
     /// Whether the yaw is 0: [`Self::track_position_of`] without it.
@@ -632,26 +634,31 @@ impl<'a> GapSearch<'a> {
     /// [`Self::minima_between`] over the wheel samples start, start + stride, … ≤ last.
     #[inline(always)]
     fn minima_over<const YAWED: bool>(&self, start: usize, last: usize) -> Minima {
-        let (wheel, locus) = (self.wheel, &self.locus);
-        let (samples, rail) = (&wheel.wheel_samples, &wheel.rail_samples);
+        // Copies of what each sample reads, for the registers.
+        let (wheel, locus) = (self.wheel, self.locus);
+        let (samples, rail) = (wheel.wheel_samples.view(), wheel.rail_samples.view());
+        let placement = (wheel.dimensions.nominal_radius, wheel.wheel_offset);
+        let (rail_offset, rail_lift) = (wheel.rail_offset, wheel.rail_lift);
         let stride = SAMPLES_PER_STEP as usize;
         let mut found = Minima { minima: Vec::new(), barriers: Vec::new(), samples: 0 };
-        // The last two samples over the rail (profile y, gap) and the highest gap since the last
-        // minimum (from it on).
-        let (mut before, mut middle) = ((0.0, 0.0), (0.0, 0.0));
+        // The last two samples over the rail (profile y, gap; NaN before the first two: no
+        // comparison holds) and the highest gap since the last minimum (from it on).
+        let (mut before, mut middle) = ((0.0, f64::NAN), (0.0, f64::NAN));
         let mut highest = f64::MIN;
-        let mut k = start;
+        // k and k as f64 (exact) for the sample's y.
+        let (mut k, mut index) = (start, start as f64);
         while k <= last {
-            let profile_y = samples.lateral(k);
+            let profile_y = samples.lateral_at(index);
             let (height, slope) = samples.sample(k);
-            k += stride;
+            (k, index) = (k + stride, index + stride as f64);
             // The gap as `gap_of`.
-            let Some((lateral, vertical)) = locus.track_position_of::<YAWED>(wheel, profile_y, height, slope) else {
+            let Some((lateral, vertical)) = locus.track_position_of::<YAWED>(placement, profile_y, height, slope)
+            else {
                 continue;
             };
-            let Some(rail_height) = rail.height_at(lateral - wheel.rail_offset) else { continue };
-            let gap = rail_height + wheel.rail_lift - vertical;
-            if found.samples >= 2 && middle.1 < before.1 && middle.1 <= gap {
+            let Some(rail_height) = rail.height_at(lateral - rail_offset) else { continue };
+            let gap = rail_height + rail_lift - vertical;
+            if middle.1 < before.1 && middle.1 <= gap {
                 if !found.minima.is_empty() {
                     found.barriers.push(highest);
                 }
@@ -659,7 +666,10 @@ impl<'a> GapSearch<'a> {
                 found.minima.push((before.0, profile_y));
                 highest = middle.1;
             }
-            highest = highest.max(gap);
+            // (`highest` is never NaN: a NaN gap leaves it, as `f64::max` would.)
+            if gap > highest {
+                highest = gap;
+            }
             (before, middle) = (middle, (profile_y, gap));
             found.samples += 1;
         }
@@ -931,6 +941,7 @@ mod tests {
         )
         .unwrap();
         let samples = &pair.wheel_samples;
+        let placement = (pair.dimensions.nominal_radius, pair.wheel_offset);
         for (lateral, roll) in [(0.0, 0.0), (-0.0, -0.0), (3.7e-3, 0.0), (-8.2e-3, 0.0113), (1e-3, -0.004), (0.0, 0.1)]
         {
             let locus = LocusFrame::new(&WheelsetPosition { lateral, roll, ..WheelsetPosition::default() });
@@ -939,14 +950,14 @@ mod tests {
                 let (height, slope) = samples.sample(k);
                 let (y, general, unyawed) = (
                     samples.lateral(k),
-                    locus.track_position_of::<true>(&pair, samples.lateral(k), height, slope),
-                    locus.track_position_of::<false>(&pair, samples.lateral(k), height, slope),
+                    locus.track_position_of::<true>(placement, samples.lateral(k), height, slope),
+                    locus.track_position_of::<false>(placement, samples.lateral(k), height, slope),
                 );
                 let bits = |p: Option<(f64, f64)>| p.map(|(a, b)| ((a + 0.0).to_bits(), (b + 0.0).to_bits()));
                 assert_eq!(bits(general), bits(unyawed), "y {y}, at ({lateral}, {roll})");
             }
             // Beyond the profile's slopes: a sample the locus refuses either way.
-            assert_eq!(locus.track_position_of::<false>(&pair, 0.0, 0.0, f64::NAN), None);
+            assert_eq!(locus.track_position_of::<false>(placement, 0.0, 0.0, f64::NAN), None);
         }
         let yawed = LocusFrame::new(&WheelsetPosition { yaw: 1e-9, ..WheelsetPosition::default() });
         assert!(!yawed.unyawed());

@@ -38,8 +38,9 @@ impl SampledProfile {
     }
 
     /// The k-th sample's y.
+    #[cfg(test)]
     pub(crate) fn lateral(&self, k: usize) -> f64 {
-        self.first + k as f64 * self.step
+        self.view().lateral_at(k as f64)
     }
 
     /// The (fractional) sample index of y.
@@ -52,6 +53,57 @@ impl SampledProfile {
     }
 
     /// The k-th sample's height and slope.
+    #[cfg(test)]
+    pub(crate) fn sample(&self, k: usize) -> (f64, f64) {
+        self.view().sample(k)
+    }
+
+    /// Height and slope at y by cubic Hermite interpolation, `None` outside the samples.
+    #[inline]
+    pub(crate) fn at(&self, y: f64) -> Option<(f64, f64)> {
+        self.view().at(y)
+    }
+
+    /// Height at y as [`Self::at`], without the slope: the gap reads only the rail's height.
+    #[inline(always)]
+    pub(crate) fn height_at(&self, y: f64) -> Option<f64> {
+        self.view().height_at(y)
+    }
+
+    /// The samples' reader, its scalars copied: a loop over many reads keeps them in registers.
+    #[inline(always)]
+    pub(crate) fn view(&self) -> SampledView<'_> {
+        SampledView {
+            first: self.first,
+            step: self.step,
+            per_step: self.per_step,
+            last_index: self.last_index,
+            heights: &self.heights,
+            slopes: &self.slopes,
+        }
+    }
+}
+
+/// A [`SampledProfile`]'s reads ([`SampledProfile::view`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SampledView<'a> {
+    first: f64,
+    step: f64,
+    per_step: f64,
+    last_index: f64,
+    heights: &'a [f64],
+    slopes: &'a [f64],
+}
+
+impl SampledView<'_> {
+    /// [`SampledProfile::lateral`] with k given as a float (exactly).
+    #[inline(always)]
+    pub(crate) fn lateral_at(&self, k: f64) -> f64 {
+        self.first + k * self.step
+    }
+
+    /// The k-th sample's height and slope.
+    #[inline(always)]
     pub(crate) fn sample(&self, k: usize) -> (f64, f64) {
         (self.heights[k], self.slopes[k])
     }
@@ -99,7 +151,8 @@ impl SampledProfile {
     /// Heights and slopes (per unit t) at the ends of interval k.
     #[inline]
     fn ends(&self, k: usize) -> (f64, f64, f64, f64) {
-        (self.heights[k], self.heights[k + 1], self.slopes[k] * self.step, self.slopes[k + 1] * self.step)
+        let (heights, slopes) = (&self.heights[k..k + 2], &self.slopes[k..k + 2]);
+        (heights[0], heights[1], slopes[0] * self.step, slopes[1] * self.step)
     }
 }
 
