@@ -111,8 +111,13 @@ impl WheelSide {
         }
     }
 
-    pub(super) fn mirror_patches(self, patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
-        patches.into_iter().map(|patch| ContactPatch { point: self.mirror_point(&patch.point), ..patch }).collect()
+    pub(super) fn mirror_patches(self, mut patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
+        if self == Self::Left {
+            for patch in &mut patches {
+                patch.point = self.mirror_point(&patch.point);
+            }
+        }
+        patches
     }
 }
 
