@@ -111,8 +111,13 @@ impl WheelSide {
         }
     }
 
-    pub(super) fn mirror_patches(self, patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
-        patches.into_iter().map(|patch| ContactPatch { point: self.mirror_point(&patch.point), ..patch }).collect()
+    pub(super) fn mirror_patches(self, mut patches: Vec<ContactPatch>) -> Vec<ContactPatch> {
+        if self == Self::Left {
+            for patch in &mut patches {
+                patch.point = self.mirror_point(&patch.point);
+            }
+        }
+        patches
     }
 }
 
@@ -479,6 +484,7 @@ impl WheelOnRail {
 /// The rotation R_z(ψ)R_x(φ) of a wheelset position and the constants of its contact locus'
 /// equation A sin θ + B cos θ = C (module doc, "Yaw"), with cos γ divided out: A/cos γ = cos ψ,
 /// B/cos γ = sin φ sin ψ, C/cos γ = −tan γ cos φ sin ψ.
+#[derive(Clone, Copy)]
 struct LocusFrame {
     sin_roll: f64,
     cos_roll: f64,
@@ -512,19 +518,46 @@ impl LocusFrame {
 
     /// Track y and z (z_ws = 0) of the locus point at wheel profile y with height z_wheel and
     /// slope tan γ; `None` where the locus has no point (|sin θ + β| would exceed 1).
+    #[inline(always)]
     fn track_position(&self, wheel: &WheelOnRail, profile_y: f64, height: f64, slope: f64) -> Option<(f64, f64)> {
+        let placement = (wheel.dimensions.nominal_radius, wheel.wheel_offset);
+        self.track_position_of::<true>(placement, profile_y, height, slope)
+    }
+
+    /// [`Self::track_position`]; `YAWED = false` only where the yaw is 0 (`sin_yaw` = 0,
+    /// `cos_yaw` = 1): there θ = 0 (ratio ±0, β = 0: sin θ = ±0, cos θ = 1 exactly) and the
+    /// rotation is the roll's alone, the same numbers without the square root and the
+    /// multiplications by 0 and 1 (`the_unyawed_locus_is_the_yawed_one_at_zero_yaw`).
+    #[inline(always)]
+    fn track_position_of<const YAWED: bool>(
+        &self,
+        (nominal_radius, wheel_offset): (f64, f64),
+        profile_y: f64,
+        height: f64,
+        slope: f64,
+    ) -> Option<(f64, f64)> {
         let ratio = self.ratio_per_slope * slope;
         if ratio.is_nan() || ratio.abs() >= 1.0 {
             return None;
+        }
+        let radius = nominal_radius + height;
+        let qy = profile_y + wheel_offset;
+        if !YAWED {
+            let (ry, rz) = (qy * self.cos_roll - radius * self.sin_roll, qy * self.sin_roll + radius * self.cos_roll);
+            return Some((self.lateral + ry, rz - nominal_radius));
         }
         // θ = asin(ratio) − β without trigonometry: sin θ = ratio cos β − √(1 − ratio²) sin β.
         let root = (1.0 - ratio * ratio).sqrt();
         let sin_angle = ratio * self.cos_phase - root * self.sin_phase;
         let cos_angle = root * self.cos_phase + ratio * self.sin_phase;
-        let radius = wheel.dimensions.nominal_radius + height;
-        let (qx, qy, qz) = (radius * sin_angle, profile_y + wheel.wheel_offset, radius * cos_angle);
+        let (qx, qz) = (radius * sin_angle, radius * cos_angle);
         let (ry, rz) = (qy * self.cos_roll - qz * self.sin_roll, qy * self.sin_roll + qz * self.cos_roll);
-        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - wheel.dimensions.nominal_radius))
+        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - nominal_radius))
+    }
+
+    /// Whether the yaw is 0: [`Self::track_position_of`] without it.
+    fn unyawed(&self) -> bool {
+        self.sin_yaw == 0.0 && self.cos_yaw == 1.0
     }
 }
 
@@ -565,6 +598,7 @@ impl<'a> GapSearch<'a> {
     }
 
     /// The gap at the locus point of a wheel sample (profile y, height, slope).
+    #[inline(always)]
     fn gap_of(&self, profile_y: f64, (height, slope): (f64, f64)) -> Option<f64> {
         let (lateral, vertical) = self.locus.track_position(self.wheel, profile_y, height, slope)?;
         let rail_height = self.wheel.rail_samples.height_at(lateral - self.wheel.rail_offset)?;
@@ -580,42 +614,76 @@ impl<'a> GapSearch<'a> {
             .unwrap_or(f64::INFINITY)
     }
 
-    /// The gap at the wheel samples every [`SAMPLE_STEP`] whose profile y lies in [from, to]
-    /// (those over the rail): (profile y, gap), increasing.
-    fn sampled(&self, from: f64, to: f64) -> Vec<(f64, f64)> {
+    /// The gap's local minima over the wheel samples every [`SAMPLE_STEP`] whose profile y lies
+    /// in [from, to] (those over the rail; on the full scan's grid, multiples of the stride,
+    /// wherever it starts), refined by Brent's method (wheel profile y, increasing), with the
+    /// highest sampled gap between neighbours, and how many samples lay over the rail. Read in
+    /// one pass, without storing the samples: a sample is a minimum when it is below the one
+    /// before and not above the one after.
+    fn minima_between(&self, from: f64, to: f64) -> Minima {
         let samples = &self.wheel.wheel_samples;
         let stride = SAMPLES_PER_STEP as usize;
         let first = samples.index_at(from).max(0.0).ceil() as usize;
         let last = samples.index_at(to).min((samples.len() - 1) as f64).floor();
         if last.is_nan() || (last as usize) < first {
-            return Vec::new();
+            return Minima { minima: Vec::new(), barriers: Vec::new(), samples: 0 };
         }
-        // On the full scan's grid (multiples of the stride), wherever it starts.
         let start = first.div_ceil(stride) * stride;
-        let mut gaps = Vec::with_capacity((last as usize).saturating_sub(start) / stride + 1);
-        for k in (start..=last as usize).step_by(stride) {
-            let profile_y = samples.lateral(k);
-            if let Some(gap) = self.gap_of(profile_y, samples.sample(k)) {
-                gaps.push((profile_y, gap));
-            }
+        if self.locus.unyawed() {
+            self.minima_over::<false>(start, last as usize)
+        } else {
+            self.minima_over::<true>(start, last as usize)
         }
-        gaps
     }
 
-    /// The local minima of a run of samples, refined by Brent's method (wheel profile y), with
-    /// the highest sample between neighbours.
-    fn minima_of(&self, samples: &[(f64, f64)]) -> (Vec<f64>, Vec<f64>) {
-        let mut minima = Vec::new();
-        for (i, window) in samples.windows(3).enumerate() {
-            if window[1].1 < window[0].1 && window[1].1 <= window[2].1 {
-                minima.push(i + 1);
+    /// [`Self::minima_between`] over the wheel samples start, start + stride, … ≤ last.
+    #[inline(always)]
+    fn minima_over<const YAWED: bool>(&self, start: usize, last: usize) -> Minima {
+        // Copies of what each sample reads, for the registers.
+        let (wheel, locus) = (self.wheel, self.locus);
+        let (samples, rail) = (wheel.wheel_samples.view(), wheel.rail_samples.view());
+        let placement = (wheel.dimensions.nominal_radius, wheel.wheel_offset);
+        let (rail_offset, rail_lift) = (wheel.rail_offset, wheel.rail_lift);
+        let stride = SAMPLES_PER_STEP as usize;
+        let mut found = Minima { minima: Vec::new(), barriers: Vec::new(), samples: 0 };
+        // The last two samples over the rail (profile y, gap; NaN before the first two: no
+        // comparison holds) and the highest gap since the last minimum (from it on).
+        let (mut before, mut middle) = ((0.0, f64::NAN), (0.0, f64::NAN));
+        let mut highest = f64::MIN;
+        // k and k as f64 (exact) for the sample's y.
+        let (mut k, mut index) = (start, start as f64);
+        while k <= last {
+            let profile_y = samples.lateral_at(index);
+            let (height, slope) = samples.sample(k);
+            (k, index) = (k + stride, index + stride as f64);
+            // The gap as `gap_of`.
+            let Some((lateral, vertical)) = locus.track_position_of::<YAWED>(placement, profile_y, height, slope)
+            else {
+                continue;
+            };
+            let Some(rail_height) = rail.height_at(lateral - rail_offset) else { continue };
+            let gap = rail_height + rail_lift - vertical;
+            if middle.1 < before.1 && middle.1 <= gap {
+                if !found.minima.is_empty() {
+                    found.barriers.push(highest);
+                }
+                // Its neighbours bracket it for the refinement.
+                found.minima.push((before.0, profile_y));
+                highest = middle.1;
             }
+            // (`highest` is never NaN: a NaN gap leaves it, as `f64::max` would.)
+            if gap > highest {
+                highest = gap;
+            }
+            (before, middle) = (middle, (profile_y, gap));
+            found.samples += 1;
         }
-        let barriers =
-            minima.windows(2).map(|w| samples[w[0]..w[1]].iter().map(|s| s.1).fold(f64::MIN, f64::max)).collect();
-        let minima =
-            minima.iter().map(|&i| brent_minimum(|y| self.gap(y), samples[i - 1].0, samples[i + 1].0)).collect();
-        (minima, barriers)
+        found
+    }
+
+    /// The minima found by [`Self::minima_between`], refined by Brent's method (wheel profile y).
+    fn refined(&self, found: &Minima) -> Vec<f64> {
+        found.minima.iter().map(|&(low, high)| brent_minimum(|y| self.gap(y), low, high)).collect()
     }
 
     /// The full scan: the gap every [`SAMPLE_STEP`] over the rail's extent, each local minimum
@@ -630,24 +698,23 @@ impl<'a> GapSearch<'a> {
             (track_y - position.lateral + wheel.dimensions.nominal_radius * self.locus.sin_roll) / self.locus.cos_roll
                 - wheel.wheel_offset
         };
-        let samples = self.sampled(
+        let found = self.minima_between(
             profile_y_at(rail_first + wheel.rail_offset) - 5e-3,
             profile_y_at(rail_last + wheel.rail_offset) + 5e-3,
         );
-        if samples.len() < 3 {
+        if found.samples < 3 {
             return Err(ProfileError::whole(format!(
                 "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
                 position.lateral
             )));
         }
-        let (minima, barriers) = self.minima_of(&samples);
-        if minima.is_empty() {
+        if found.minima.is_empty() {
             return Err(ProfileError::whole(format!(
                 "the profiles never touch at wheelset_lateral_displacement = {} m: the gap has no minimum inside their common range",
                 position.lateral
             )));
         }
-        Ok((minima, barriers))
+        Ok((self.refined(&found), found.barriers))
     }
 
     /// The scan from the first to the last of the contact table's minima near this pose
@@ -657,9 +724,19 @@ impl<'a> GapSearch<'a> {
     /// the full scan there. `None` — scan everything instead — if it finds no minimum.
     fn scan_near(&self, (first, last): (f64, f64)) -> Option<(Vec<f64>, Vec<f64>)> {
         let reach = self.reach();
-        let (minima, barriers) = self.minima_of(&self.sampled(first - reach, last + reach));
-        (!minima.is_empty()).then_some((minima, barriers))
+        let found = self.minima_between(first - reach, last + reach);
+        (!found.minima.is_empty()).then(|| (self.refined(&found), found.barriers))
     }
+}
+
+/// What one pass over the gap's samples finds ([`GapSearch::minima_between`]).
+struct Minima {
+    /// Per local minimum of the samples, its neighbours' profile y (Brent's bracket).
+    minima: Vec<(f64, f64)>,
+    /// barriers[i]: the highest sampled gap between minima i and i + 1.
+    barriers: Vec<f64>,
+    /// How many samples lay over the rail.
+    samples: usize,
 }
 
 /// How far from a contact table's minimum the search looks \[m\].
@@ -849,8 +926,47 @@ fn gauge_face(rail: &SmoothProfile, height: f64) -> Result<(f64, f64), ProfileEr
 
 #[cfg(test)]
 mod tests {
-    use super::brent_minimum;
+    use super::{brent_minimum, LocusFrame, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+    use crate::geometry::{builtin_profile, SmoothProfile};
     use std::cell::Cell;
+
+    /// The scan's locus without yaw gives the general formula's numbers at yaw 0, bit for bit
+    /// (on every wheel sample, at rolls and lateral positions on and off the table's nodes, 0 and
+    /// −0 among them), and both refuse the same samples.
+    #[test]
+    fn the_unyawed_locus_is_the_yawed_one_at_zero_yaw() {
+        let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+        let pair = WheelOnRail::new(
+            profile("MBench_S1002"),
+            profile("MBench_UIC60"),
+            TrackDimensions::MANCHESTER_BENCHMARK,
+            WheelSide::Right,
+            82e9,
+            0.28,
+        )
+        .unwrap();
+        let samples = &pair.wheel_samples;
+        let placement = (pair.dimensions.nominal_radius, pair.wheel_offset);
+        for (lateral, roll) in [(0.0, 0.0), (-0.0, -0.0), (3.7e-3, 0.0), (-8.2e-3, 0.0113), (1e-3, -0.004), (0.0, 0.1)]
+        {
+            let locus = LocusFrame::new(&WheelsetPosition { lateral, roll, ..WheelsetPosition::default() });
+            assert!(locus.unyawed());
+            for k in 0..samples.len() {
+                let (height, slope) = samples.sample(k);
+                let (y, general, unyawed) = (
+                    samples.lateral(k),
+                    locus.track_position_of::<true>(placement, samples.lateral(k), height, slope),
+                    locus.track_position_of::<false>(placement, samples.lateral(k), height, slope),
+                );
+                let bits = |p: Option<(f64, f64)>| p.map(|(a, b)| ((a + 0.0).to_bits(), (b + 0.0).to_bits()));
+                assert_eq!(bits(general), bits(unyawed), "y {y}, at ({lateral}, {roll})");
+            }
+            // Beyond the profile's slopes: a sample the locus refuses either way.
+            assert_eq!(locus.track_position_of::<false>(placement, 0.0, 0.0, f64::NAN), None);
+        }
+        let yawed = LocusFrame::new(&WheelsetPosition { yaw: 1e-9, ..WheelsetPosition::default() });
+        assert!(!yawed.unyawed());
+    }
 
     /// Brent's method on smooth minima as the search brackets them (±0.1 mm): the minimum within
     /// its 1 nm tolerance in at most 11 evaluations — parabolic steps taken where trusted (golden

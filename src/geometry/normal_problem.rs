@@ -108,8 +108,15 @@ impl ContactCandidates {
 
     fn right_patches(&self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
         let mut patches = Vec::with_capacity(self.candidates.len());
-        self.for_each_patch(vertical, |i| patches.push(loaded(&self.candidates[i], vertical)));
-        patches.into_iter().collect()
+        // The first refusal, as collecting the results would return it.
+        let mut refusal = None;
+        self.for_each_patch(vertical, |i| match loaded(&self.candidates[i], vertical) {
+            Ok(patch) => patches.push(patch),
+            Err(error) => {
+                refusal.get_or_insert(error);
+            }
+        });
+        refusal.map_or(Ok(patches), Err)
     }
 
     /// Calls `visit` with the index of each loaded candidate at z_ws, the deepest of each group

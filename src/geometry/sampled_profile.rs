@@ -15,6 +15,8 @@ pub(crate) struct SampledProfile {
     step: f64,
     /// 1/step: a multiplication per read instead of a division.
     per_step: f64,
+    /// The last sample's index (as a float: what a read's position is compared with).
+    last_index: f64,
     heights: Vec<f64>,
     slopes: Vec<f64>,
 }
@@ -31,12 +33,14 @@ impl SampledProfile {
             heights.push(point.vertical);
             slopes.push(point.slope_angle.tan());
         }
-        Self { first, step, per_step: step.recip(), heights, slopes }
+        let last_index = heights.len() as f64 - 1.0;
+        Self { first, step, per_step: step.recip(), last_index, heights, slopes }
     }
 
     /// The k-th sample's y.
+    #[cfg(test)]
     pub(crate) fn lateral(&self, k: usize) -> f64 {
-        self.first + k as f64 * self.step
+        self.view().lateral_at(k as f64)
     }
 
     /// The (fractional) sample index of y.
@@ -49,6 +53,57 @@ impl SampledProfile {
     }
 
     /// The k-th sample's height and slope.
+    #[cfg(test)]
+    pub(crate) fn sample(&self, k: usize) -> (f64, f64) {
+        self.view().sample(k)
+    }
+
+    /// Height and slope at y by cubic Hermite interpolation, `None` outside the samples.
+    #[inline]
+    pub(crate) fn at(&self, y: f64) -> Option<(f64, f64)> {
+        self.view().at(y)
+    }
+
+    /// Height at y as [`Self::at`], without the slope: the gap reads only the rail's height.
+    #[inline(always)]
+    pub(crate) fn height_at(&self, y: f64) -> Option<f64> {
+        self.view().height_at(y)
+    }
+
+    /// The samples' reader, its scalars copied: a loop over many reads keeps them in registers.
+    #[inline(always)]
+    pub(crate) fn view(&self) -> SampledView<'_> {
+        SampledView {
+            first: self.first,
+            step: self.step,
+            per_step: self.per_step,
+            last_index: self.last_index,
+            heights: &self.heights,
+            slopes: &self.slopes,
+        }
+    }
+}
+
+/// A [`SampledProfile`]'s reads ([`SampledProfile::view`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SampledView<'a> {
+    first: f64,
+    step: f64,
+    per_step: f64,
+    last_index: f64,
+    heights: &'a [f64],
+    slopes: &'a [f64],
+}
+
+impl SampledView<'_> {
+    /// [`SampledProfile::lateral`] with k given as a float (exactly).
+    #[inline(always)]
+    pub(crate) fn lateral_at(&self, k: f64) -> f64 {
+        self.first + k * self.step
+    }
+
+    /// The k-th sample's height and slope.
+    #[inline(always)]
     pub(crate) fn sample(&self, k: usize) -> (f64, f64) {
         (self.heights[k], self.slopes[k])
     }
@@ -68,7 +123,7 @@ impl SampledProfile {
     }
 
     /// Height at y as [`Self::at`], without the slope: the gap reads only the rail's height.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn height_at(&self, y: f64) -> Option<f64> {
         let (k, t) = self.interval(y)?;
         if t == 0.0 {
@@ -80,23 +135,24 @@ impl SampledProfile {
 
     /// The sample interval of y and the fraction t ∈ [0, 1) into it (t = 0 exactly on the last
     /// sample), `None` outside the samples.
-    #[inline]
+    #[inline(always)]
     fn interval(&self, y: f64) -> Option<(usize, f64)> {
         let position = (y - self.first) * self.per_step;
-        if position.is_nan() || position < 0.0 {
-            return None;
+        // Before the last sample: truncation is the floor, and the index fits a u32 (a profile
+        // has thousands of samples; a cheaper conversion than to usize). NaN fails both tests.
+        if position >= 0.0 && position < self.last_index {
+            let k = position as u32;
+            return Some((k as usize, position - f64::from(k)));
         }
-        let k = position as usize;
-        if k + 1 >= self.heights.len() {
-            return (k + 1 == self.heights.len() && position == k as f64).then_some((k, 0.0));
-        }
-        Some((k, position - k as f64))
+        // Exactly on the last sample (`last_index` is −1 without samples: positions are ≥ 0 here).
+        (position == self.last_index && position >= 0.0).then_some((self.heights.len() - 1, 0.0))
     }
 
     /// Heights and slopes (per unit t) at the ends of interval k.
     #[inline]
     fn ends(&self, k: usize) -> (f64, f64, f64, f64) {
-        (self.heights[k], self.heights[k + 1], self.slopes[k] * self.step, self.slopes[k + 1] * self.step)
+        let (heights, slopes) = (&self.heights[k..k + 2], &self.slopes[k..k + 2]);
+        (heights[0], heights[1], slopes[0] * self.step, slopes[1] * self.step)
     }
 }
 

@@ -98,6 +98,11 @@ impl PatchForces {
     /// The patch's force on the wheel in track axes \[N\] (module doc).
     pub fn track_force(&self) -> [f64; 3] {
         let (sin, cos) = self.patch.point.contact_angle.sin_cos();
+        self.track_force_at(sin, cos)
+    }
+
+    /// [`Self::track_force`] with sin δ, cos δ known.
+    fn track_force_at(&self, sin: f64, cos: f64) -> [f64; 3] {
         let (lateral, normal) = (self.output.force_lateral, self.patch.normal_force);
         [self.output.force_longitudinal, lateral * cos + normal * sin, lateral * sin - normal * cos]
     }
@@ -296,15 +301,16 @@ impl WheelRailContact {
         let mut track_force = [0.0; 3];
         let mut track_moment = [0.0; 3];
         for patch in &patches {
-            let force = patch.track_force();
             let point = &patch.patch.point;
+            let (sin, cos) = point.contact_angle.sin_cos();
+            let force = patch.track_force_at(sin, cos);
             let arm = [
                 point.track_longitudinal - centre[0],
                 point.track_lateral - centre[1],
                 point.track_vertical - centre[2],
             ];
             let moment = cross(arm, force);
-            let normal = patch_normal(point);
+            let normal = patch_normal(sin, cos);
             for axis in 0..3 {
                 track_force[axis] += force[axis];
                 track_moment[axis] += moment[axis] + patch.output.spin_moment * normal[axis];
@@ -385,10 +391,11 @@ impl WheelRailContact {
     ) -> Result<(Vec<PatchForces>, WheelState), WheelContactError> {
         cache.patches.resize_with(patches.len().max(cache.patches.len()), SceneCache::default);
         let centre = self.geometry.wheelset_centre(position);
+        let axle = wheelset_axle(position);
         let mut forces = Vec::with_capacity(patches.len());
         let mut states = Vec::with_capacity(patches.len());
         for (patch, patch_cache) in patches.iter().zip(&mut cache.patches) {
-            let scene_input = patch_scene_input(patch, &centre, position, &input.velocity, input.friction_coefficient);
+            let scene_input = patch_scene_input(patch, &centre, &axle, &input.velocity, input.friction_coefficient);
             let mut last = nearest(state, patch).map(|last| last.scene.clone()).unwrap_or_default();
             if let Some(hint) = nearest(hints, patch) {
                 last.model = hint.scene.model.clone();
@@ -444,21 +451,18 @@ fn nearest<'a>(state: &'a WheelState, patch: &ContactPatch) -> Option<&'a PatchS
 fn patch_scene_input(
     patch: &ContactPatch,
     centre: &[f64; 3],
-    position: &WheelsetPosition,
+    axle: &[f64; 3],
     velocity: &WheelsetVelocity,
     friction_coefficient: f64,
 ) -> SceneInput {
     let point = &patch.point;
-    let (sin_roll, cos_roll) = position.roll.sin_cos();
-    let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
-    let axle = [-cos_roll * sin_yaw, cos_roll * cos_yaw, sin_roll];
     let spin = velocity.wheel_angular_speed;
     let angular = [-spin * axle[0], -spin * axle[1], velocity.yaw_rate - spin * axle[2]];
     let arm = [point.track_longitudinal - centre[0], point.track_lateral - centre[1], point.track_vertical - centre[2]];
     let turning = cross(angular, arm);
     let slip = [velocity.rolling_speed + turning[0], velocity.lateral_velocity + turning[1], turning[2]];
     let (sin, cos) = point.contact_angle.sin_cos();
-    let normal = patch_normal(point);
+    let normal = patch_normal(sin, cos);
     SceneInput {
         normal_force: patch.normal_force,
         semi_axis_a: patch.ellipse.semi_axis_a,
@@ -473,9 +477,15 @@ fn patch_scene_input(
     }
 }
 
-/// The patch's normal n = (0, −sin δ, cos δ), into the rail.
-fn patch_normal(point: &ContactPoint) -> [f64; 3] {
-    let (sin, cos) = point.contact_angle.sin_cos();
+/// The wheelset's axle a = R_z(ψ)R_x(φ)·e_y in track axes.
+fn wheelset_axle(position: &WheelsetPosition) -> [f64; 3] {
+    let (sin_roll, cos_roll) = position.roll.sin_cos();
+    let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
+    [-cos_roll * sin_yaw, cos_roll * cos_yaw, sin_roll]
+}
+
+/// A patch's normal n = (0, −sin δ, cos δ), into the rail, from sin δ and cos δ.
+fn patch_normal(sin: f64, cos: f64) -> [f64; 3] {
     [0.0, -sin, cos]
 }
 

@@ -287,14 +287,15 @@ impl HertzContact {
         // a³ = Q·R_D(0, k², 1)/(2π E* A); the cube roots are taken factor by factor so that no
         // intermediate product can overflow for any finite input.
         let load_per_stiffness = normal_force.cbrt() / (contact_modulus.cbrt() * curvature.rolling.cbrt());
-        let semi_axis_a = load_per_stiffness * (carlson_rd(0.0, b_over_a * b_over_a, 1.0) / (2.0 * PI)).cbrt();
+        let shape_rd = carlson_rd(0.0, b_over_a * b_over_a, 1.0);
+        let semi_axis_a = load_per_stiffness * (shape_rd / (2.0 * PI)).cbrt();
         let semi_axis_b = b_over_a * semi_axis_a;
         let max_pressure = hertz_max_pressure(normal_force, semi_axis_a, semi_axis_b);
         // δ = 3Q·R_F(0, a², b²)/(2π E*) = 3Q·R_F(0, 1, k²)/(2π E* a) by homogeneity (degree −1/2),
         // and Q/(2π E*) = a³A/R_D(0, k², 1) from a³ above: δ = 3a·(aA)·R_F(0, 1, k²)/R_D(0, k², 1).
         // Written in a and A, so δ underflows only where δ itself does (Q/E* alone can, e.g.
         // Q = 1e-280 N on E* = 1e97 Pa, while δ ≈ 1e-252 m).
-        let shape_rf_over_rd = carlson_rf(0.0, 1.0, b_over_a * b_over_a) / carlson_rd(0.0, b_over_a * b_over_a, 1.0);
+        let shape_rf_over_rd = carlson_rf(0.0, 1.0, b_over_a * b_over_a) / shape_rd;
         let approach = 3.0 * semi_axis_a * (semi_axis_a * curvature.rolling) * shape_rf_over_rd;
         let contact = Self { semi_axis_a, semi_axis_b, max_pressure, approach };
         if [semi_axis_a, semi_axis_b, max_pressure, approach].iter().all(|value| value.is_finite() && *value > 0.0) {
