@@ -43,10 +43,15 @@ pub fn resource_directory(location: &str) -> Result<PathBuf, String> {
         None if rest.starts_with('/') => rest.to_owned(),
         None => return Err(format!("the resource location \"{location}\" has no absolute path")),
     };
-    let decoded = percent_encoding::percent_decode_str(&path)
+    Ok(local_path(&decoded(location, &path)?))
+}
+
+/// `path` with its percent-encoding undone; an error naming `location` if that is not UTF-8.
+fn decoded(location: &str, path: &str) -> Result<String, String> {
+    percent_encoding::percent_decode_str(path)
         .decode_utf8()
-        .map_err(|_| format!("the resource location \"{location}\" is not UTF-8 once percent-decoded"))?;
-    Ok(local_path(&decoded))
+        .map(|text| text.into_owned())
+        .map_err(|_| format!("the resource location \"{location}\" is not UTF-8 once percent-decoded"))
 }
 
 /// `scheme:` at the start (RFC 3986: a letter, then letters, digits, `+`, `-`, `.`).
@@ -66,10 +71,7 @@ fn is_drive(text: &str) -> bool {
 /// A host other than this machine: a UNC path on Windows, no local directory elsewhere.
 #[cfg(windows)]
 fn remote(location: &str, host: &str, path: &str) -> Result<PathBuf, String> {
-    let decoded = percent_encoding::percent_decode_str(path)
-        .decode_utf8()
-        .map_err(|_| format!("the resource location \"{location}\" is not UTF-8 once percent-decoded"))?;
-    Ok(PathBuf::from(format!(r"\\{host}{}", decoded.replace('/', r"\"))))
+    Ok(PathBuf::from(format!(r"\\{host}{}", decoded(location, path)?.replace('/', r"\"))))
 }
 
 #[cfg(not(windows))]
