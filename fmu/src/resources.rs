@@ -172,7 +172,12 @@ mod tests {
             assert!(error.contains(&format!("\"{location}\"")) && error.contains(reason), "{error}");
         }
         #[cfg(unix)]
-        assert!(resource_directory("file://server/share").unwrap_err().contains("names no local directory"));
+        for remote in ["file://server/share", "file://ab/share", "file://h:8080/share"] {
+            // Two letters or a letter and a port are hosts, not drive letters.
+            assert!(resource_directory(remote).unwrap_err().contains("names no local directory"), "{remote}");
+        }
+        // A scheme starts with a letter: "1http:" is no scheme at all.
+        assert!(resource_directory("1http://x").unwrap_err().contains("is not a URI"));
     }
 
     #[test]
