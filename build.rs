@@ -17,16 +17,22 @@ fn main() {
 }
 
 /// Copies `data/exact_table.bin` (the `exact_table` model's table, made by
-/// `cargo fmu exact-table`) where `src/models/exact_table` includes it. Without the file (before
-/// the first generation: the generator needs this crate) an empty table is embedded, which the
-/// model refuses with a message naming the missing file; a warning says so at build time.
+/// `cargo fmu exact-table`) where `src/models/exact_table` includes it, with the `embedded-table`
+/// feature (the default). Without the feature, or without the file (before the first
+/// generation: the generator needs this crate), an empty table is embedded, which
+/// `ExactTable::new` refuses with a message saying why; a missing file is also warned about here.
 fn embed_exact_table(out_dir: &std::path::Path) {
     let source = std::path::Path::new("data/exact_table.bin");
     println!("cargo:rerun-if-changed={}", source.display());
-    let bytes = std::fs::read(source).unwrap_or_else(|_| {
-        println!("cargo:warning={} is missing: the exact_table model is unavailable", source.display());
+    let embedded = std::env::var_os("CARGO_FEATURE_EMBEDDED_TABLE").is_some();
+    let bytes = if embedded {
+        std::fs::read(source).unwrap_or_else(|_| {
+            println!("cargo:warning={} is missing: the exact_table model is unavailable", source.display());
+            Vec::new()
+        })
+    } else {
         Vec::new()
-    });
+    };
     std::fs::write(out_dir.join("exact_table.bin"), bytes).expect("OUT_DIR is writable");
 }
 

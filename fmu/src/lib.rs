@@ -11,6 +11,8 @@
 //!   I/O) and placed, the wheel's inputs and outputs.
 //! - [`resources`]: the FMU's resources directory from the master's resource URI, and files
 //!   named relative to it.
+//! - [`exact_table`](mod@exact_table): the `exact_table` model's table, one copy in `resources/`,
+//!   checked at instantiation and read once per process.
 //! - [`mode`], [`logging`], [`fmi2`]: the Co-Simulation state machine, logging and the FMI 2.0
 //!   C types, re-exported from the model-independent slave layer ([`fmi2_slave`]).
 //! - [`snapshot`]: what an FMU state holds and its checked byte format.
@@ -24,6 +26,7 @@
 
 pub use fmi2_slave::{fmi2, logging, mode};
 
+pub mod exact_table;
 pub mod ffi;
 pub mod instance;
 pub mod model_description;

@@ -24,8 +24,8 @@ use wheel_rail_contact::scene::{
     SceneState, TractionLaw,
 };
 use wheel_rail_contact::{
-    ContactInput, ExactTheory, Fastsim, Flexibility, InvalidInput, MeasuredCurve, ModelChoice, Polach, Polach2005,
-    StiffnessSource, TractionBound,
+    ContactInput, ExactTable, ExactTheory, Fastsim, Flexibility, InvalidInput, MeasuredCurve, ModelChoice, Polach,
+    Polach2005, StiffnessSource, TractionBound,
 };
 
 /// What the parameters select: one patch from the inputs, or a wheel on its rail from profiles.
@@ -123,8 +123,8 @@ fn reported(error: InvalidInput, counts: &[(&'static str, &'static str, i32)]) -
 }
 
 /// The core's scene the parameters select, validated; the error names the FMU variable and
-/// its value.
-pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
+/// its value. `resources`: the FMU's resources directory, where `exact_table` reads its table.
+pub fn scene_of(parameters: &Parameters, resources: Option<&Path>) -> Result<Scene, String> {
     let Parameters {
         shear_modulus,
         poisson_ratio,
@@ -243,6 +243,11 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
             exact.validate().map_err(|e| reported(e, &counts))?;
             ModelChoice::Exact(exact)
         }
+        // Not the rung's default model: that is the table compiled into the core, which the
+        // FMU's binary leaves out for the one copy in its resources.
+        Model::ExactTable => crate::exact_table::table(resources)
+            .map(|table| ModelChoice::ExactTable(ExactTable::with_table(table)))
+            .map_err(|e| format!("creep_force_model = {creep_force_model} (exact_table): {e}"))?,
         _ => {
             let rung = ModelChoice::rung_of_fmu_value(creep_force_model)
                 .expect("the Model enumeration is the registry's (model_description tests)");
@@ -277,7 +282,7 @@ pub fn scene_of(parameters: &Parameters) -> Result<Scene, String> {
 /// model, traction law, relaxation, material and regularisation speed (its creepages always
 /// from the wheelset's motion, its ellipses from the profiles).
 fn contact_of(parameters: &Parameters, strings: &Strings, resources: Option<&Path>) -> Result<Contact, String> {
-    let scene = scene_of(parameters)?;
+    let scene = scene_of(parameters, resources)?;
     let geometry = parameters.contact_geometry;
     Ok(match enumeration("contact_geometry", geometry, ContactGeometry::from_value, ContactGeometry::ITEMS)? {
         ContactGeometry::Ellipse => Contact::Ellipse(scene),
@@ -472,8 +477,25 @@ mod tests {
     use wheel_rail_contact::scene::relaxation::RelaxationLengths;
     use wheel_rail_contact::{CreepForceModel, LargeCreepage};
 
+    /// The repository's `data/`, which holds `exact_table.bin` as the FMU's `resources/` does.
+    const TEST_RESOURCES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../data");
+
+    fn test_cache() -> ModelCache {
+        ModelCache::new(Some(PathBuf::from(TEST_RESOURCES)))
+    }
+
+    /// A rung's model with its default parameters, `exact_table`'s from the test resources.
+    fn default_model(rung: &wheel_rail_contact::models::rung::Rung) -> ModelChoice {
+        match Model::from_value(rung.fmu_value).unwrap() {
+            Model::ExactTable => ModelChoice::ExactTable(ExactTable::with_table(
+                crate::exact_table::table(Some(Path::new(TEST_RESOURCES))).unwrap(),
+            )),
+            _ => (rung.default_model)().unwrap(),
+        }
+    }
+
     fn outputs_of(values: &Values) -> Result<Outputs, String> {
-        evaluate_relaxed(values, &mut ModelCache::default(), &mut [0.0; 2], Evaluation::Initialise)
+        evaluate_relaxed(values, &mut test_cache(), &mut [0.0; 2], Evaluation::Initialise)
     }
 
     /// [`compute_outputs`] from a state of these relaxed forces (and no model memory), which
@@ -535,8 +557,8 @@ mod tests {
         for rung in ModelChoice::RUNGS {
             let mut parameters = Values::default().parameters;
             parameters.creep_force_model = rung.fmu_value;
-            let scene = scene_of(&parameters).unwrap();
-            assert_eq!(scene.model, (rung.default_model)().unwrap(), "{}", rung.name);
+            let scene = scene_of(&parameters, Some(Path::new(TEST_RESOURCES))).unwrap();
+            assert_eq!(scene.model, default_model(rung), "{}", rung.name);
         }
     }
 
@@ -623,7 +645,7 @@ mod tests {
                     Fastsim::new(7, 9, TractionBound::Elliptic, Flexibility::SingleWeighted).unwrap(),
                 ),
                 Model::Exact => ModelChoice::Exact(ExactTheory::new(12, 10)),
-                _ => (rung.default_model)().unwrap(),
+                _ => default_model(rung),
             };
             values.parameters.creep_force_model = rung.fmu_value;
             let expected = model.creep_forces(&input).unwrap();
@@ -748,7 +770,7 @@ mod tests {
         for (change, expected) in cases {
             let mut values = Values::default();
             change(&mut values);
-            let mut cache = ModelCache::default();
+            let mut cache = test_cache();
             let mut relaxed = [1.0, 2.0];
             let result = evaluate_relaxed(&values, &mut cache, &mut relaxed, Evaluation::Step(1e-3));
             assert_eq!(result.unwrap_err(), expected);
@@ -879,7 +901,7 @@ mod tests {
     fn relaxation_advances_the_state_exactly() {
         let mut values = rich_scene();
         values.parameters.creep_relaxation = on();
-        let mut cache = ModelCache::default();
+        let mut cache = test_cache();
         let mut state = [0.0; 2];
         let initial = evaluate_relaxed(&values, &mut cache, &mut state, Evaluation::Initialise).unwrap();
         let steady = Polach::default().creep_forces(&contact_input(&values)).unwrap();
@@ -925,7 +947,7 @@ mod tests {
     fn the_scene_is_rebuilt_after_parameters_changed() {
         let mut values = Values::default();
         values.parameters.stiffness_source = StiffnessChoice::MeasuredCurve as i32;
-        let mut cache = ModelCache::default();
+        let mut cache = test_cache();
         let mut state = [0.0; 2];
         let mut evaluate = |values: &Values| {
             cache.parameters_changed();
@@ -1003,7 +1025,7 @@ mod tests {
         ];
         let run = |values: &Values, evaluation| {
             let mut state = [-2e3, 1e3];
-            let outputs = evaluate_relaxed(values, &mut ModelCache::default(), &mut state, evaluation).unwrap();
+            let outputs = evaluate_relaxed(values, &mut test_cache(), &mut state, evaluation).unwrap();
             Values { outputs, ..*values }
         };
         let inputs: Vec<_> = VARIABLES.iter().filter(|v| v.causality == Causality::Input).collect();

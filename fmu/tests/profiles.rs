@@ -169,6 +169,9 @@ fn a_relative_profile_path_is_read_from_the_fmus_resources() {
     std::fs::create_dir_all(resources.join("profiles")).unwrap();
     std::fs::write(resources.join("profiles/wheel.prw"), include_str!("../../data/profiles/MBench_S1002_v3.prw"))
         .unwrap();
+    // Beside the table every FMU's resources hold, which fmi2Instantiate checks.
+    std::fs::copy(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/exact_table.bin"), resources.join("exact_table.bin"))
+        .unwrap();
     let location = format!("file://{}/", resources.to_str().unwrap().replace(' ', "%20"));
     let outputs = |wheel: &str, location: Option<&str>| {
         let log = MessageLog::default();

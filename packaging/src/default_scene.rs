@@ -2,10 +2,9 @@
 //! with the project's C-ABI master (`fmu_master`, libloading; no Python and no libclang needed).
 
 use std::fmt::Write as _;
-use std::io::Read as _;
 use std::path::{Path, PathBuf};
 
-use fmu_master::binary::{Functions, Instance, Status};
+use fmu_master::binary::{file_uri, Functions, Instance, Status};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID, MODEL_IDENTIFIER};
 
 use crate::fmu::Platform;
@@ -29,9 +28,9 @@ pub fn default_creepages() -> Vec<f64> {
 /// step of 1 ms and reads the outputs.
 pub fn sweep(fmu_path: &Path, creepages: &[f64]) -> Result<Vec<Row>, String> {
     let folder = tempfile_folder()?;
-    let binary = extract_binary(fmu_path, &folder.0)?;
+    let binary = extract(fmu_path, &folder.0)?;
     let functions = Functions::load(&binary)?;
-    let instance = Instance::new(&functions, "default_scene", GUID)?;
+    let instance = Instance::new(&functions, "default_scene", GUID, &file_uri(&folder.0.join("resources")))?;
     let check = |call: &str, status: Status| match status {
         Status::Ok => Ok(()),
         status => Err(format!("{call}: {status:?} {:?}", instance.take_messages())),
@@ -62,28 +61,28 @@ impl Drop for TempFolder {
 }
 
 fn tempfile_folder() -> Result<TempFolder, String> {
-    let folder = std::env::temp_dir().join(format!("wheel_rail_contact_scene_{}", std::process::id()));
+    let folder =
+        std::path::absolute(std::env::temp_dir().join(format!("wheel_rail_contact_scene_{}", std::process::id())))
+            .map_err(|e| format!("the temporary folder: {e}"))?;
     std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
     Ok(TempFolder(folder))
 }
 
-/// Extracts this machine's binary (`binaries/<platform>/<modelIdentifier>.<ext>`) of the FMU into
-/// `folder` and returns its path.
-fn extract_binary(fmu_path: &Path, folder: &Path) -> Result<PathBuf, String> {
+/// Unzips the FMU into `folder` (an absolute path), as a master does, and returns the path of this
+/// machine's binary (`binaries/<platform>/<modelIdentifier>.<ext>`).
+fn extract(fmu_path: &Path, folder: &Path) -> Result<PathBuf, String> {
     let platform = Platform::this_machine()
         .ok_or_else(|| format!("no FMI 2.0 platform for {}/{}", std::env::consts::OS, std::env::consts::ARCH))?;
-    let entry = format!("binaries/{}/{MODEL_IDENTIFIER}.{}", platform.folder(), platform.extension());
     let file = std::fs::File::open(fmu_path).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
     let mut archive = zip::ZipArchive::new(file).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
-    let mut bytes = Vec::new();
-    archive
-        .by_name(&entry)
-        .map_err(|e| format!("{}: {entry}: {e}", fmu_path.display()))?
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("{entry}: {e}"))?;
-    let path = folder.join(format!("{MODEL_IDENTIFIER}.{}", platform.extension()));
-    std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(path)
+    archive.extract(folder).map_err(|e| format!("{}: {e}", fmu_path.display()))?;
+    let binary =
+        folder.join("binaries").join(platform.folder()).join(format!("{MODEL_IDENTIFIER}.{}", platform.extension()));
+    if binary.is_file() {
+        Ok(binary)
+    } else {
+        Err(format!("{} has no {}", fmu_path.display(), binary.strip_prefix(folder).unwrap_or(&binary).display()))
+    }
 }
 
 /// The table printed by `cargo fmu`.

@@ -47,7 +47,8 @@ fn values_of(columns: &[String], row: &[f64]) -> Result<Values, String> {
 /// warm start) from row to row, advanced over the row's `step_size` (0 or absent: set to the
 /// steady state, as at initialisation).
 fn outputs_of(values: &Values, step_size: f64, state: &mut SceneState) -> Result<Vec<f64>, String> {
-    let scene: Scene = scene_of(&values.parameters)?;
+    // The repository's data/ holds the exact_table model's table, as the FMU's resources/ does.
+    let scene: Scene = scene_of(&values.parameters, Some(&crate::fmu::workspace_root().join("data")))?;
     let evaluation = if step_size > 0.0 { Evaluation::Step(step_size) } else { Evaluation::Initialise };
     let (output, next_state) = scene
         .evaluate(&scene_input(&values.inputs), state, &mut SceneCache::default(), evaluation)

@@ -126,3 +126,28 @@ fn the_wheelset_fmu_is_packaged_beside_the_contact_unit() {
     let exports = exported_functions(&read("binaries/linux64/wheelset.so")).unwrap();
     assert_eq!(exports, FMI2_FUNCTIONS.iter().map(|name| name.to_string()).collect::<BTreeSet<_>>());
 }
+
+/// Issue 29: the exact_table model's table is in the FMU once, as `resources/exact_table.bin`
+/// (the shipped file, byte for byte), and not in the binary (which the core's `embedded-table`
+/// feature would put there: the FMU's build leaves it off).
+#[test]
+#[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
+fn the_table_is_packed_once_in_the_resources_and_not_in_the_binary() {
+    let directory = tempfile::tempdir().unwrap();
+    let packaged = package(&CONTACT, Profile::Dev, Reach::ThisMachine, directory.path()).unwrap();
+    let mut archive = zip::ZipArchive::new(std::fs::File::open(&packaged.fmu).unwrap()).unwrap();
+    let mut read = |name: &str| {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut archive.by_name(name).unwrap(), &mut bytes).unwrap();
+        bytes
+    };
+    let shipped = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/exact_table.bin")).unwrap();
+    assert!(
+        read("resources/exact_table.bin") == shipped,
+        "resources/exact_table.bin differs from data/exact_table.bin"
+    );
+    // 64 bytes from the middle of the values: in any binary that embeds the table.
+    let values = &shipped[shipped.len() / 2..shipped.len() / 2 + 64];
+    let binary = read("binaries/linux64/wheel_rail_contact.so");
+    assert!(!binary.windows(values.len()).any(|window| window == values), "the binary embeds the table");
+}

@@ -66,8 +66,8 @@ pub struct Instance {
 }
 
 impl Instance {
-    /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name or Model
-    /// Exchange.
+    /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name, Model
+    /// Exchange, or a missing or corrupted `exact_table` table in the resources directory.
     pub fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Instance> {
         let problem =
             rules::instantiate_problem(&arguments, model_description::GUID, model_description::MODEL_IDENTIFIER);
@@ -77,6 +77,10 @@ impl Instance {
             return None;
         }
         let resources = resource_location.map(resource_directory);
+        if let Err(problem) = crate::exact_table::check(resources.as_ref().and_then(|r| r.as_deref().ok())) {
+            sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
+            return None;
+        }
         let mut instance = Instance {
             name: instance_name.to_owned(),
             resource_location: resource_location.map(str::to_owned),

@@ -8,6 +8,7 @@ use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+pub use fmu_master::binary::file_uri;
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::fmi2::*;
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, GUID};
@@ -103,6 +104,14 @@ extern "C" fn record_message(
     }
 }
 
+/// The repository's `data/` directory as a file URI (RFC 8089, percent-encoded): it holds
+/// `exact_table.bin` as the packaged FMU's `resources/` does, so the `exact_table` model reads
+/// the same table in-process as in the FMU.
+pub fn repository_resources() -> String {
+    let directory = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data"));
+    file_uri(&directory.canonicalize().expect("the repository's data/ directory exists"))
+}
+
 /// One instance, freed on drop.
 pub struct Fmu {
     pub c: fmi2Component,
@@ -112,17 +121,25 @@ pub struct Fmu {
 }
 
 impl Fmu {
+    /// An instance whose resource location is [`repository_resources`], as every instance below
+    /// but [`Self::instantiate_logged_at`]'s.
     pub fn instantiate(name: &str, counter: Option<&LogCounter>) -> Fmu {
-        Self::with_callbacks(name, callbacks(counter), None)
+        Self::with_callbacks(name, callbacks(counter), Some(&repository_resources()))
+            .expect("fmi2Instantiate returned NULL")
     }
 
     /// An instance whose messages are recorded in `log` (which must outlive it).
     pub fn instantiate_logged(name: &str, log: &MessageLog) -> Fmu {
-        Self::instantiate_logged_at(name, log, None)
+        Self::instantiate_logged_at(name, log, Some(&repository_resources()))
     }
 
     /// [`Self::instantiate_logged`] with `resource_location` passed to fmi2Instantiate.
     pub fn instantiate_logged_at(name: &str, log: &MessageLog, resource_location: Option<&str>) -> Fmu {
+        Self::try_instantiate_logged_at(name, log, resource_location).expect("fmi2Instantiate returned NULL")
+    }
+
+    /// [`Self::instantiate_logged_at`], `None` where fmi2Instantiate returns NULL.
+    pub fn try_instantiate_logged_at(name: &str, log: &MessageLog, resource_location: Option<&str>) -> Option<Fmu> {
         type Named =
             extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
         type Variadic =
@@ -141,7 +158,7 @@ impl Fmu {
         )
     }
 
-    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions, resource_location: Option<&str>) -> Fmu {
+    fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions, resource_location: Option<&str>) -> Option<Fmu> {
         let callbacks = Box::new(callbacks);
         let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
         let location = resource_location.map(|location| CString::new(location).unwrap());
@@ -158,8 +175,7 @@ impl Fmu {
                 0,
             )
         };
-        assert!(!c.is_null());
-        Fmu { c, _callbacks: callbacks }
+        (!c.is_null()).then_some(Fmu { c, _callbacks: callbacks })
     }
 
     /// Setup from `start_time`, initialisation entered and left.

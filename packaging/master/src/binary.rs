@@ -4,7 +4,7 @@
 
 use std::ffi::{c_char, c_int, c_uint, c_void, CStr, CString};
 use std::path::Path;
-use std::ptr::{null, null_mut};
+use std::ptr::null_mut;
 use std::sync::Mutex;
 
 pub type Component = *mut c_void;
@@ -147,7 +147,13 @@ pub struct Instance<'a> {
 }
 
 impl<'a> Instance<'a> {
-    pub fn new(functions: &'a Functions, name: &str, guid: &str) -> Result<Instance<'a>, String> {
+    /// fmi2Instantiate with `resource_location`, the URI of the FMU's `resources/`.
+    pub fn new(
+        functions: &'a Functions,
+        name: &str,
+        guid: &str,
+        resource_location: &str,
+    ) -> Result<Instance<'a>, String> {
         let messages = Box::new(Mutex::new(Vec::new()));
         let callbacks = Box::new(Callbacks {
             logger: Some(log_message),
@@ -156,11 +162,19 @@ impl<'a> Instance<'a> {
             step_finished: None,
             component_environment: (&*messages as *const Mutex<Vec<Message>>).cast_mut().cast(),
         });
-        let (name, guid) = (CString::new(name).unwrap(), CString::new(guid).unwrap());
+        let [name, guid, location] = [name, guid, resource_location].map(|text| CString::new(text).unwrap());
         const CO_SIMULATION: c_int = 1;
         // SAFETY: valid strings; the callbacks and the logger's environment outlive the instance.
         let component = unsafe {
-            (functions.fmi2Instantiate)(name.as_ptr(), CO_SIMULATION, guid.as_ptr(), null(), &*callbacks, 0, 0)
+            (functions.fmi2Instantiate)(
+                name.as_ptr(),
+                CO_SIMULATION,
+                guid.as_ptr(),
+                location.as_ptr(),
+                &*callbacks,
+                0,
+                0,
+            )
         };
         if component.is_null() {
             return Err(format!("fmi2Instantiate returned NULL: {:?}", messages.lock().unwrap()));
@@ -269,4 +283,19 @@ impl Drop for Instance<'_> {
             (self.functions.fmi2FreeInstance)(self.component);
         }
     }
+}
+
+/// An absolute path as a file URI (RFC 8089): `/` separators, a Windows drive after `file:///`,
+/// every byte but the unreserved ones, `/` and the drive's `:` percent-encoded.
+pub fn file_uri(path: &Path) -> String {
+    let path = path.to_str().expect("a UTF-8 path").replace('\\', "/");
+    let mut uri = String::from(if path.starts_with('/') { "file://" } else { "file:///" });
+    for (index, byte) in path.bytes().enumerate() {
+        match byte {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'.' | b'_' | b'~' | b'/' => uri.push(byte as char),
+            b':' if index == 1 => uri.push(':'),
+            _ => uri.push_str(&format!("%{byte:02X}")),
+        }
+    }
+    uri
 }

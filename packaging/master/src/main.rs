@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use fmu_master::binary::{Functions, Instance, Status};
+use fmu_master::binary::{file_uri, Functions, Instance, Status};
 use fmu_master::compare;
 use fmu_master::description::Description;
 
@@ -59,10 +59,13 @@ impl Report {
     }
 }
 
-/// The FMU opened: its description and the binary of the platform this master runs on.
+/// The FMU opened: its description, the binary of the platform this master runs on and the
+/// resource URI of its `resources/` (as this platform's masters write it: `file:///Z:/…/resources`
+/// on Windows).
 struct Fmu {
     description: Description,
     functions: Functions,
+    resource_location: String,
 }
 
 impl Fmu {
@@ -74,7 +77,9 @@ impl Fmu {
         let library: PathBuf =
             directory.join("binaries").join(folder).join(format!("{}.{extension}", description.model_identifier));
         let functions = Functions::load(&library)?;
-        Ok(Fmu { description, functions })
+        let resources = std::path::absolute(directory.join("resources"))
+            .map_err(|e| format!("{}/resources: {e}", directory.display()))?;
+        Ok(Fmu { description, functions, resource_location: file_uri(&resources) })
     }
 
     fn vr(&self, name: &str) -> u32 {
@@ -84,7 +89,7 @@ impl Fmu {
     /// Instantiated, the integer parameters set (before initialisation, as `fixed` ones must be),
     /// initialised at t = 0.
     fn initialised(&self, name: &str, parameters: &[(u32, i32)], report: &mut Report) -> Result<Instance<'_>, String> {
-        let instance = Instance::new(&self.functions, name, &self.description.guid)?;
+        let instance = Instance::new(&self.functions, name, &self.description.guid, &self.resource_location)?;
         for &(reference, value) in parameters {
             report.expect(
                 &format!("{name}: fmi2SetInteger {reference} = {value} is OK"),

@@ -26,11 +26,13 @@
 //! Domain: a/b within the table's range ([0.1, 10]); outside it the model returns an error
 //! naming the semi-axes (no silent extrapolation). ν ∈ [0, 0.5], any creepage.
 //!
-//! The table is compiled into the library (`data/exact_table.bin`, read and checked once at
-//! first use): a co-simulation cannot lose it or read a stale copy, the core needs no file I/O,
-//! and Rust users get it with the crate. A missing or corrupted file is refused with
-//! [`TableError`] when the model is created ([`ExactTable::new`]), so the FMU's instantiation
-//! fails with that message instead of computing a wrong force.
+//! With the `embedded-table` feature (the default) the table is compiled into the library
+//! (`data/exact_table.bin`, read and checked once at first use by [`ExactTable::new`]): Rust users
+//! get it with the crate and need no file. Without the feature the caller reads the file and
+//! hands the table to [`ExactTable::with_table`]: the FMU does, from the one copy in its
+//! `resources/`, so that the table is not carried once per platform's binary
+//! (docs/exact_table.md, "Where the table lives"). A missing or corrupted table is refused with
+//! [`TableError`] before any force is computed.
 
 mod coordinates;
 mod full_slip;
@@ -46,8 +48,8 @@ use crate::numerics::Scalar;
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelChoice};
 pub use table::{Table, TableAxes, TableError, A_OVER_B_RANGE, FORMAT_VERSION};
 
-/// The table compiled into this library (empty when `data/exact_table.bin` was missing when it
-/// was built).
+/// The table compiled into this library: empty without the `embedded-table` feature, or when
+/// `data/exact_table.bin` was missing when it was built.
 const COMPILED_IN: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/exact_table.bin"));
 
 /// Kalker's exact theory interpolated from a precomputed table.
@@ -99,8 +101,10 @@ pub const RUNG: Rung = Rung {
     offline: false,
     summary: "Kalker's exact theory tabulated by our solver over a/b ∈ [0.1, 10], ν ∈ [0, 0.5] and every creepage (similarity-scaled, folded by the symmetries, full sliding analytic), multilinear: F, M_z at about Polach's cost; `cargo fmu exact-table` regenerates `data/exact_table.bin`",
     source: "Kalker 1990; Kalker's USETAB (1996) idea; [docs/exact_table.md](docs/exact_table.md)",
-    documentation: "Kalker's exact theory interpolated from a table compiled into this FMU (made by the
-exact solver above; the idea of Kalker's USETAB, 1996). By Kalker's similarity law the forces in units of μQ (and
+    documentation: "Kalker's exact theory interpolated from a table stored once in this FMU,
+<code>resources/exact_table.bin</code> (made by the exact solver above; the idea of Kalker's USETAB, 1996; its
+frame and checksum are checked at fmi2Instantiate, which fails if it is missing or corrupted, and it is read
+when an instance first selects this model). By Kalker's similarity law the forces in units of μQ (and
 M<sub>z</sub> in μQc) depend only on a/b, ν and the creepages scaled by μp<sub>0</sub>/G with Kalker's coefficients;
 the table spans a/b ∈ [0.1, 10] (outside: an error naming both semi-axes), ν ∈ [0, 0.5] and every creepage up
 to full sliding, which it reaches continuously (computed analytically). Multilinear interpolation: |F| ≤ μQ,
@@ -111,16 +115,34 @@ docs/trade/README.md in the source repository (<code>cargo run --release -p lab 
 };
 
 impl ExactTable {
-    /// The model with the table compiled into this library, read and checked on the first call.
+    /// The model with the table compiled into this library, read and checked on the first call;
+    /// an error without the `embedded-table` feature (then see [`Self::with_table`]).
     pub fn new() -> Result<Self, TableError> {
         static TABLE: OnceLock<Result<Table, TableError>> = OnceLock::new();
-        match TABLE.get_or_init(|| Table::from_bytes(COMPILED_IN)) {
+        match TABLE.get_or_init(compiled_in_table) {
             Ok(table) => Ok(Self { table }),
             Err(error) => Err(error.clone()),
         }
     }
 
-    /// The model with another table (e.g. one just generated, or a test's).
+    /// The model with another table: one read from a file (what a build without the
+    /// `embedded-table` feature does), one just generated, or a test's. The table is borrowed for
+    /// the program's life, so that the model stays `Copy` like every rung:
+    ///
+    /// ```
+    /// use wheel_rail_contact::models::exact_table::Table;
+    /// use wheel_rail_contact::ExactTable;
+    ///
+    /// let bytes = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/data/exact_table.bin")).unwrap();
+    /// let table: &'static Table = Box::leak(Box::new(Table::from_bytes(&bytes).unwrap()));
+    /// let model = ExactTable::with_table(table);
+    /// assert_eq!(model.table().axes.a_over_b, (0.1, 10.0));
+    /// // A damaged file is refused, never read as a table.
+    /// let mut damaged = bytes.clone();
+    /// damaged[bytes.len() / 2] ^= 1;
+    /// assert!(Table::from_bytes(&damaged).unwrap_err().to_string().contains("checksum mismatch"));
+    /// assert!(Table::check_bytes(&damaged).is_err() && Table::check_bytes(&bytes).is_ok());
+    /// ```
     pub fn with_table(table: &'static Table) -> Self {
         Self { table }
     }
@@ -128,6 +150,31 @@ impl ExactTable {
     /// The table this model interpolates.
     pub fn table(&self) -> &'static Table {
         self.table
+    }
+}
+
+/// The table compiled into this library, or why there is none.
+fn compiled_in_table() -> Result<Table, TableError> {
+    table_as_built(COMPILED_IN, cfg!(feature = "embedded-table"))
+}
+
+/// The table of `bytes` embedded by `build.rs` (with the `embedded-table` feature when
+/// `embedded`): empty bytes are explained by how the library was built.
+fn table_as_built(bytes: &[u8], embedded: bool) -> Result<Table, TableError> {
+    if !bytes.is_empty() {
+        Table::from_bytes(bytes)
+    } else if embedded {
+        Err(TableError(
+            "no table was compiled in (data/exact_table.bin was missing at build time; \
+             `cargo fmu exact-table` generates it)"
+                .into(),
+        ))
+    } else {
+        Err(TableError(
+            "no table was compiled in (this build leaves it out: the library's `embedded-table` feature is off); \
+             read data/exact_table.bin with Table::from_bytes and use ExactTable::with_table"
+                .into(),
+        ))
     }
 }
 
@@ -170,4 +217,29 @@ impl CreepForceModel for ExactTable {
 fn zero_forces<D: Scalar>() -> CreepForces<D> {
     let zero = D::from(0.0);
     CreepForces { force_longitudinal: zero, force_lateral: zero, spin_moment: Some(zero), adhesion_utilisation: zero }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An empty embedded table says why it is empty and what to do; a present one is read.
+    #[test]
+    fn an_empty_build_table_is_explained_by_the_build() {
+        let missing = table_as_built(&[], true).unwrap_err().to_string();
+        assert!(
+            missing.contains("data/exact_table.bin was missing at build time")
+                && missing.contains("cargo fmu exact-table"),
+            "{missing}"
+        );
+        let left_out = table_as_built(&[], false).unwrap_err().to_string();
+        assert!(
+            left_out.contains("`embedded-table` feature is off") && left_out.contains("ExactTable::with_table"),
+            "{left_out}"
+        );
+        let bytes = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/data/exact_table.bin")).unwrap();
+        assert_eq!(table_as_built(&bytes, false).unwrap().axes.a_over_b, (0.1, 10.0));
+        // This build (the tests' default features) has its table.
+        assert_eq!(compiled_in_table().is_ok(), cfg!(feature = "embedded-table"));
+    }
 }

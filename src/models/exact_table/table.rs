@@ -283,33 +283,17 @@ impl Table {
         bytes
     }
 
+    /// Checks a table file's frame without decoding its values: its magic bytes, checksum
+    /// (CRC-32 over everything before it) and format version. Cheap enough for an FMU to run at
+    /// fmi2Instantiate on a table it may never decode; [`Table::from_bytes`] runs it first.
+    pub fn check_bytes(bytes: &[u8]) -> Result<(), TableError> {
+        checked_contents(bytes).map(|_| ())
+    }
+
     /// Reads and checks a table file: magic, version, sizes, checksum, finite values inside the
     /// Coulomb disc. The error says what is wrong.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, TableError> {
-        if bytes.is_empty() {
-            return Err(TableError(
-                "no table was compiled in (data/exact_table.bin was missing at build time; \
-                 `cargo fmu exact-table` generates it)"
-                    .into(),
-            ));
-        }
-        let (body, stored) = bytes
-            .split_last_chunk::<4>()
-            .ok_or_else(|| TableError(format!("{} bytes is too short for a table", bytes.len())))?;
-        if body.len() < MAGIC.len() || &body[..MAGIC.len()] != MAGIC {
-            return Err(TableError("not a table file (wrong magic bytes)".into()));
-        }
-        let (computed, stored) = (crc32fast::hash(body), u32::from_le_bytes(*stored));
-        if computed != stored {
-            return Err(TableError(format!(
-                "checksum mismatch (stored {stored:08x}, computed {computed:08x}): the file is corrupted"
-            )));
-        }
-        let mut reader = Reader { bytes: &body[MAGIC.len()..] };
-        let version = reader.u32()?;
-        if version != FORMAT_VERSION {
-            return Err(TableError(format!("format version {version}, this build reads {FORMAT_VERSION}")));
-        }
+        let mut reader = Reader { bytes: checked_contents(bytes)? };
         let text_length = reader.u32()? as usize;
         let provenance = String::from_utf8(reader.take(text_length)?.to_vec())
             .map_err(|_| TableError("provenance text is not UTF-8".into()))?;
@@ -467,6 +451,29 @@ fn decode_counts(axes: &TableAxes, bytes: &[u8]) -> Vec<i16> {
         }
     }
     counts
+}
+
+/// The contents of a table file after its magic bytes and format version, once these and the
+/// checksum are right.
+fn checked_contents(bytes: &[u8]) -> Result<&[u8], TableError> {
+    let (body, stored) = bytes
+        .split_last_chunk::<4>()
+        .ok_or_else(|| TableError(format!("{} bytes is too short for a table", bytes.len())))?;
+    if body.len() < MAGIC.len() || &body[..MAGIC.len()] != MAGIC {
+        return Err(TableError("not a table file (wrong magic bytes)".into()));
+    }
+    let (computed, stored) = (crc32fast::hash(body), u32::from_le_bytes(*stored));
+    if computed != stored {
+        return Err(TableError(format!(
+            "checksum mismatch (stored {stored:08x}, computed {computed:08x}): the file is corrupted"
+        )));
+    }
+    let mut reader = Reader { bytes: &body[MAGIC.len()..] };
+    let version = reader.u32()?;
+    if version != FORMAT_VERSION {
+        return Err(TableError(format!("format version {version}, this build reads {FORMAT_VERSION}")));
+    }
+    Ok(reader.bytes)
 }
 
 struct Reader<'a> {
