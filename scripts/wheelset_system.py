@@ -1,6 +1,6 @@
 """The wheelset running on track as an SSP (systems/wheelset_on_track/: the wheelset FMU and a left
 and a right contact unit), run by the fixed-step master scripts/ssp_master.py: assembling the
-SSP with the packaged FMUs, the runs of the physics checks (tests/wheelset/test_system_physics.py),
+SSP with the packaged FMUs, the runs of the physics checks (tests/wheelset/test_system.py),
 the measurements on them, and the command `scripts/run-wheelset` (CSV and plots under
 target/wheelset/; `--measure` prints the Klingel and critical-speed figures of docs/wheelset.md).
 
@@ -29,8 +29,11 @@ CONTACT_DATA = ROOT / "data" / "wheelset" / "contact_data.json"
 DISPLACEMENT = "wheelset.wheelset_lateral_displacement"
 YAW = "wheelset.wheelset_yaw_angle"
 
-# The checks' runs (docs/wheelset.md, "The coupled system"): communication steps about a tenth of
-# the creep forces' time constants m V/(2 f22) (1 ms at 10 m/s, 6.4 ms at 63 m/s).
+# The checks' runs (docs/wheelset.md, "The coupled system"). The communication steps are below the
+# shortest time constant in the loop, the wheel spin's I_s V/(Σ f11 r²) ≈ 27 µs × V/(m/s): 0.27 ms
+# at 10 m/s, 1.7 ms at 62 m/s. Halving them moves the Klingel wavelength by 0.3 mm (8.6790 m at
+# 0.2 ms, 8.6793 at 0.1 ms) and the critical speed by 0.05 m/s (61.74 m/s at 0.25 ms, 61.79 at
+# 0.125 ms).
 KLINGEL_SPEED, KLINGEL_STEP, KLINGEL_START, KLINGEL_DURATION = 10.0, 2e-4, 3e-3, 2.0
 HUNTING_STEP, HUNTING_DURATION = 2.5e-4, 1.0
 # The describing function's amplitude of the reference critical speed (4.5 mm, where V_c(A) is
@@ -40,6 +43,8 @@ HUNTING_STEP, HUNTING_DURATION = 2.5e-4, 1.0
 # (starting higher, the wheelset with kalker_linear, unsaturated, climbs the flange at once).
 HUNTING_WINDOW = (4.0e-3, 5.0e-3)
 HUNTING_SPEEDS = (60.0, 62.0, 64.0)
+# The finer set of `--measure` (docs/wheelset.md), for every creep force model.
+MEASURE_SPEEDS = (60.0, 61.0, 62.0, 63.0, 64.0)
 
 
 def build_fmus_if_missing():
@@ -92,16 +97,17 @@ def equivalent_conicity(amplitude):
 
 
 def parameters_file():
+    """data/wheelset/passenger_coach.toml as {table: {name: value}} (SI units)."""
     with open(PARAMETERS, "rb") as file:
         return {table: {name: entry["value"] for name, entry in entries.items()}
                 for table, entries in tomllib.load(file).items()}
 
 
-def klingel_run(ssp, creep_force_model="kalker_linear"):
-    """The free wheelset at KLINGEL_SPEED, started KLINGEL_START off centre."""
+def klingel_run(ssp):
+    """The free wheelset at KLINGEL_SPEED, started KLINGEL_START off centre (the SSD's
+    kalker_linear)."""
     return run(ssp, "klingel_check", {
-        "wheelset.forward_speed": KLINGEL_SPEED, "wheelset.initial_lateral_displacement": KLINGEL_START,
-        "left_wheel.creep_force_model": creep_force_model, "right_wheel.creep_force_model": creep_force_model},
+        "wheelset.forward_speed": KLINGEL_SPEED, "wheelset.initial_lateral_displacement": KLINGEL_START},
         stop_time=KLINGEL_DURATION, step_size=KLINGEL_STEP)
 
 
@@ -176,8 +182,7 @@ def write_csv(result, path):
 
 
 def plot(result, path_stem, title):
-    """y(t), ψ(t) and both wheels' lateral and vertical contact forces and yaw moments, as PNG
-    and SVG."""
+    """y(t), ψ(t) and both wheels' lateral forces and yaw moments (track axes), as PNG and SVG."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -196,7 +201,7 @@ def plot(result, path_stem, title):
     axes[2].legend(loc="upper right", fontsize="small")
     for axis in axes:
         axis.grid(True, linewidth=0.3)
-    axes[0].set_title(textwrap.fill(title, 90), fontsize="small")
+    axes[0].set_title("\n".join(textwrap.fill(line, 90) for line in title.split("\n")), fontsize="small")
     figure.tight_layout()
     for suffix in (".png", ".svg"):
         figure.savefig(path_stem.with_suffix(suffix), dpi=72)
@@ -211,7 +216,7 @@ def measure():
           f"{wavelength:.4f} m at amplitude {amplitude * 1e3:.3f} mm (tan γ_e {equivalent_conicity(amplitude):.4f}); "
           f"Klingel's {klingel:.4f} m; {100 * (wavelength / klingel - 1):+.2f} %")
     for model in ("kalker_linear", "polach", "exact_table"):
-        rates, speed = measured_critical_speed(ssp, model, speeds=(60.0, 61.0, 62.0, 63.0, 64.0))
+        rates, speed = measured_critical_speed(ssp, model, MEASURE_SPEEDS)
         print(f"critical speed, {model}: " + ", ".join(
             f"σ({v:g} m/s) = {'-' if r is None else f'{r:+.3f}'} 1/s" for v, r in rates.items())
               + f" -> {'not bracketed' if speed is None else f'{speed:.2f} m/s'}")
@@ -252,7 +257,7 @@ def main(arguments=None):
     csv, stem = OUTPUT / f"{options.name}.csv", OUTPUT / options.name
     write_csv(result, csv)
     settings = ", ".join([options.variant or "passenger coach"] + [f"{n}={v}" for n, v in values.items()])
-    ended = f"\nended at t = {failure.time:.4g} s by {failure.component}: {failure.message[:60]}…" if failure else ""
+    ended = f"\nended by {failure}".split(" (its inputs")[0] if failure else ""
     plot(result, stem, f"wheelset on track ({settings}){ended}")
     print(f"{ssp}: {len(result)} communication points; wrote {csv}, {stem}.png, {stem}.svg")
     return 1 if failure else 0
