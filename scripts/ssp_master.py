@@ -251,6 +251,8 @@ def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_
 
         for start_name, start_connector, end, end_connector in connections:
             for name, connector in ((start_name, start_connector), (end, end_connector)):
+                if name not in by_name or connector not in by_name[name].variables:
+                    raise SystemRunError(name, start, f"a connection names {name}.{connector}, which the system lacks")
                 if by_name[name].variable(connector).type != "Real":
                     raise SystemRunError(name, start, f"connector {connector}: only Real connections are supported")
         order = _visiting_order(units, connections)

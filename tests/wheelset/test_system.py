@@ -9,6 +9,7 @@ Needs the packaged FMUs (`cargo fmu package`, run first by scripts/test-all; bui
 import pathlib
 import re
 import sys
+import zipfile
 
 import numpy as np
 import pytest
@@ -50,6 +51,30 @@ def test_the_ssd_and_its_parameter_sets_are_valid_ssp_1_0(ssp):
                                      "wheelset_lateral_velocity", "wheelset_yaw_rate", "rolling_speed",
                                      "wheel_angular_speed"]} <= ends
     assert len(ends) == len(ssd.system.connections) == 24
+
+
+def _with_ssd(ssp, directory, edit):
+    """A copy of the SSP whose SystemStructure.ssd is edit(text)."""
+    copy = directory / "edited.ssp"
+    with zipfile.ZipFile(ssp) as source, zipfile.ZipFile(copy, "w") as target:
+        for item in source.infolist():
+            data = source.read(item)
+            if item.filename == "SystemStructure.ssd":
+                data = edit(data.decode()).encode()
+            target.writestr(item, data)
+    return copy
+
+
+def test_an_ssd_that_breaks_the_schema_or_names_a_missing_variable_is_refused(ssp, tmp_path):
+    """The validation is real: an element SSP 1.0 does not have fails the schema; a connection to
+    a variable the FMU lacks ends the run before it starts, naming it."""
+    broken = _with_ssd(ssp, tmp_path, lambda text: text.replace("<ssd:Connections>", "<ssd:Connections><ssd:Wire/>"))
+    with pytest.raises(Exception, match="Failed to validate SystemStructure.ssd"):
+        ws.run(broken, stop_time=0.01)
+    renamed = _with_ssd(ssp, tmp_path, lambda text: text.replace(
+        'endConnector="left_track_force_y"', 'endConnector="left_track_force_lateral"'))
+    with pytest.raises(ssp_master.SystemRunError, match="names wheelset.left_track_force_lateral, which the system lacks"):
+        ws.run(renamed, stop_time=0.01)
 
 
 def test_the_parameter_sets_are_the_parameter_files(ssp):
