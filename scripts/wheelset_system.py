@@ -1,0 +1,267 @@
+"""The wheelset running on track as an SSP (systems/wheelset_on_track/: the wheelset FMU and a left
+and a right contact unit), run by the fixed-step master scripts/ssp_master.py: assembling the
+SSP with the packaged FMUs, the runs of the physics checks (tests/wheelset/test_system.py),
+the measurements on them, and the command `scripts/run-wheelset` (CSV and plots under
+target/wheelset/; `--measure` prints the Klingel and critical-speed figures of docs/wheelset.md).
+
+Units SI throughout; y the wheelset's lateral displacement [m], ψ its yaw [rad] (track axes x
+forward, y right, z down, as the contact unit's)."""
+
+import argparse
+import json
+import math
+import pathlib
+import subprocess
+import sys
+import textwrap
+import tomllib
+
+import numpy as np
+
+import ssp_master
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+SYSTEM_SOURCE = ROOT / "systems" / "wheelset_on_track"
+FMUS = {name: ROOT / "target" / "fmu" / name for name in ("wheelset.fmu", "wheel_rail_contact.fmu")}
+OUTPUT = ROOT / "target" / "wheelset"
+PARAMETERS = ROOT / "data" / "wheelset" / "passenger_coach.toml"
+CONTACT_DATA = ROOT / "data" / "wheelset" / "contact_data.json"
+DISPLACEMENT = "wheelset.wheelset_lateral_displacement"
+YAW = "wheelset.wheelset_yaw_angle"
+
+# The checks' runs (docs/wheelset.md, "The coupled system"). The communication steps are below the
+# shortest time constant in the loop, the wheel spin's I_s V/(Σ f11 r²) ≈ 27 µs × V/(m/s): 0.27 ms
+# at 10 m/s, 1.7 ms at 62 m/s. Halving them moves the Klingel wavelength by 0.3 mm (8.6790 m at
+# 0.2 ms, 8.6793 at 0.1 ms) and the critical speed by 0.05 m/s (61.74 m/s at 0.25 ms, 61.79 at
+# 0.125 ms).
+KLINGEL_SPEED, KLINGEL_STEP, KLINGEL_START, KLINGEL_DURATION = 10.0, 2e-4, 3e-3, 2.0
+HUNTING_STEP, HUNTING_DURATION = 2.5e-4, 1.0
+# The describing function's amplitude of the reference critical speed (4.5 mm, where V_c(A) is
+# stationary) and the window of peaks around it whose growth rate is measured: V_c(A) of the
+# linear reference is 61.95 m/s at 4.0 mm and 62.78 at 5.0 mm (docs/wheelset.md, "Results").
+# The runs start at the window's ends, so that a growing and a decaying oscillation cross it
+# (starting higher, the wheelset with kalker_linear, unsaturated, climbs the flange at once).
+HUNTING_WINDOW = (4.0e-3, 5.0e-3)
+HUNTING_SPEEDS = (60.0, 62.0, 64.0)
+# The finer set of `--measure` (docs/wheelset.md), for every creep force model.
+MEASURE_SPEEDS = (60.0, 61.0, 62.0, 63.0, 64.0)
+
+
+def build_fmus_if_missing():
+    """The packaged FMUs (`cargo fmu package`, which scripts/test-all runs first)."""
+    if not all(path.exists() for path in FMUS.values()):
+        subprocess.run(["cargo", "fmu", "package"], cwd=ROOT, check=True)
+
+
+def system_ssp(path=None):
+    """The SSP assembled from systems/wheelset_on_track/ and the packaged FMUs (default
+    target/wheelset/wheelset_on_track.ssp)."""
+    build_fmus_if_missing()
+    return ssp_master.assemble(SYSTEM_SOURCE, FMUS, path or OUTPUT / "wheelset_on_track.ssp")
+
+
+def run(ssp, variant=None, parameters=None, stop_time=None, step_size=None):
+    """The system run by the master; `variant`: None, "hunting_check" or "klingel_check" (the
+    parameter sets resources/<variant>.ssv of the SSP); `parameters`: {"component.variable": value}."""
+    sets = [f"resources/{variant}.ssv"] if variant else []
+    return ssp_master.simulate(ssp, parameter_sets=sets, parameters=parameters, stop_time=stop_time,
+                               step_size=step_size)
+
+
+def downward_zero_crossings(time, signal):
+    """The times [s] where the signal crosses zero from above, linearly interpolated."""
+    above = signal[:-1] > 0
+    index = np.nonzero(above & (signal[1:] <= 0))[0]
+    return time[index] + (time[index + 1] - time[index]) * signal[index] / (signal[index] - signal[index + 1])
+
+
+def extrema(time, signal):
+    """The local extrema (t, |value|) of a sampled signal, each refined by the parabola through
+    it and its two neighbours."""
+    middle = signal[1:-1]
+    index = 1 + np.nonzero(((middle > signal[:-2]) & (middle >= signal[2:]))
+                           | ((middle < signal[:-2]) & (middle <= signal[2:])))[0]
+    before, at, after = signal[index - 1], signal[index], signal[index + 1]
+    curvature = before - 2 * at + after
+    shift = 0.5 * (before - after) / curvature
+    step = time[1] - time[0]
+    return time[index] + shift * step, np.abs(at - 0.25 * (before - after) * shift)
+
+
+def equivalent_conicity(amplitude):
+    """tan γ_e(A) of the library's geometry (data/wheelset/contact_data.json, every 0.25 mm),
+    linearly interpolated."""
+    with open(CONTACT_DATA) as file:
+        table = np.array(json.load(file)["conicity"])
+    return float(np.interp(amplitude, table[:, 0], table[:, 1]))
+
+
+def parameters_file():
+    """data/wheelset/passenger_coach.toml as {table: {name: value}} (SI units)."""
+    with open(PARAMETERS, "rb") as file:
+        return {table: {name: entry["value"] for name, entry in entries.items()}
+                for table, entries in tomllib.load(file).items()}
+
+
+def klingel_run(ssp):
+    """The free wheelset at KLINGEL_SPEED, started KLINGEL_START off centre (the SSD's
+    kalker_linear)."""
+    return run(ssp, "klingel_check", {
+        "wheelset.forward_speed": KLINGEL_SPEED, "wheelset.initial_lateral_displacement": KLINGEL_START},
+        stop_time=KLINGEL_DURATION, step_size=KLINGEL_STEP)
+
+
+def klingel_measurement(result, speed=KLINGEL_SPEED):
+    """The simulated kinematic oscillation's wavelength [m] (speed × the mean period between the
+    first and the last downward zero crossing of y) and amplitude [m] (mean |y| of the extrema
+    between them), and Klingel's wavelength λ = 2π √(r0 s / tan γ_e) (Klingel 1883; Wickens 2003,
+    ch. 2) with r0 and s of data/wheelset/passenger_coach.toml and tan γ_e at that amplitude."""
+    time, y = result["time"], result[DISPLACEMENT]
+    crossings = downward_zero_crossings(time, y)
+    if len(crossings) < 2:
+        raise ValueError(f"fewer than two downward zero crossings of y in {time[-1]} s")
+    wavelength = speed * (crossings[-1] - crossings[0]) / (len(crossings) - 1)
+    peak_times, peaks = extrema(time, y)
+    amplitude = float(np.mean(peaks[(peak_times > crossings[0]) & (peak_times < crossings[-1])]))
+    wheelset = parameters_file()["wheelset"]
+    klingel = 2 * math.pi * math.sqrt(wheelset["nominal_rolling_radius"] * wheelset["half_contact_distance"]
+                                      / equivalent_conicity(amplitude))
+    return wavelength, amplitude, klingel
+
+
+def hunting_runs(ssp, speed, creep_force_model="kalker_linear", step_size=HUNTING_STEP):
+    """The hunting_check wheelset at `speed`, started at each end of HUNTING_WINDOW; a run that
+    grows to the flange and derails counts up to its last communication point."""
+    runs = []
+    for start in HUNTING_WINDOW:
+        try:
+            runs.append(run(ssp, "hunting_check", {
+                "wheelset.forward_speed": speed, "wheelset.initial_lateral_displacement": start,
+                "left_wheel.creep_force_model": creep_force_model,
+                "right_wheel.creep_force_model": creep_force_model},
+                stop_time=HUNTING_DURATION, step_size=step_size))
+        except ssp_master.SystemRunError as error:
+            runs.append(error.result)
+    return runs
+
+
+def growth_rate(results, window=HUNTING_WINDOW):
+    """The oscillation's growth rate σ [1/s] at amplitudes within `window` [m]: the least-squares
+    slope of ln |y| over the extrema of y within it (after the first one: the start's transient),
+    averaged over the runs that have at least three; None if none has."""
+    slopes = []
+    for result in results:
+        times, peaks = extrema(result["time"], result[DISPLACEMENT])
+        inside = (peaks >= window[0]) & (peaks <= window[1])
+        inside[0] = False
+        if np.count_nonzero(inside) >= 3:
+            slopes.append(np.polyfit(times[inside], np.log(peaks[inside]), 1)[0])
+    return float(np.mean(slopes)) if slopes else None
+
+
+def critical_speed(rates):
+    """The speed where the growth rate crosses zero [m/s], linearly interpolated between the two
+    measured speeds that bracket it ({speed: σ}); None if none do."""
+    speeds = sorted(v for v, rate in rates.items() if rate is not None)
+    for low, high in zip(speeds, speeds[1:]):
+        if rates[low] < 0 <= rates[high]:
+            return low + (high - low) * (-rates[low]) / (rates[high] - rates[low])
+    return None
+
+
+def measured_critical_speed(ssp, creep_force_model="kalker_linear", speeds=HUNTING_SPEEDS):
+    """({speed: σ}, the critical speed) of the coupled runs."""
+    rates = {speed: growth_rate(hunting_runs(ssp, speed, creep_force_model)) for speed in speeds}
+    return rates, critical_speed(rates)
+
+
+def write_csv(result, path):
+    names = result.dtype.names
+    np.savetxt(path, np.column_stack([result[n] for n in names]), delimiter=",", header=",".join(names),
+               comments="", fmt="%.9g")
+
+
+def plot(result, path_stem, title):
+    """y(t), ψ(t) and both wheels' lateral forces and yaw moments (track axes), as PNG and SVG."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    time = result["time"]
+    figure, axes = plt.subplots(4, 1, sharex=True, figsize=(7.5, 8.5))
+    axes[0].plot(time, result[DISPLACEMENT] * 1e3, color="black")
+    axes[0].set_ylabel("y [mm]")
+    axes[1].plot(time, result[YAW] * 1e3, color="black")
+    axes[1].set_ylabel("ψ [mrad]")
+    for side, color in (("left", "tab:blue"), ("right", "tab:red")):
+        axes[2].plot(time, result[f"{side}_wheel.track_force_y"] / 1e3, color=color, label=f"{side} wheel")
+        axes[3].plot(time, result[f"{side}_wheel.track_moment_z"] / 1e3, color=color, label=f"{side} wheel")
+    axes[2].set_ylabel("lateral force\ntrack_force_y [kN]")
+    axes[3].set_ylabel("yaw moment\ntrack_moment_z [kN m]")
+    axes[3].set_xlabel("t [s]")
+    axes[2].legend(loc="upper right", fontsize="small")
+    for axis in axes:
+        axis.grid(True, linewidth=0.3)
+    axes[0].set_title("\n".join(textwrap.fill(line, 90) for line in title.split("\n")), fontsize="small")
+    figure.tight_layout()
+    for suffix in (".png", ".svg"):
+        figure.savefig(path_stem.with_suffix(suffix), dpi=72)
+    plt.close(figure)
+
+
+def measure():
+    """The Klingel and critical-speed figures of docs/wheelset.md, for each creep force model."""
+    ssp = system_ssp()
+    wavelength, amplitude, klingel = klingel_measurement(klingel_run(ssp))
+    print(f"Klingel ({KLINGEL_SPEED} m/s, kalker_linear, step {KLINGEL_STEP * 1e3} ms): wavelength "
+          f"{wavelength:.4f} m at amplitude {amplitude * 1e3:.3f} mm (tan γ_e {equivalent_conicity(amplitude):.4f}); "
+          f"Klingel's {klingel:.4f} m; {100 * (wavelength / klingel - 1):+.2f} %")
+    for model in ("kalker_linear", "polach", "exact_table"):
+        rates, speed = measured_critical_speed(ssp, model, MEASURE_SPEEDS)
+        print(f"critical speed, {model}: " + ", ".join(
+            f"σ({v:g} m/s) = {'-' if r is None else f'{r:+.3f}'} 1/s" for v, r in rates.items())
+              + f" -> {'not bracketed' if speed is None else f'{speed:.2f} m/s'}")
+
+
+def main(arguments=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--variant", choices=["hunting_check", "klingel_check"],
+                        help="a parameter set of data/wheelset/passenger_coach.toml applied over the SSD's")
+    parser.add_argument("--set", action="append", default=[], metavar="COMPONENT.VARIABLE=VALUE",
+                        help="a parameter value, e.g. wheelset.forward_speed=70 or left_wheel.creep_force_model=polach")
+    parser.add_argument("--creep-force-model", choices=["kalker_linear", "polach", "exact_table"],
+                        help="both contact units' creep_force_model (the SSD's: kalker_linear)")
+    parser.add_argument("--stop-time", type=float, help="[s], default the SSD's")
+    parser.add_argument("--step", type=float, help="communication step [s], default the SSD's")
+    parser.add_argument("--name", default="wheelset_on_track", help="stem of the CSV and plot files")
+    parser.add_argument("--measure", action="store_true",
+                        help="print the Klingel and critical-speed figures of docs/wheelset.md instead")
+    options = parser.parse_args(arguments)
+    if options.measure:
+        measure()
+        return 0
+    values = {}
+    if options.creep_force_model:
+        values = {f"{side}_wheel.creep_force_model": options.creep_force_model for side in ("left", "right")}
+    for assignment in options.set:
+        name, _, value = assignment.partition("=")
+        values[name] = value
+    ssp = system_ssp()
+    failure = None
+    try:
+        result = run(ssp, options.variant, values, options.stop_time, options.step)
+    except ssp_master.SystemRunError as error:
+        failure, result = error, error.result
+        print(f"run-wheelset: the run ended: {error}", file=sys.stderr)
+        if result is None or len(result) == 0:
+            return 1
+    csv, stem = OUTPUT / f"{options.name}.csv", OUTPUT / options.name
+    write_csv(result, csv)
+    settings = ", ".join([options.variant or "passenger coach"] + [f"{n}={v}" for n, v in values.items()])
+    ended = f"\nended by {failure}".split(" (its inputs")[0] if failure else ""
+    plot(result, stem, f"wheelset on track ({settings}){ended}")
+    print(f"{ssp}: {len(result)} communication points; wrote {csv}, {stem}.png, {stem}.svg")
+    return 1 if failure else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
