@@ -75,6 +75,7 @@ impl Wheelset {
     /// so a wheel carrying load has track_force_z < 0; ≥ 0 is lift-off, which the model cannot
     /// go on from).
     fn loads(&self, time: f64) -> Result<Loads, String> {
+        let time = readable(time);
         for input in VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
             let value = self.values.real(input.value_reference).unwrap_or(f64::NAN);
             if !value.is_finite() {
@@ -113,8 +114,15 @@ impl Wheelset {
     }
 }
 
+/// A master's time for a message: 12 significant digits, printed shortest, so that the
+/// 1463rd step of 0.2 ms reads 0.2926 rather than its sum's rounding noise.
+fn readable(time: f64) -> f64 {
+    format!("{time:.11e}").parse().unwrap_or(time)
+}
+
 /// A physics error as the FMU reports it: the variable's FMU name and the time.
 fn describe(error: WheelsetError, time: f64) -> String {
+    let time = readable(time);
     match error {
         WheelsetError::Derailed { lateral_displacement, limit } => format!(
             "the wheelset derails at t = {time} s: wheelset_lateral_displacement = {lateral_displacement} m is beyond \
@@ -210,5 +218,22 @@ impl Model for Wheelset {
             }
         }
         Ok(model)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::readable;
+
+    /// A summed time's rounding noise goes, its digits stay: 12 significant ones.
+    #[test]
+    fn a_time_is_printed_to_twelve_significant_digits() {
+        let summed = (0..1463).fold(0.0, |time, _| time + 2e-4);
+        assert_ne!(summed, 0.2926);
+        assert_eq!(format!("{}", readable(summed)), "0.2926");
+        assert_eq!(format!("{}", readable(0.1 + 0.2)), "0.3");
+        assert_eq!(format!("{}", readable(3e-7)), "0.0000003");
+        assert_eq!(format!("{}", readable(123456.789012345)), "123456.789012");
+        assert_eq!(format!("{}", readable(-0.5)), "-0.5");
     }
 }

@@ -213,6 +213,10 @@ fn bad_values_are_errors_naming_variable_time_and_value() {
     assert_eq!(status, ERROR);
     let message = log.last();
     assert!(message.starts_with("fmi2DoStep: the wheelset derails at t = 0.5"), "{message}");
+    // At the refused step's end, the master's time summed step by step, to 12 significant
+    // digits: whole milliseconds.
+    let milliseconds = ((time + 1e-3) * 1e3).round() / 1e3;
+    assert!(message.contains(&format!("derails at t = {milliseconds} s:")), "{time}: {message}");
     assert!(message.ends_with("m is beyond derailment_displacement = 0.01 m"), "{message}");
 }
 
