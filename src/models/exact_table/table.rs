@@ -24,6 +24,33 @@
 //! derived when the table is made (see `interpolate.rs`), and the values are f32 (in μQ and μQc),
 //! converted once: the evaluation's blend then needs no integer conversions (16-bit values in
 //! memory measured 1.2× slower per evaluation).
+//!
+//! A table of the smallest shape — two nodes along a/b, ν, β and α, five along τ — made, written,
+//! checked and read back (the generator's last steps; the shipped table has the same frame):
+//!
+//! ```
+//! use wheel_rail_contact::models::exact_table::{Table, TableAxes, A_OVER_B_RANGE, FORMAT_VERSION};
+//!
+//! let axes = TableAxes { counts: [2, 2, 2, 2, 5], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
+//! assert_eq!((axes.len(), axes.is_empty()), (80, false));
+//! assert!((axes.a_over_b_node(0) - 0.1).abs() < 1e-16 && axes.a_over_b_node(1) == 10.0);
+//! assert_eq!(axes.poisson_node(1), 0.5);
+//! assert_eq!(axes.direction_node(0, 1, 4), (-1.0, 1.0, 1.0)); // β, α, τ
+//! // F_x/(μQ) = 0.6, F_y/(μQ) = −0.8 (on the Coulomb circle), M_z/(μQc) = 0.1 at every node.
+//! let values = [0.6f32, -0.8, 0.1].repeat(axes.len());
+//! let table = Table::new("example".into(), axes.clone(), vec![[1.0; 3]; 4], vec![0.5; 16], values).unwrap();
+//! let bytes = table.to_bytes();
+//! assert_eq!(&bytes[..16], b"WRC-EXACT-TABLE\0");
+//! assert_eq!(bytes[16..20], FORMAT_VERSION.to_le_bytes());
+//! assert!(Table::check_bytes(&bytes).is_ok());
+//! assert_eq!(Table::from_bytes(&bytes).unwrap(), table);
+//! // Outside the Coulomb disc, or a collapse outside its range: refused when made.
+//! let outside = [0.9f32, -0.8, 0.0].repeat(axes.len());
+//! let error = Table::new("".into(), axes.clone(), vec![[1.0; 3]; 4], vec![0.5; 16], outside).unwrap_err();
+//! assert!(error.to_string().contains("|F| > μQ"), "{error}");
+//! let values = [0.0f32; 3].repeat(axes.len());
+//! assert!(Table::new("".into(), axes, vec![[1.0; 3]; 4], vec![0.2; 16], values).is_err());
+//! ```
 
 use std::fmt;
 
