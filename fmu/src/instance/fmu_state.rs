@@ -27,8 +27,15 @@ impl Instance {
             return status;
         }
         self.trace(|| format!("{CALL}: state {}, time {}", state.0.mode.name(), state.0.time));
+        // The model (with profiles: the profiles read and placed, tens of ms) is rebuilt only if
+        // the state's parameters differ: a master that restores a state every step (a
+        // finite-difference Jacobian, a retried step) would otherwise pay that each time.
+        let parameters_differ =
+            self.run.values.parameters != state.0.values.parameters || self.run.strings != state.0.strings;
         self.run.clone_from(&state.0);
-        self.model.parameters_changed();
+        if parameters_differ {
+            self.model.parameters_changed();
+        }
         Status::Ok
     }
 
