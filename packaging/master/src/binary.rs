@@ -266,6 +266,38 @@ impl<'a> Instance<'a> {
             check("fmi2FreeFMUstate", (self.functions.fmi2FreeFMUstate)(self.component, &mut state))
         }
     }
+
+    /// fmi2GetFMUstate.
+    pub fn state(&self) -> Result<State<'_, 'a>, String> {
+        let mut pointer: FmuState = null_mut();
+        // SAFETY: live instance; the state is the FMU's until `State` drops it.
+        check("fmi2GetFMUstate", unsafe { (self.functions.fmi2GetFMUstate)(self.component, &mut pointer) })?;
+        Ok(State { instance: self, pointer })
+    }
+}
+
+/// An FMU state of one instance (fmi2GetFMUstate), restorable any number of times and freed
+/// (fmi2FreeFMUstate) when dropped: what a master needs to retry or probe a step.
+pub struct State<'s, 'a> {
+    instance: &'s Instance<'a>,
+    pointer: FmuState,
+}
+
+impl State<'_, '_> {
+    /// fmi2SetFMUstate: the instance as it was when the state was taken.
+    pub fn restore(&self) -> Result<(), String> {
+        let instance = self.instance;
+        // SAFETY: live instance and a state it gave.
+        check("fmi2SetFMUstate", unsafe { (instance.functions.fmi2SetFMUstate)(instance.component, self.pointer) })
+    }
+}
+
+impl Drop for State<'_, '_> {
+    fn drop(&mut self) {
+        let instance = self.instance;
+        // SAFETY: live instance (the borrow outlives the state), a state it gave, freed once.
+        unsafe { (instance.functions.fmi2FreeFMUstate)(instance.component, &mut self.pointer) };
+    }
 }
 
 fn check(call: &str, status: c_int) -> Result<(), String> {
