@@ -11,6 +11,7 @@
 //! - `wheelset_contact_data`: the passenger-coach wheelset's contact data on S1002/UIC60 for the
 //!   linear stability reference (data/wheelset/, docs/wheelset.md).
 //!
-//! What they share is here: [`random_contacts`].
+//! What they share is here: [`random_contacts`], [`wheelset_parameters`].
 
 pub mod random_contacts;
+pub mod wheelset_parameters;

@@ -20,6 +20,7 @@
 
 use std::fmt::Write;
 
+use lab::wheelset_parameters::{document, number, text};
 use wheel_rail_contact::geometry::{
     builtin_profile, RollingRadiusDifference, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
 };
@@ -33,23 +34,8 @@ use wheel_rail_contact::{KalkerCoefficients, KalkerLinear, ModelChoice};
 /// regularisation speed gives the same creepages).
 const SPEED: f64 = 10.0;
 
-const PARAMETERS: &str = include_str!("../../../data/wheelset/passenger_coach.toml");
-
-/// `[table].name.value` of the parameter file.
-fn parameter<'a>(document: &'a toml_edit::DocumentMut, table: &str, name: &str) -> &'a toml_edit::Item {
-    &document[table][name]["value"]
-}
-
-fn number(document: &toml_edit::DocumentMut, table: &str, name: &str) -> f64 {
-    parameter(document, table, name).as_float().unwrap_or_else(|| panic!("{table}.{name}.value must be a float"))
-}
-
-fn text<'a>(document: &'a toml_edit::DocumentMut, table: &str, name: &str) -> &'a str {
-    parameter(document, table, name).as_str().unwrap_or_else(|| panic!("{table}.{name}.value must be a string"))
-}
-
 fn main() {
-    let document: toml_edit::DocumentMut = PARAMETERS.parse().expect("data/wheelset/passenger_coach.toml parses");
+    let document = document();
     let wheel_load = 0.5 * number(&document, "wheelset", "axle_load");
     let shear_modulus = number(&document, "contact", "shear_modulus");
     let poisson_ratio = number(&document, "contact", "poisson_ratio");
