@@ -9,9 +9,12 @@
 //! - `kalker_table_check`, `kalker_c33_check`: the exact solver against Kalker's table
 //!   (docs/reference/);
 //! - `wheelset_contact_data`: the passenger-coach wheelset's contact data on S1002/UIC60 for the
-//!   linear stability reference (data/wheelset/, docs/wheelset.md).
+//!   linear stability reference (data/wheelset/, docs/wheelset.md);
+//! - `coupling_stability_map`: the wheelset FMU and two contact units coupled by a fixed-step
+//!   master, which steps stay bounded (docs/coupling-stability.md).
 //!
-//! What they share is here: [`random_contacts`], [`wheelset_parameters`].
+//! What they share is here: [`random_contacts`], [`wheelset_parameters`], [`coupling`].
 
+pub mod coupling;
 pub mod random_contacts;
 pub mod wheelset_parameters;
