@@ -47,7 +47,7 @@ pub struct Fmu {
 
 impl Fmu {
     /// The binary `library` (the cdylib that `cargo fmu package` puts into the FMU as
-    /// binaries/linux64/<modelIdentifier>.so) with the model description `xml`, its instances
+    /// `binaries/linux64/<modelIdentifier>.so`) with the model description `xml`, its instances
     /// given `resources` (absolute: the directory holding what the FMU's resources/ holds).
     pub fn load(library: &Path, xml: &Path, resources: &Path) -> Result<Fmu, String> {
         let text = std::fs::read_to_string(xml).map_err(|e| format!("{}: {e}", xml.display()))?;
