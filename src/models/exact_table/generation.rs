@@ -2,6 +2,51 @@
 //! node's forces from the exact solver (τ < 1) or the full-sliding quadrature (τ = 1), one
 //! (a/b, ν) slice at a time so that a generator can save slices as they finish and resume after
 //! an interruption (`cargo fmu exact-table` does).
+//!
+//! The generator's steps on a small table (two nodes along a/b and ν; three along β and α, so
+//! that no spin, β = 0, is a node; five along τ) and coarse grids — the shipped table is the same steps on 29 × 6 × 17 × 17 × 47
+//! nodes and 80 × 20 / 40 × 20 elements (docs/exact_table.md):
+//!
+//! ```
+//! use wheel_rail_contact::models::exact_table::generation::{
+//!     assemble, extrapolate, refresh_full_slip, scales, slice_values,
+//! };
+//! use wheel_rail_contact::models::exact_table::{TableAxes, A_OVER_B_RANGE};
+//! use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable, ExactTheory};
+//!
+//! let axes = TableAxes { counts: [2, 2, 3, 3, 5], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
+//! assert_eq!(scales(&axes).len(), 4); // one set of scale factors per (a/b, ν) node
+//! let (grid, half_grid) = (ExactTheory::new(16, 8), ExactTheory::new(8, 8));
+//! let mut slices = Vec::new();
+//! for i_ab in 0..2 {
+//!     for i_nu in 0..2 {
+//!         let (slice, statistics) = slice_values(&axes, i_ab, i_nu, &grid, None).unwrap();
+//!         assert!(statistics.solves > 0 && statistics.iterations >= statistics.solves);
+//!         // Only the solver's nodes are expensive: the full-sliding ones are made again as they were.
+//!         assert_eq!(refresh_full_slip(&axes, i_ab, i_nu, &slice), slice);
+//!         // The half grid at the same nodes (its rays take this slice's collapse), then Richardson.
+//!         let (coarse, _) = slice_values(&axes, i_ab, i_nu, &half_grid, Some(&slice)).unwrap();
+//!         assert_eq!(coarse.collapse, slice.collapse);
+//!         slices.push(extrapolate(&slice, &coarse));
+//!     }
+//! }
+//! let table = assemble("example: 16 × 8 and 8 × 8 elements".into(), axes, slices).unwrap();
+//! let model = ExactTable::with_table(Box::leak(Box::new(table)));
+//! // Full sliding is analytic in any table: |F| = μQ against the creepage.
+//! let input = ContactInput {
+//!     creepage_longitudinal: 0.05,
+//!     creepage_lateral: 0.0,
+//!     spin_creepage: 0.0,
+//!     normal_force: 80e3,
+//!     semi_axis_a: 6e-3,
+//!     semi_axis_b: 4e-3,
+//!     friction_coefficient: 0.3,
+//!     shear_modulus: 82e9,
+//!     poisson_ratio: 0.25,
+//! };
+//! let forces = model.creep_forces(&input).unwrap();
+//! assert!((forces.force_longitudinal + 0.3 * 80e3).abs() < 1e-3 * 0.3 * 80e3, "{forces:?}");
+//! ```
 
 use rayon::prelude::*;
 
