@@ -378,6 +378,10 @@ fn corrupted_or_missing_tables_are_refused_with_a_message() {
     let mut magic = bytes.clone();
     magic[0] = b'X';
     assert!(refused(&magic).contains("magic"));
+    // Only the magic bytes and their checksum: a table file cut short, not a foreign file.
+    let mut cut = bytes[..16].to_vec();
+    cut.extend_from_slice(&crc32(&cut).to_le_bytes());
+    assert!(refused(&cut).contains("truncated"), "{}", refused(&cut));
     // Well-formed files (checksum recomputed) whose values break the Coulomb bound, or whose
     // ray has its collapse outside the range the kink-fitted size is built for.
     let table = model().table();
