@@ -332,3 +332,75 @@ fn seeded_fuzz_is_panic_free() {
         assert!(status <= fmi2Status_fmi2Error, "status {status}: {}", log.last());
     }
 }
+
+/// The two wheels' loads add: the free wheelset (no suspension) under different left and right
+/// lateral forces, axle moments and yaw moments accelerates uniformly by their sums — ÿ = ΣF_y/m,
+/// ψ̈ = ΣM_z/I, Ω̇ = −ΣM_y/I_s — exactly, over one step (RK4 is exact for a constant rate).
+#[test]
+fn the_two_wheels_loads_add() {
+    let log = Log::default();
+    let free = [
+        (vr::LATERAL_STIFFNESS, 0.0),
+        (vr::LATERAL_DAMPING, 0.0),
+        (vr::LONGITUDINAL_STIFFNESS, 0.0),
+        (vr::LONGITUDINAL_DAMPING, 0.0),
+    ];
+    let fmu = Wheelset::stepping(&log, &free);
+    let before = fmu.get(&STATE);
+    let loads = [
+        (vr::LEFT_TRACK_FORCE_Y, 3e3),
+        (vr::RIGHT_TRACK_FORCE_Y, 5e3),
+        (vr::LEFT_TRACK_MOMENT_Y, 100.0),
+        (vr::RIGHT_TRACK_MOMENT_Y, 200.0),
+        (vr::LEFT_TRACK_MOMENT_Z, 30.0),
+        (vr::RIGHT_TRACK_MOMENT_Z, 50.0),
+    ];
+    for (reference, value) in loads {
+        assert_eq!(fmu.set(&[reference], &[value]), OK);
+    }
+    let h = 0.01;
+    assert_eq!(fmu.do_step(0.0, h), OK, "{}", log.last());
+    let after = fmu.get(&STATE);
+    let (lateral, yaw, spin) = (8e3 / 1813.0, 80.0 / 1120.0, -300.0 / 112.0);
+    let expected = [lateral * h * h / 2.0, yaw * h * h / 2.0, lateral * h, yaw * h, before[4], before[5] + spin * h];
+    for (k, (value, expected)) in after.iter().zip(expected).enumerate() {
+        assert!((value - expected).abs() <= 1e-12 * expected.abs(), "{}: {value} against {expected}", STATE_NAMES[k]);
+    }
+}
+
+const STATE_NAMES: [&str; 6] = ["y", "ψ", "ẏ", "ψ̇", "V", "Ω"];
+
+/// The initial state is the parameters' (the lateral velocity among them), and an initial
+/// displacement exactly at the derailment bound is still within it.
+#[test]
+fn the_initial_state_is_the_parameters() {
+    let log = Log::default();
+    let initial = [
+        (vr::INITIAL_LATERAL_DISPLACEMENT, 0.01),
+        (vr::INITIAL_YAW_ANGLE, -2e-3),
+        (vr::INITIAL_LATERAL_VELOCITY, 0.05),
+        (vr::INITIAL_YAW_RATE, 0.02),
+    ];
+    let fmu = Wheelset::stepping(&log, &initial);
+    assert_eq!(fmu.get(&STATE)[..4], [0.01, -2e-3, 0.05, 0.02]);
+    let refused = [
+        (
+            vr::INITIAL_LATERAL_DISPLACEMENT,
+            -0.0100001,
+            "initial_lateral_displacement = -0.0100001 is invalid: must be within derailment_displacement = 0.01",
+        ),
+        (vr::CENTRED_ROLLING_RADIUS, 0.0, "centred_rolling_radius = 0 is invalid: must be finite and > 0"),
+        (vr::CENTRED_ROLLING_RADIUS, f64::INFINITY, "centred_rolling_radius = inf is invalid: must be finite and > 0"),
+    ];
+    for (reference, value, message) in refused {
+        let log = Log::default();
+        let fmu = Wheelset::instantiate(&log);
+        // SAFETY: `c` is live.
+        unsafe {
+            assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+            assert_eq!(fmu.set(&[reference], &[value]), OK);
+            assert_eq!(fmi2ExitInitializationMode(fmu.c), ERROR);
+        }
+        assert_eq!(log.last(), format!("fmi2ExitInitializationMode: {message}"));
+    }
+}

@@ -135,28 +135,59 @@ fn the_substep_bound_is_the_fastest_modes_rate() {
     // An overdamped oscillator is bounded by its damping rate.
     let overdamped = Parameters { lateral_damping: 1e7, ..coach() };
     assert_relative_eq!(overdamped.fastest_rate(), 2e7 / 1813.0 + (2.0 * 3.884e6 / 1813.0_f64).sqrt());
+    // The springs' lever arm b1 enters the yaw mode squared (k_ψ = 2 k_x b1², c_ψ = 2 c_x b1²):
+    // at b1 = 0.8 m, ω = √(2 · 31.391e6 · 0.64 / 1120) = 189.4 rad/s, 2ζω = 17.1 1/s.
+    let narrow = Parameters { lateral_semi_spacing: 0.8, ..coach() };
+    let yaw = (2.0 * 31.391e6 * 0.64 / 1120.0_f64).sqrt() + 2.0 * 15e3 * 0.64 / 1120.0;
+    assert_relative_eq!(narrow.fastest_rate(), yaw, max_relative = 1e-15);
+    assert_relative_eq!(yaw, 206.55, max_relative = 1e-4);
+    // A soft yaw spring: the lateral mode, √(2 k_y/m) + 2 c_y/m, is the fastest.
+    let soft_yaw = Parameters { longitudinal_stiffness: 1e3, longitudinal_damping: 0.0, ..coach() };
+    let lateral = (2.0 * 3.884e6 / 1813.0_f64).sqrt() + 2.0 * 2e3 / 1813.0;
+    assert_relative_eq!(soft_yaw.fastest_rate(), lateral, max_relative = 1e-15);
 }
 
 #[test]
 fn errors_name_the_parameter_and_value() {
     let cases = [
         (Parameters { mass: -1.0, ..coach() }, "mass = -1 is invalid: must be finite and > 0"),
+        (Parameters { spin_inertia: 0.0, ..coach() }, "spin_inertia = 0 is invalid: must be finite and > 0"),
+        (
+            Parameters { lateral_stiffness: -1.0, ..coach() },
+            "lateral_stiffness = -1 is invalid: must be finite and >= 0",
+        ),
         (
             Parameters { lateral_damping: f64::NAN, ..coach() },
             "lateral_damping = NaN is invalid: must be finite and >= 0",
         ),
         (Parameters { forward_speed: f64::INFINITY, ..coach() }, "forward_speed = inf is invalid: must be finite"),
+        (
+            Parameters { lateral_damping: f64::INFINITY, ..coach() },
+            "lateral_damping = inf is invalid: must be finite and >= 0",
+        ),
     ];
     for (parameters, message) in cases {
         let error = advance(&parameters, &State::default(), &Loads::default(), 1e-3).unwrap_err();
         assert_eq!(error.to_string(), message);
     }
-    let error = advance(&coach(), &State::default(), &Loads::default(), f64::NAN).unwrap_err();
-    assert_eq!(error.to_string(), "communicationStepSize = NaN s is invalid: must be finite and >= 0");
+    for (step, shown) in [(f64::NAN, "NaN"), (f64::INFINITY, "inf"), (-1e-3, "-0.001")] {
+        let error = advance(&coach(), &State::default(), &Loads::default(), step).unwrap_err();
+        assert_eq!(error.to_string(), format!("communicationStepSize = {shown} s is invalid: must be finite and >= 0"));
+    }
     let error = advance(&coach(), &State::default(), &Loads::default(), 1e6).unwrap_err();
     assert!(matches!(error, WheelsetError::StepTooLong { .. }), "{error}");
     let nan = Loads { yaw_moment: f64::NAN, ..Loads::default() };
     assert!(matches!(advance(&coach(), &State::default(), &nan, 1e-3), Err(WheelsetError::NotFinite { .. })));
+}
+
+/// A free wheelset at rest exactly on the derailment bound stays there, within the bound (as an
+/// initial displacement on it is, `model.rs`).
+#[test]
+fn a_wheelset_resting_on_the_bound_is_within_it() {
+    let free = Parameters { lateral_stiffness: 0.0, lateral_damping: 0.0, ..coach() };
+    let start = State { lateral_displacement: -0.01, ..State::rolling(30.0, 0.46) };
+    let after = advance(&free, &start, &Loads::default(), 1e-3).unwrap();
+    assert_eq!(after.lateral_displacement, -0.01);
 }
 
 /// A lateral force beyond what the suspension holds within the bound derails the wheelset.
