@@ -69,6 +69,7 @@
 //!
 //! The creepages and forces of the patches: [`super::wheel_forces`].
 
+use super::hertz_table;
 use super::normal_problem::{Candidate, ContactCandidates};
 use super::profile_file::ProfileError;
 use super::sampled_profile::SampledProfile;
@@ -345,6 +346,7 @@ impl WheelOnRail {
             contact_modulus: modulus,
         };
         placed.table = ContactTable::new(&placed);
+        hertz_table::prepare();
         Ok(placed)
     }
 

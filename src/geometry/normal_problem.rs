@@ -16,6 +16,7 @@ use super::contact::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
 use std::cell::OnceCell;
 
+use super::hertz_table::unit_solution;
 use crate::scene::hertz::{HertzContact, RelativeCurvature};
 
 /// A candidate contact point (right side) with Hertz's solution under 1 N at its curvatures,
@@ -33,12 +34,13 @@ impl Candidate {
         Self { point, contact_modulus, unit: OnceCell::new() }
     }
 
-    /// Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N scales to any load.
+    /// Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N (from the table of
+    /// `hertz_table.rs`) scales to any load.
     fn unit(&self) -> Result<&HertzContact, ProfileError> {
         self.unit
             .get_or_init(|| {
                 RelativeCurvature::new(self.point.curvature_rolling, self.point.curvature_lateral)
-                    .and_then(|curvature| HertzContact::solve(1.0, &curvature, self.contact_modulus))
+                    .and_then(|curvature| unit_solution(&curvature, self.contact_modulus))
                     .map_err(|e| {
                         ProfileError::whole(format!(
                             "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
