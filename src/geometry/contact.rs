@@ -107,6 +107,7 @@ impl WheelSide {
                 rail_lateral: -point.rail_lateral,
                 wheel_lateral: -point.wheel_lateral,
                 contact_angle: -point.contact_angle,
+                contact_angle_sin_cos: (-point.contact_angle_sin_cos.0, point.contact_angle_sin_cos.1),
                 ..*point
             },
         }
@@ -212,6 +213,16 @@ pub struct ContactPoint {
     /// Relative curvature along the patch's lateral axis, B \[1/m\] ((κ_rail − κ_wheel)/2 without
     /// yaw).
     pub curvature_lateral: f64,
+    /// sin δ and cos δ of `contact_angle`, taken once with the point: a wheel step reads them
+    /// in every round of its vertical balance, per patch, three times.
+    contact_angle_sin_cos: (f64, f64),
+}
+
+impl ContactPoint {
+    /// sin δ and cos δ of the contact angle.
+    pub fn contact_angle_sin_cos(&self) -> (f64, f64) {
+        self.contact_angle_sin_cos
+    }
 }
 
 /// A loaded patch: its contact point, normal penetration, normal force and Hertz ellipse.
@@ -473,6 +484,7 @@ impl WheelOnRail {
             rail_lateral: rail.lateral,
             wheel_lateral: wheel.profile.lateral,
             contact_angle: rail.slope_angle,
+            contact_angle_sin_cos: rail.slope_angle.sin_cos(),
             rolling_radius: wheel.rolling_radius,
             gap_at_zero: rail.vertical + self.rail_lift - wheel.vertical,
             curvature_rolling: 0.5 * (along_x * circumferential - (1.0 - along_x) * wheel.profile.curvature),

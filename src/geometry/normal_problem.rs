@@ -193,7 +193,7 @@ impl ContactCandidates {
                 .get_or_init(|| {
                     let share = vertical_share(&self.side.mirror_point(&candidate.point));
                     candidate.unit().map(|unit| {
-                        let per_depth = candidate.point.contact_angle.cos() / unit.approach;
+                        let per_depth = candidate.point.contact_angle_sin_cos().1 / unit.approach;
                         share * per_depth * per_depth.sqrt()
                     })
                 })
@@ -255,7 +255,7 @@ impl ContactCandidates {
 /// The candidate's normal penetration and force at z_ws: Q = (δ_n/δ₁)^{3/2}.
 fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileError> {
     let unit = candidate.unit()?;
-    let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle.cos() / unit.approach;
+    let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle_sin_cos().1 / unit.approach;
     Ok(relative * relative.sqrt())
 }
 
@@ -264,7 +264,7 @@ fn loaded(candidate: &Candidate, vertical: f64) -> Result<ContactPatch, ProfileE
     let normal_force = normal_force(candidate, vertical)?;
     let unit = candidate.unit()?;
     let point = candidate.point;
-    let penetration = (vertical - point.gap_at_zero) * point.contact_angle.cos();
+    let penetration = (vertical - point.gap_at_zero) * point.contact_angle_sin_cos().1;
     let scale = normal_force.cbrt();
     let ellipse = HertzContact {
         semi_axis_a: unit.semi_axis_a * scale,
