@@ -252,20 +252,15 @@ impl ContactCandidates {
     }
 }
 
-/// The candidate's normal penetration and force at z_ws: Q = (δ_n/δ₁)^{3/2}.
-fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileError> {
-    let unit = candidate.unit()?;
-    let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle_sin_cos().1 / unit.approach;
-    Ok(relative * relative.sqrt())
-}
-
-/// The candidate loaded at z_ws (module doc).
+/// The candidate loaded at z_ws (module doc): Q = (δ_n/δ₁)^{3/2}, and a, b, p₀ scaled by
+/// Q^{1/3} = (δ_n/δ₁)^{1/2} — a square root, not a cube root of Q.
 fn loaded(candidate: &Candidate, vertical: f64) -> Result<ContactPatch, ProfileError> {
-    let normal_force = normal_force(candidate, vertical)?;
     let unit = candidate.unit()?;
     let point = candidate.point;
     let penetration = (vertical - point.gap_at_zero) * point.contact_angle_sin_cos().1;
-    let scale = normal_force.cbrt();
+    let relative = penetration / unit.approach;
+    let scale = relative.sqrt();
+    let normal_force = relative * scale;
     let ellipse = HertzContact {
         semi_axis_a: unit.semi_axis_a * scale,
         semi_axis_b: unit.semi_axis_b * scale,
