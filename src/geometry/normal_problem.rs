@@ -199,8 +199,15 @@ impl ContactCandidates {
                 })
                 .clone()
         };
-        // The force carried at z_ws and its rate.
+        // The force carried at z_ws and its rate; the last z_ws's remembered, since the bracket's
+        // end where Newton's method starts has just been evaluated.
+        let last = std::cell::Cell::new(None);
         let carried = |z: f64| -> Result<(f64, f64), ProfileError> {
+            if let Some((at, carried)) = last.get() {
+                if at == z {
+                    return Ok(carried);
+                }
+            }
             let (mut force, mut rate, mut refusal) = (0.0, 0.0, None);
             self.for_each_patch(z, |i| match factor(i) {
                 Ok(factor) => {
@@ -210,7 +217,9 @@ impl ContactCandidates {
                 }
                 Err(error) => refusal = Some(error),
             });
-            refusal.map_or(Ok((force, rate)), Err)
+            let carried = refusal.map_or(Ok((force, rate)), Err)?;
+            last.set(Some((z, carried)));
+            Ok(carried)
         };
         // A bracket [low, high] of the root: from the guess, or from the touch, growing upwards
         // (carried(touch) = 0).
