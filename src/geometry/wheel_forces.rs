@@ -335,7 +335,8 @@ impl WheelRailContact {
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
         let candidates = self.geometry.candidates(&input.position)?;
         // The first round without creep forces: each patch's share is cos δ.
-        let (mut vertical, mut patches) = candidates.patches_for_force(force, |point| point.contact_angle_sin_cos().1)?;
+        let (mut vertical, mut patches) =
+            candidates.patches_for_force(force, |point| point.contact_angle_sin_cos().1)?;
         // Each round's model memory starts the next round's (the exact theory's warm start: the
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
