@@ -14,7 +14,7 @@
 
 use super::contact::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
-use std::cell::OnceCell;
+use std::cell::{Cell, OnceCell};
 
 use super::hertz_table::unit_solution;
 use crate::scene::hertz::{HertzContact, RelativeCurvature};
@@ -199,9 +199,9 @@ impl ContactCandidates {
                 })
                 .clone()
         };
-        // The force carried at z_ws and its rate; the last z_ws's remembered, since the bracket's
-        // end where Newton's method starts has just been evaluated.
-        let last = std::cell::Cell::new(None);
+        // The force carried at z_ws and its rate. The last z_ws's is remembered: Newton's method
+        // starts at the bracket's end, which has just been evaluated.
+        let last = Cell::new(None);
         let carried = |z: f64| -> Result<(f64, f64), ProfileError> {
             if let Some((at, carried)) = last.get() {
                 if at == z {
