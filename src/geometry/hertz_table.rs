@@ -84,22 +84,29 @@ pub(super) fn prepare() {
 }
 
 /// Hertz's solution under 1 N for `curvature` and the contact modulus E* \[Pa\]: from the table
-/// (module doc), or [`HertzContact::solve`] beyond it and wherever the table's numbers would
-/// not be finite and positive (its error, then, is the solver's).
+/// (module doc), or [`HertzContact::solve`] where [`from_table`] has none (its error, then, is the
+/// solver's).
 pub(super) fn unit_solution(curvature: &RelativeCurvature, contact_modulus: f64) -> Result<HertzContact, InvalidInput> {
+    from_table(curvature, contact_modulus).map_or_else(|| HertzContact::solve(1.0, curvature, contact_modulus), Ok)
+}
+
+/// The table's solution under 1 N (module doc); `None` beyond the table and wherever its numbers
+/// would not be finite and positive.
+fn from_table(curvature: &RelativeCurvature, contact_modulus: f64) -> Option<HertzContact> {
     let rolling = curvature.rolling();
-    if let Some([log_a, log_k, log_d]) = ShapeTable::get().at((curvature.lateral() / rolling).ln()) {
-        // a = a₁ (E* A)^{−1/3} under Q = 1.
-        let semi_axis_a = (log_a - (contact_modulus * rolling).ln() / 3.0).exp();
-        let semi_axis_b = semi_axis_a * log_k.exp();
-        let approach = log_d.exp() * semi_axis_a * (semi_axis_a * rolling);
-        let max_pressure = hertz_max_pressure(1.0, semi_axis_a, semi_axis_b);
-        let contact = HertzContact { semi_axis_a, semi_axis_b, max_pressure, approach };
-        if [semi_axis_a, semi_axis_b, max_pressure, approach].iter().all(|value| value.is_finite() && *value > 0.0) {
-            return Ok(contact);
-        }
-    }
-    HertzContact::solve(1.0, curvature, contact_modulus)
+    let [log_a, log_k, log_d] = ShapeTable::get().at((curvature.lateral() / rolling).ln())?;
+    // a = a₁ (E* A)^{−1/3} under Q = 1.
+    let semi_axis_a = (log_a - (contact_modulus * rolling).ln() / 3.0).exp();
+    let semi_axis_b = semi_axis_a * log_k.exp();
+    let approach = log_d.exp() * semi_axis_a * (semi_axis_a * rolling);
+    let max_pressure = hertz_max_pressure(1.0, semi_axis_a, semi_axis_b);
+    let values = [semi_axis_a, semi_axis_b, max_pressure, approach];
+    values.iter().all(|value| value.is_finite() && *value > 0.0).then_some(HertzContact {
+        semi_axis_a,
+        semi_axis_b,
+        max_pressure,
+        approach,
+    })
 }
 
 #[cfg(test)]
@@ -109,7 +116,7 @@ mod tests {
     /// The largest relative difference of a, b, p₀, δ between the table and the solver.
     fn difference(curvature: &RelativeCurvature, modulus: f64) -> f64 {
         let (table, solved) =
-            (unit_solution(curvature, modulus).unwrap(), HertzContact::solve(1.0, curvature, modulus).unwrap());
+            (from_table(curvature, modulus).unwrap(), HertzContact::solve(1.0, curvature, modulus).unwrap());
         [
             (table.semi_axis_a, solved.semi_axis_a),
             (table.semi_axis_b, solved.semi_axis_b),
@@ -142,12 +149,15 @@ mod tests {
     fn beyond_the_table_the_solver_answers() {
         for ratio in [1e-5, 9e3, 1e12, 1e-12] {
             let curvature = RelativeCurvature::new(2.0, 2.0 * ratio).unwrap();
+            assert_eq!(from_table(&curvature, 1e11), None);
             assert_eq!(unit_solution(&curvature, 1e11), HertzContact::solve(1.0, &curvature, 1e11));
         }
         assert!(ShapeTable::get().at(f64::NAN).is_none());
         assert!(ShapeTable::get().at(LOG_RATIO_REACH).is_none() && ShapeTable::get().at(-LOG_RATIO_REACH).is_some());
         // Where the table's numbers overflow, the solver's error.
         let huge = RelativeCurvature::new(1e-300, 1e-300).unwrap();
+        assert_eq!(from_table(&huge, 1e-300), None);
+        assert!(unit_solution(&huge, 1e-300).is_err());
         assert_eq!(unit_solution(&huge, 1e-300), HertzContact::solve(1.0, &huge, 1e-300));
     }
 }
