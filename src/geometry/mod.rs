@@ -63,6 +63,7 @@
 pub mod builtin;
 pub mod conicity;
 pub mod contact;
+mod hertz_table;
 pub mod normal_problem;
 pub mod profile_file;
 mod sampled_profile;

@@ -14,8 +14,9 @@
 
 use super::contact::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
-use std::cell::OnceCell;
+use std::cell::{Cell, OnceCell};
 
+use super::hertz_table::unit_solution;
 use crate::scene::hertz::{HertzContact, RelativeCurvature};
 
 /// A candidate contact point (right side) with Hertz's solution under 1 N at its curvatures,
@@ -33,12 +34,13 @@ impl Candidate {
         Self { point, contact_modulus, unit: OnceCell::new() }
     }
 
-    /// Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N scales to any load.
+    /// Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N (from the table of
+    /// `hertz_table.rs`) scales to any load.
     fn unit(&self) -> Result<&HertzContact, ProfileError> {
         self.unit
             .get_or_init(|| {
                 RelativeCurvature::new(self.point.curvature_rolling, self.point.curvature_lateral)
-                    .and_then(|curvature| HertzContact::solve(1.0, &curvature, self.contact_modulus))
+                    .and_then(|curvature| unit_solution(&curvature, self.contact_modulus))
                     .map_err(|e| {
                         ProfileError::whole(format!(
                             "Hertz does not apply at the contact point y = {:.4} mm on the rail: {e}",
@@ -191,14 +193,21 @@ impl ContactCandidates {
                 .get_or_init(|| {
                     let share = vertical_share(&self.side.mirror_point(&candidate.point));
                     candidate.unit().map(|unit| {
-                        let per_depth = candidate.point.contact_angle.cos() / unit.approach;
+                        let per_depth = candidate.point.contact_angle_sin_cos().1 / unit.approach;
                         share * per_depth * per_depth.sqrt()
                     })
                 })
                 .clone()
         };
-        // The force carried at z_ws and its rate.
+        // The force carried at z_ws and its rate. The last z_ws's is remembered: Newton's method
+        // starts at the bracket's end, which has just been evaluated.
+        let last = Cell::new(None);
         let carried = |z: f64| -> Result<(f64, f64), ProfileError> {
+            if let Some((at, carried)) = last.get() {
+                if at == z {
+                    return Ok(carried);
+                }
+            }
             let (mut force, mut rate, mut refusal) = (0.0, 0.0, None);
             self.for_each_patch(z, |i| match factor(i) {
                 Ok(factor) => {
@@ -208,7 +217,9 @@ impl ContactCandidates {
                 }
                 Err(error) => refusal = Some(error),
             });
-            refusal.map_or(Ok((force, rate)), Err)
+            let carried = refusal.map_or(Ok((force, rate)), Err)?;
+            last.set(Some((z, carried)));
+            Ok(carried)
         };
         // A bracket [low, high] of the root: from the guess, or from the touch, growing upwards
         // (carried(touch) = 0).
@@ -250,20 +261,15 @@ impl ContactCandidates {
     }
 }
 
-/// The candidate's normal penetration and force at z_ws: Q = (δ_n/δ₁)^{3/2}.
-fn normal_force(candidate: &Candidate, vertical: f64) -> Result<f64, ProfileError> {
-    let unit = candidate.unit()?;
-    let relative = (vertical - candidate.point.gap_at_zero) * candidate.point.contact_angle.cos() / unit.approach;
-    Ok(relative * relative.sqrt())
-}
-
-/// The candidate loaded at z_ws (module doc).
+/// The candidate loaded at z_ws (module doc): Q = (δ_n/δ₁)^{3/2}, and a, b, p₀ scaled by
+/// Q^{1/3} = (δ_n/δ₁)^{1/2} — a square root, not a cube root of Q.
 fn loaded(candidate: &Candidate, vertical: f64) -> Result<ContactPatch, ProfileError> {
-    let normal_force = normal_force(candidate, vertical)?;
     let unit = candidate.unit()?;
     let point = candidate.point;
-    let penetration = (vertical - point.gap_at_zero) * point.contact_angle.cos();
-    let scale = normal_force.cbrt();
+    let penetration = (vertical - point.gap_at_zero) * point.contact_angle_sin_cos().1;
+    let relative = penetration / unit.approach;
+    let scale = relative.sqrt();
+    let normal_force = relative * scale;
     let ellipse = HertzContact {
         semi_axis_a: unit.semi_axis_a * scale,
         semi_axis_b: unit.semi_axis_b * scale,

@@ -97,7 +97,7 @@ pub struct PatchForces {
 impl PatchForces {
     /// The patch's force on the wheel in track axes \[N\] (module doc).
     pub fn track_force(&self) -> [f64; 3] {
-        let (sin, cos) = self.patch.point.contact_angle.sin_cos();
+        let (sin, cos) = self.patch.point.contact_angle_sin_cos();
         self.track_force_at(sin, cos)
     }
 
@@ -302,7 +302,7 @@ impl WheelRailContact {
         let mut track_moment = [0.0; 3];
         for patch in &patches {
             let point = &patch.patch.point;
-            let (sin, cos) = point.contact_angle.sin_cos();
+            let (sin, cos) = point.contact_angle_sin_cos();
             let force = patch.track_force_at(sin, cos);
             let arm = [
                 point.track_longitudinal - centre[0],
@@ -335,7 +335,8 @@ impl WheelRailContact {
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
         let candidates = self.geometry.candidates(&input.position)?;
         // The first round without creep forces: each patch's share is cos δ.
-        let (mut vertical, mut patches) = candidates.patches_for_force(force, |point| point.contact_angle.cos())?;
+        let (mut vertical, mut patches) =
+            candidates.patches_for_force(force, |point| point.contact_angle_sin_cos().1)?;
         // Each round's model memory starts the next round's (the exact theory's warm start: the
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
@@ -350,7 +351,7 @@ impl WheelRailContact {
                 return Ok((vertical, forces, states));
             }
             let share = |point: &ContactPoint| {
-                let (sin, cos) = point.contact_angle.sin_cos();
+                let (sin, cos) = point.contact_angle_sin_cos();
                 let traction = forces
                     .iter()
                     .find(|p| p.patch.point.track_lateral == point.track_lateral)
@@ -461,7 +462,7 @@ fn patch_scene_input(
     let arm = [point.track_longitudinal - centre[0], point.track_lateral - centre[1], point.track_vertical - centre[2]];
     let turning = cross(angular, arm);
     let slip = [velocity.rolling_speed + turning[0], velocity.lateral_velocity + turning[1], turning[2]];
-    let (sin, cos) = point.contact_angle.sin_cos();
+    let (sin, cos) = point.contact_angle_sin_cos();
     let normal = patch_normal(sin, cos);
     SceneInput {
         normal_force: patch.normal_force,
