@@ -220,7 +220,7 @@ pub struct ContactPoint {
 
 impl ContactPoint {
     /// sin δ and cos δ of the contact angle.
-    pub fn contact_angle_sin_cos(&self) -> (f64, f64) {
+    pub(crate) fn contact_angle_sin_cos(&self) -> (f64, f64) {
         self.contact_angle_sin_cos
     }
 }

@@ -129,12 +129,12 @@ const STATE: [u32; 6] = [
 fn life_cycle_outputs_start_rolling_on_the_centred_radius() {
     let log = Log::default();
     let fmu = Wheelset::stepping(&log, &[(vr::FORWARD_SPEED, 30.0)]);
-    assert_eq!(fmu.get(&STATE), [0.0, 0.0, 0.0, 0.0, 30.0, 30.0 / 0.4599063409]);
+    assert_eq!(fmu.get(&STATE), [0.0, 0.0, 0.0, 0.0, 30.0, 30.0 / 0.45990634083]);
     // At rest, centred, the wheels' loads only: nothing moves.
     for k in 0..10 {
         assert_eq!(fmu.do_step(k as f64 * 1e-3, 1e-3), OK, "{}", log.last());
     }
-    assert_eq!(fmu.get(&STATE), [0.0, 0.0, 0.0, 0.0, 30.0, 30.0 / 0.4599063409]);
+    assert_eq!(fmu.get(&STATE), [0.0, 0.0, 0.0, 0.0, 30.0, 30.0 / 0.45990634083]);
     let mut time = 0.0;
     // SAFETY: `c` is live; valid out-pointers.
     unsafe {
