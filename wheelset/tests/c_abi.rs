@@ -13,13 +13,13 @@ use wheelset::model_description::{value_reference as vr, GUID};
 const OK: fmi2Status = fmi2Status_fmi2OK;
 const ERROR: fmi2Status = fmi2Status_fmi2Error;
 
-/// Every message the FMU logged, as (status, text).
+/// Every message the FMU logged, as (status, category, text).
 #[derive(Default)]
-struct Log(Mutex<Vec<(fmi2Status, String)>>);
+struct Log(Mutex<Vec<(fmi2Status, String, String)>>);
 
 impl Log {
     fn last(&self) -> String {
-        self.0.lock().unwrap().last().map(|(_, text)| text.clone()).unwrap_or_default()
+        self.0.lock().unwrap().last().map(|(_, _, text)| text.clone()).unwrap_or_default()
     }
 }
 
@@ -30,15 +30,15 @@ extern "C" fn record(
     environment: fmi2ComponentEnvironment,
     _instance_name: fmi2String,
     status: fmi2Status,
-    _category: fmi2String,
+    category: fmi2String,
     format: fmi2String,
     text: fmi2String,
 ) {
     // SAFETY: the environment is the test's `Log`; the FMU passes NUL-terminated strings.
     unsafe {
         assert_eq!(CStr::from_ptr(format), c"%s");
-        let text = CStr::from_ptr(text).to_str().unwrap().to_owned();
-        (*environment.cast::<Log>()).0.lock().unwrap().push((status, text));
+        let [category, text] = [category, text].map(|s| CStr::from_ptr(s).to_str().unwrap().to_owned());
+        (*environment.cast::<Log>()).0.lock().unwrap().push((status, category, text));
     }
 }
 
@@ -402,5 +402,110 @@ fn the_initial_state_is_the_parameters() {
             assert_eq!(fmi2ExitInitializationMode(fmu.c), ERROR);
         }
         assert_eq!(log.last(), format!("fmi2ExitInitializationMode: {message}"));
+    }
+}
+
+/// The generic slave's inquiries and checks (`fmi2_slave::instance`, which the wheelset runs on):
+/// platform and version, the status inquiries, String and Integer access to a model of Reals,
+/// an output read in initialization mode, states that do not fit, and the log: categories by
+/// status, calls traced only when asked, illegal calls named with the state.
+#[test]
+fn the_generic_slaves_inquiries_and_checks() {
+    // SAFETY: static strings.
+    unsafe {
+        assert_eq!(CStr::from_ptr(fmi2GetTypesPlatform()), c"default");
+        assert_eq!(CStr::from_ptr(fmi2GetVersion()), c"2.0");
+    }
+    let log = Log::default();
+    let fmu = Wheelset::instantiate(&log);
+    // SAFETY: `c` is live; every pointer is valid or deliberately NULL.
+    unsafe {
+        // An illegal call names the state; an error is logged in its status's category.
+        assert_eq!(fmi2DoStep(fmu.c, 0.0, 1e-3, 0), ERROR);
+        assert_eq!(log.last(), "fmi2DoStep: illegal call in state instantiated");
+        assert_eq!(log.0.lock().unwrap().last().unwrap().1, "logStatusError");
+        // An output read in initialization mode is computed from the parameters set.
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+        assert_eq!(fmu.set(&[vr::INITIAL_LATERAL_DISPLACEMENT], &[2e-3]), OK);
+        assert_eq!(fmu.get(&[vr::WHEELSET_LATERAL_DISPLACEMENT]), [2e-3]);
+        // No String or Integer variables: a reference to a Real is refused by type, both ways.
+        let (reference, mut string, mut integer) = (vr::MASS, null(), 0);
+        assert_eq!(fmi2GetString(fmu.c, &reference, 1, &mut string), ERROR);
+        assert_eq!(log.last(), "fmi2GetString: value reference 100 (mass) is not a String");
+        assert_eq!(fmi2SetInteger(fmu.c, &reference, 1, &integer), ERROR);
+        assert_eq!(log.last(), "fmi2SetInteger: value reference 100 (mass) is not a Integer");
+        assert_eq!(fmi2GetInteger(fmu.c, &reference, 0, &mut integer), OK);
+        assert_eq!(fmi2ExitInitializationMode(fmu.c), OK);
+        // The status inquiries: nothing pending, never asks to stop.
+        let mut boolean = 1;
+        assert_eq!(fmi2GetBooleanStatus(fmu.c, fmi2StatusKind_fmi2Terminated, &mut boolean), OK);
+        assert_eq!(boolean, 0);
+        let mut status = OK;
+        for kind in [fmi2StatusKind_fmi2DoStepStatus, fmi2StatusKind_fmi2PendingStatus] {
+            assert_eq!(fmi2GetStatus(fmu.c, kind, &mut status), fmi2Status_fmi2Discard);
+        }
+        assert!(log.last().starts_with("fmi2GetStatus: no PendingStatus to report"), "{}", log.last());
+        assert_eq!(fmi2GetBooleanStatus(fmu.c, fmi2StatusKind_fmi2DoStepStatus, &mut boolean), fmi2Status_fmi2Discard);
+        assert!(log.last().starts_with("fmi2GetBooleanStatus: no DoStepStatus to report"), "{}", log.last());
+        assert_eq!(fmi2GetStatus(fmu.c, fmi2StatusKind_fmi2DoStepStatus, null_mut()), ERROR);
+        assert_eq!(fmi2GetStatus(fmu.c, 7, &mut status), ERROR);
+        // Calls are traced in logCalls only when that category is on.
+        let logged = || log.0.lock().unwrap().len();
+        assert_eq!(fmi2SetDebugLogging(fmu.c, 1, 1, [c"logStatusError".as_ptr()].as_ptr()), OK);
+        let before = logged();
+        assert_eq!(fmu.do_step(0.0, 1e-3), OK);
+        assert_eq!(logged(), before);
+        assert_eq!(fmi2SetDebugLogging(fmu.c, 1, 1, [c"logCalls".as_ptr()].as_ptr()), OK);
+        assert_eq!(fmu.do_step(1e-3, 1e-3), OK);
+        let (status, category, text) = log.0.lock().unwrap().last().unwrap().clone();
+        assert_eq!((status, category.as_str()), (OK, "logCalls"));
+        assert!(text.starts_with("fmi2DoStep"), "{text}");
+        // A state shorter than its header, or holding no state's mode, is refused.
+        let mut state: fmi2FMUstate = null_mut();
+        let mut size = 0;
+        assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
+        assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
+        let mut bytes = vec![0u8; size];
+        assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
+        let mut rejected: fmi2FMUstate = null_mut();
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), 24, &mut rejected), ERROR);
+        assert!(log.last().ends_with("24 bytes, shorter than the 25-byte header"), "{}", log.last());
+        let mut restored: fmi2FMUstate = null_mut();
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut restored), OK);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut restored), OK);
+        // The header alone passes the header's check and fails the model's.
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), 25, &mut rejected), ERROR);
+        assert!(!log.last().contains("header"), "{}", log.last());
+        bytes[8] = 200;
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut rejected), ERROR);
+        assert!(log.last().ends_with("mode byte 200 is not a state an FMU state can hold"), "{}", log.last());
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
+    }
+}
+
+/// An FMU state keeps the experiment's stop time: restored, a step beyond it is still refused.
+#[test]
+fn a_restored_state_keeps_the_stop_time() {
+    let log = Log::default();
+    let fmu = Wheelset::instantiate(&log);
+    // SAFETY: `c` is live; the state is this instance's until freed.
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 1, 0.01), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+        assert_eq!(fmi2ExitInitializationMode(fmu.c), OK);
+        assert_eq!(fmu.do_step(0.0, 0.005), OK);
+        let (mut state, mut size) = (null_mut(), 0);
+        assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
+        assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
+        let mut bytes = vec![0u8; size];
+        assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
+        let mut restored: fmi2FMUstate = null_mut();
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut restored), OK);
+        assert_eq!(fmi2SetFMUstate(fmu.c, restored), OK);
+        assert_eq!(fmu.do_step(0.005, 0.01), ERROR);
+        assert_eq!(log.last(), "fmi2DoStep: the step would end at 0.015, after stopTime = 0.01");
+        assert_eq!(fmu.do_step(0.005, 0.005), OK);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut restored), OK);
     }
 }
