@@ -22,7 +22,7 @@ use std::borrow::Cow;
 use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use crate::logging::{status_category, LogFilter, LogSink, Status};
+use crate::logging::{LogFilter, LogSink, Logger, Status};
 use crate::mode::{Call, Mode, Modes, LIVE};
 use crate::variables::{Causality, Kind, Variability, Variable};
 use crate::{InstantiateArguments, Slave, StatusKind, Unsupported};
@@ -181,31 +181,11 @@ impl<M: Model> FmuState<M> {
 /// One instance of an FMU whose model is `M`.
 pub struct Instance<M> {
     run: FmuState<M>,
-    log_filter: LogFilter,
-    /// The master's logger (with its own copy of the instance name).
-    sink: Box<dyn LogSink>,
+    /// The master's logger (with its own copy of the instance name) behind the log filter.
+    log: Logger,
 }
 
 impl<M: Model> Instance<M> {
-    fn emit(&mut self, status: Status, message: &str) {
-        if self.log_filter.passes(status) {
-            self.sink.log(status, status_category(status), message);
-        }
-    }
-
-    /// Logs a call trace (category logCalls); the message is only formatted when it will be sent.
-    fn trace(&mut self, message: impl FnOnce() -> String) {
-        if self.log_filter.passes(Status::Ok) {
-            let text = message();
-            self.sink.log(Status::Ok, status_category(Status::Ok), &text);
-        }
-    }
-
-    fn fail(&mut self, call: Call, reason: &str) -> Status {
-        self.emit(Status::Error, &format!("{call}: {reason}"));
-        Status::Error
-    }
-
     fn require(&mut self, call: Call) -> Result<(), Status> {
         self.require_in(call, call.allowed())
     }
@@ -215,7 +195,7 @@ impl<M: Model> Instance<M> {
             Ok(())
         } else {
             let state = self.run.mode.name();
-            Err(self.fail(call, &format!("illegal call in state {state}")))
+            Err(self.log.fail(call, &format!("illegal call in state {state}")))
         }
     }
 
@@ -248,7 +228,7 @@ impl<M: Model> Instance<M> {
     fn prepare_set(&mut self, call: Call, value_references: &[u32], real: bool, type_name: &str) -> Result<(), Status> {
         self.require(call)?;
         match value_references.iter().find_map(|&r| self.not_settable(r, real, type_name)) {
-            Some(reason) => Err(self.fail(call, &reason)),
+            Some(reason) => Err(self.log.fail(call, &reason)),
             None => Ok(()),
         }
     }
@@ -257,20 +237,20 @@ impl<M: Model> Instance<M> {
     fn prepare_get(&mut self, call: Call, value_references: &[u32], real: bool, type_name: &str) -> Result<(), Status> {
         self.require(call)?;
         if let Some(reason) = value_references.iter().find_map(|&r| Self::not_readable(r, real, type_name)) {
-            return Err(self.fail(call, &reason));
+            return Err(self.log.fail(call, &reason));
         }
         let reads_output =
             value_references.iter().any(|&r| M::variable(r).is_some_and(|v| v.causality == Causality::Output));
         if self.run.mode == Mode::InitializationMode && reads_output {
             if let Err(reason) = self.run.model.initialize() {
-                return Err(self.fail(call, &reason));
+                return Err(self.log.fail(call, &reason));
             }
         }
         Ok(())
     }
 
     fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
-        self.emit(Status::Discard, &discard_message(call, kind));
+        self.log.emit(Status::Discard, &discard_message(call, kind));
         Status::Discard
     }
 }
@@ -279,15 +259,15 @@ impl<M: Model> Slave for Instance<M> {
     type FmuState = FmuState<M>;
 
     /// `None` (after logging why) for a wrong GUID, an empty name or Model Exchange.
-    fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Self> {
+    fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self> {
+        let mut log = Logger::new(arguments.logging_on, sink);
         if let Some(problem) = instantiate_problem(&arguments, M::GUID, M::MODEL_IDENTIFIER) {
-            sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
+            log.fail(Call::Instantiate, &problem);
             return None;
         }
-        let InstantiateArguments { resource_location, logging_on, .. } = arguments;
-        let mut instance =
-            Instance { run: FmuState::instantiated(), log_filter: LogFilter::new(logging_on, None), sink };
-        instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
+        let resource_location = arguments.resource_location;
+        let mut instance = Instance { run: FmuState::instantiated(), log };
+        instance.log.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
         Some(instance)
     }
 
@@ -298,7 +278,7 @@ impl<M: Model> Slave for Instance<M> {
             Ok(status) => status,
             Err(payload) => {
                 self.run.mode = Mode::Fatal;
-                self.emit(Status::Fatal, &panic_message(call, payload.as_ref()));
+                self.log.emit(Status::Fatal, &panic_message(call, payload.as_ref()));
                 Status::Fatal
             }
         }
@@ -308,7 +288,7 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require_in(call, LIVE) {
             return status;
         }
-        self.fail(call, reason)
+        self.log.fail(call, reason)
     }
 
     fn unsupported(&mut self, capability: Unsupported) -> Status {
@@ -316,7 +296,7 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(call) {
             return status;
         }
-        self.fail(call, &format!("not supported ({flag} in modelDescription.xml)"))
+        self.log.fail(call, &format!("not supported ({flag} in modelDescription.xml)"))
     }
 
     /// Unknown categories are ignored with a warning.
@@ -325,12 +305,12 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.log_filter = LogFilter::new(logging_on, (!categories.is_empty()).then_some(categories));
-        self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
+        self.log.select(LogFilter::new(logging_on, (!categories.is_empty()).then_some(categories)));
+        self.log.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
         match unknown_categories_message(categories, M::LOG_CATEGORIES) {
             None => Status::Ok,
             Some(message) => {
-                self.emit(Status::Warning, &message);
+                self.log.emit(Status::Warning, &message);
                 Status::Warning
             }
         }
@@ -341,9 +321,9 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
+        self.log.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
         if let Some(problem) = experiment_problem(start_time, stop_time) {
-            return self.fail(CALL, &problem);
+            return self.log.fail(CALL, &problem);
         }
         self.run.time = start_time;
         self.run.stop_time = stop_time;
@@ -355,7 +335,7 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         self.run.mode = Mode::InitializationMode;
         Status::Ok
     }
@@ -367,13 +347,13 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         match self.run.model.initialize() {
             Ok(()) => {
                 self.run.mode = Mode::StepComplete;
                 Status::Ok
             }
-            Err(reason) => self.fail(CALL, &reason),
+            Err(reason) => self.log.fail(CALL, &reason),
         }
     }
 
@@ -382,7 +362,7 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         self.run.mode = Mode::Terminated;
         Status::Ok
     }
@@ -393,7 +373,7 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         self.run = FmuState::instantiated();
         Status::Ok
     }
@@ -405,7 +385,7 @@ impl<M: Model> Slave for Instance<M> {
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
             *slot = self.run.model.real(value_reference).unwrap_or(f64::NAN);
         }
-        self.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
+        self.log.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
         Status::Ok
     }
 
@@ -436,7 +416,7 @@ impl<M: Model> Slave for Instance<M> {
                 *field = value;
             }
         }
-        self.trace(|| format!("fmi2SetReal: {value_references:?} = {values:?}"));
+        self.log.trace(|| format!("fmi2SetReal: {value_references:?} = {values:?}"));
         Status::Ok
     }
 
@@ -459,7 +439,7 @@ impl<M: Model> Slave for Instance<M> {
         const CALL: Call = Call::GetFMUstate;
         self.require(CALL)?;
         let (mode, time) = (self.run.mode, self.run.time);
-        self.trace(|| format!("{CALL}: state {}, time {time}", mode.name()));
+        self.log.trace(|| format!("{CALL}: state {}, time {time}", mode.name()));
         Ok(self.run.clone())
     }
 
@@ -468,7 +448,7 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| format!("{CALL}: state {}, time {}", state.mode.name(), state.time));
+        self.log.trace(|| format!("{CALL}: state {}, time {}", state.mode.name(), state.time));
         self.run.clone_from(state);
         Status::Ok
     }
@@ -491,7 +471,7 @@ impl<M: Model> Slave for Instance<M> {
         let encoded = state.encode();
         if bytes.len() != encoded.len() {
             let (size, needed) = (bytes.len(), encoded.len());
-            return self.fail(
+            return self.log.fail(
                 CALL,
                 &format!("size = {size} is not the serialized size {needed} (see fmi2SerializedFMUstateSize)"),
             );
@@ -503,7 +483,7 @@ impl<M: Model> Slave for Instance<M> {
     fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState<M>, Status> {
         const CALL: Call = Call::DeSerializeFMUstate;
         self.require(CALL)?;
-        FmuState::decode(bytes).map_err(|reason| self.fail(CALL, &format!("serializedState rejected: {reason}")))
+        FmuState::decode(bytes).map_err(|reason| self.log.fail(CALL, &format!("serializedState rejected: {reason}")))
     }
 
     fn get_directional_derivative(&mut self, _: &[u32], _: &[u32], _: &[f64], _: &mut [f64]) -> Status {
@@ -517,17 +497,17 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         let (t, h) = (current_communication_point, communication_step_size);
-        self.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
+        self.log.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
         let end = match step_end(self.run.time, self.run.stop_time, t, h) {
             Ok(end) => end,
-            Err(problem) => return self.fail(CALL, &problem),
+            Err(problem) => return self.log.fail(CALL, &problem),
         };
         match self.run.model.step(t, h) {
             Ok(()) => {
                 self.run.time = end;
                 Status::Ok
             }
-            Err(reason) => self.fail(CALL, &reason),
+            Err(reason) => self.log.fail(CALL, &reason),
         }
     }
 

@@ -1,5 +1,7 @@
 //! What calls return and what reaches the master's logger.
 
+use crate::mode::Call;
+
 /// What an FMI call returns (`fmi2Status` without `fmi2Pending`: every call is synchronous).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
@@ -44,6 +46,47 @@ impl LogFilter {
     #[inline]
     pub fn passes(&self, status: Status) -> bool {
         self.passes[status as usize]
+    }
+}
+
+/// What an instance logs through: the master's sink behind the filter its fmi2SetDebugLogging
+/// chose (both FMUs' instances hold one).
+pub struct Logger {
+    filter: LogFilter,
+    sink: Box<dyn LogSink>,
+}
+
+impl Logger {
+    /// With debug logging as fmi2Instantiate's `loggingOn` says, no category selected.
+    pub fn new(debug_logging: bool, sink: Box<dyn LogSink>) -> Logger {
+        Logger { filter: LogFilter::new(debug_logging, None), sink }
+    }
+
+    /// fmi2SetDebugLogging's selection.
+    pub fn select(&mut self, filter: LogFilter) {
+        self.filter = filter;
+    }
+
+    /// `message` with `status`, if the filter passes it.
+    pub fn emit(&mut self, status: Status, message: &str) {
+        if self.filter.passes(status) {
+            self.sink.log(status, status_category(status), message);
+        }
+    }
+
+    /// A call trace (category logCalls); the message is only formatted when it will be sent.
+    #[inline]
+    pub fn trace(&mut self, message: impl FnOnce() -> String) {
+        if self.filter.passes(Status::Ok) {
+            let text = message();
+            self.sink.log(Status::Ok, status_category(Status::Ok), &text);
+        }
+    }
+
+    /// Logs "call: reason" as an error (which always passes) and returns `Error`.
+    pub fn fail(&mut self, call: Call, reason: &str) -> Status {
+        self.emit(Status::Error, &format!("{call}: {reason}"));
+        Status::Error
     }
 }
 

@@ -24,7 +24,7 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| format!("{CALL}: unknowns {unknowns:?}, knowns {knowns:?} = {known_rates:?}"));
+        self.log.trace(|| format!("{CALL}: unknowns {unknowns:?}, knowns {knowns:?} = {known_rates:?}"));
         let mut rates = Values::default();
         for input in model_description::VARIABLES.iter().filter(|v| v.causality == Causality::Input) {
             if let Some(rate) = rates.real_mut(input.value_reference) {
@@ -37,7 +37,7 @@ impl Instance {
                     *rates.real_mut(value_reference).expect("a Real input") += rate;
                 }
                 Some(v) if is_known(v.causality, v.variability, &v.kind) => {
-                    return self.fail(CALL, &format!("dvKnown = {rate} for {} is invalid: must be finite", v.name));
+                    return self.log.fail(CALL, &format!("dvKnown = {rate} for {} is invalid: must be finite", v.name));
                 }
                 Some(v) => {
                     let reason = format!(
@@ -45,9 +45,9 @@ impl Instance {
                          respect to the continuous Real inputs only",
                         v.name
                     );
-                    return self.fail(CALL, &reason);
+                    return self.log.fail(CALL, &reason);
                 }
-                None => return self.fail(CALL, &format!("unknown value reference {value_reference}")),
+                None => return self.log.fail(CALL, &format!("unknown value reference {value_reference}")),
             }
         }
         if let Some(&value_reference) =
@@ -59,7 +59,7 @@ impl Instance {
                 }
                 None => format!("unknown value reference {value_reference}"),
             };
-            return self.fail(CALL, &reason);
+            return self.log.fail(CALL, &reason);
         }
         let derivative = directional_derivative(&self.run.values, &self.run.strings, &mut self.model, &rates.inputs)
             .and_then(|outputs| finite(&outputs).map(|_| Values { outputs, ..rates }));
@@ -70,7 +70,7 @@ impl Instance {
                 }
                 Status::Ok
             }
-            Err(reason) => self.fail(CALL, &reason),
+            Err(reason) => self.log.fail(CALL, &reason),
         }
     }
 }

@@ -16,7 +16,7 @@ impl Instance {
         const CALL: Call = Call::GetFMUstate;
         self.require(CALL)?;
         let (mode, time) = (self.run.mode, self.run.time);
-        self.trace(|| format!("{CALL}: state {}, time {time}", mode.name()));
+        self.log.trace(|| format!("{CALL}: state {}, time {time}", mode.name()));
         Ok(FmuState(self.run.clone()))
     }
 
@@ -26,7 +26,7 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| format!("{CALL}: state {}, time {}", state.0.mode.name(), state.0.time));
+        self.log.trace(|| format!("{CALL}: state {}, time {}", state.0.mode.name(), state.0.time));
         // The model (with profiles: the profiles read and placed, tens of ms) is rebuilt only if
         // the state's parameters differ: a master that restores a state every step (a
         // finite-difference Jacobian, a retried step) would otherwise pay that each time.
@@ -63,7 +63,7 @@ impl Instance {
         let encoded = encode(&state.0);
         if bytes.len() != encoded.len() {
             let (size, needed) = (bytes.len(), encoded.len());
-            return self.fail(
+            return self.log.fail(
                 CALL,
                 &format!("size = {size} is not the serialized size {needed} (see fmi2SerializedFMUstateSize)"),
             );
@@ -77,6 +77,8 @@ impl Instance {
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState, Status> {
         const CALL: Call = Call::DeSerializeFMUstate;
         self.require(CALL)?;
-        decode(bytes).map(FmuState).map_err(|reason| self.fail(CALL, &format!("serializedState rejected: {reason}")))
+        decode(bytes)
+            .map(FmuState)
+            .map_err(|reason| self.log.fail(CALL, &format!("serializedState rejected: {reason}")))
     }
 }

@@ -92,7 +92,7 @@ fn illegal_calls_are_refused_in_every_state() {
         for (name, call, allowed) in &calls {
             let log = Log::default();
             let mut instance = make();
-            instance.sink = Box::new(Recorder(log.clone()));
+            instance.log = crate::logging::Logger::new(false, Box::new(Recorder(log.clone())));
             let status = call(&mut instance);
             let message = last_message(&log);
             if allowed.contains(state) {

@@ -35,7 +35,7 @@ pub use fmi2_slave::{InstantiateArguments, StatusKind, Unsupported};
 pub use fmu_state::FmuState;
 pub use values::ValueType;
 
-use crate::logging::{status_category, LogFilter, LogSink, Status};
+use crate::logging::{LogFilter, LogSink, Logger, Status};
 use crate::mode::{Call, Mode, Modes, LIVE};
 use crate::model_description::{self, Values, LOG_CATEGORIES};
 use crate::resources::resource_directory;
@@ -61,24 +61,23 @@ pub struct Instance {
     model: ModelCache,
     /// What the last fmi2GetString returned: the master's pointers point into these.
     returned_strings: Vec<CString>,
-    log_filter: LogFilter,
-    sink: Box<dyn LogSink>,
+    /// The master's logger behind the log filter.
+    log: Logger,
 }
 
 impl Instance {
     /// fmi2Instantiate: `None` (after logging why) for a wrong GUID, an empty name, Model
     /// Exchange, or a missing or corrupted `exact_table` table in the resources directory.
-    pub fn instantiate(arguments: InstantiateArguments, mut sink: Box<dyn LogSink>) -> Option<Instance> {
+    pub fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Instance> {
         let problem =
             rules::instantiate_problem(&arguments, model_description::GUID, model_description::MODEL_IDENTIFIER);
         let InstantiateArguments { instance_name, resource_location, logging_on, .. } = arguments;
-        if let Some(problem) = problem {
-            sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
-            return None;
-        }
+        let mut log = Logger::new(logging_on, sink);
         let resources = resource_location.map(resource_directory);
-        if let Err(problem) = crate::exact_table::check(resources.as_ref().and_then(|r| r.as_deref().ok())) {
-            sink.log(Status::Error, status_category(Status::Error), &format!("fmi2Instantiate: {problem}"));
+        let problem =
+            problem.or_else(|| crate::exact_table::check(resources.as_ref().and_then(|r| r.as_deref().ok())).err());
+        if let Some(problem) = problem {
+            log.fail(Call::Instantiate, &problem);
             return None;
         }
         let mut instance = Instance {
@@ -88,14 +87,13 @@ impl Instance {
             run: Snapshot::instantiated(),
             model: ModelCache::new(resources.clone().and_then(Result::ok)),
             returned_strings: Vec::new(),
-            log_filter: LogFilter::new(logging_on, None),
-            sink,
+            log,
         };
-        instance.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
+        instance.log.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
         if let Some(Err(reason)) = resources {
             // Not an error: only a relative profile path needs the directory, and is then also
             // looked up in the working directory.
-            instance.trace(|| {
+            instance.log.trace(|| {
                 format!("fmi2Instantiate: {reason}; relative profile paths are read from the working directory")
             });
         }
@@ -136,28 +134,8 @@ impl Instance {
     #[cold]
     fn panicked(&mut self, call: Call, payload: &(dyn std::any::Any + Send)) -> Status {
         self.run.mode = Mode::Fatal;
-        self.emit(Status::Fatal, &rules::panic_message(call, payload));
+        self.log.emit(Status::Fatal, &rules::panic_message(call, payload));
         Status::Fatal
-    }
-
-    fn emit(&mut self, status: Status, message: &str) {
-        if self.log_filter.passes(status) {
-            self.sink.log(status, status_category(status), message);
-        }
-    }
-
-    /// Logs a call trace (category logCalls); the message is only formatted when it will be sent.
-    #[inline]
-    fn trace(&mut self, message: impl FnOnce() -> String) {
-        if self.log_filter.passes(Status::Ok) {
-            let text = message();
-            self.sink.log(Status::Ok, status_category(Status::Ok), &text);
-        }
-    }
-
-    fn fail(&mut self, call: Call, reason: &str) -> Status {
-        self.emit(Status::Error, &format!("{call}: {reason}"));
-        Status::Error
     }
 
     #[inline]
@@ -179,7 +157,7 @@ impl Instance {
     #[cold]
     fn illegal_call(&mut self, call: Call) -> Status {
         let state = self.run.mode.name();
-        self.fail(call, &format!("illegal call in state {state}"))
+        self.log.fail(call, &format!("illegal call in state {state}"))
     }
 
     /// fmi2SetDebugLogging. Unknown categories are ignored with a warning.
@@ -193,12 +171,12 @@ impl Instance {
             return status;
         }
         let selection = if categories.is_empty() { None } else { Some(categories) };
-        self.log_filter = LogFilter::new(logging_on, selection);
-        self.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
+        self.log.select(LogFilter::new(logging_on, selection));
+        self.log.trace(|| format!("{CALL}: loggingOn = {logging_on}, categories = {categories:?}"));
         match rules::unknown_categories_message(categories, LOG_CATEGORIES) {
             None => Status::Ok,
             Some(message) => {
-                self.emit(Status::Warning, &message);
+                self.log.emit(Status::Warning, &message);
                 Status::Warning
             }
         }
@@ -210,9 +188,9 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
+        self.log.trace(|| format!("{CALL}: startTime = {start_time}, stopTime = {stop_time:?}"));
         if let Some(problem) = rules::experiment_problem(start_time, stop_time) {
-            return self.fail(CALL, &problem);
+            return self.log.fail(CALL, &problem);
         }
         self.run.time = start_time;
         self.run.stop_time = stop_time;
@@ -224,7 +202,7 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         self.run.mode = Mode::InitializationMode;
         Status::Ok
     }
@@ -236,7 +214,7 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         match self.update_outputs(CALL, Evaluation::Initialise) {
             Ok(status) => {
                 self.run.mode = Mode::StepComplete;
@@ -251,7 +229,7 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         self.run.mode = Mode::Terminated;
         Status::Ok
     }
@@ -262,14 +240,14 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        self.trace(|| CALL.name().to_owned());
+        self.log.trace(|| CALL.name().to_owned());
         self.run = Snapshot::instantiated();
         self.model = ModelCache::new(self.resources.clone());
         Status::Ok
     }
 
     fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
-        self.emit(Status::Discard, &rules::discard_message(call, kind));
+        self.log.emit(Status::Discard, &rules::discard_message(call, kind));
         Status::Discard
     }
 
@@ -326,7 +304,7 @@ impl Instance {
         if let Err(status) = self.require(call) {
             return status;
         }
-        self.fail(call, &format!("not supported ({flag} in modelDescription.xml)"))
+        self.log.fail(call, &format!("not supported ({flag} in modelDescription.xml)"))
     }
 
     /// An argument the C layer found unusable (a NULL pointer with n > 0, an unknown enum value).
@@ -334,7 +312,7 @@ impl Instance {
         if let Err(status) = self.require_in(call, LIVE) {
             return status;
         }
-        self.fail(call, reason)
+        self.log.fail(call, reason)
     }
 }
 

@@ -24,13 +24,13 @@ impl Instance {
                 self.run.wheel = wheel;
                 Ok(match warning {
                     Some(warning) => {
-                        self.emit(Status::Warning, &format!("{call}: {warning}"));
+                        self.log.emit(Status::Warning, &format!("{call}: {warning}"));
                         Status::Warning
                     }
                     None => Status::Ok,
                 })
             }
-            Err(reason) => Err(self.fail(call, &reason)),
+            Err(reason) => Err(self.log.fail(call, &reason)),
         }
     }
 
@@ -42,10 +42,10 @@ impl Instance {
             return status;
         }
         let (t, h) = (current_communication_point, communication_step_size);
-        self.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
+        self.log.trace(|| format!("{CALL}: currentCommunicationPoint = {t}, communicationStepSize = {h}"));
         let end = match fmi2_slave::instance::step_end(self.run.time, self.run.stop_time, t, h) {
             Ok(end) => end,
-            Err(problem) => return self.fail(CALL, &problem),
+            Err(problem) => return self.log.fail(CALL, &problem),
         };
         match self.update_outputs(CALL, Evaluation::Step(h)) {
             Ok(status) => {

@@ -93,7 +93,7 @@ impl Instance {
         self.require(call)?;
         if let Some(&value_reference) = value_references.iter().find(|&&r| !self.settable(r, value_type)) {
             let reason = self.not_settable(value_reference, value_type);
-            return Err(self.fail(call, &reason));
+            return Err(self.log.fail(call, &reason));
         }
         if value_references.iter().any(|&r| access_of(r) & access::PARAMETER != 0) {
             self.model.parameters_changed();
@@ -109,7 +109,7 @@ impl Instance {
         self.require(call)?;
         if let Some(&value_reference) = value_references.iter().find(|&&r| !Self::readable(r, value_type)) {
             let reason = Self::not_readable(value_reference, value_type);
-            return Err(self.fail(call, &reason));
+            return Err(self.log.fail(call, &reason));
         }
         let reads_output = || value_references.iter().any(|&r| access_of(r) & access::OUTPUT != 0);
         if self.run.mode == Mode::InitializationMode && reads_output() {
@@ -128,7 +128,7 @@ impl Instance {
                 *field = value;
             }
         }
-        self.trace(|| format!("fmi2SetReal: {value_references:?} = {values:?}"));
+        self.log.trace(|| format!("fmi2SetReal: {value_references:?} = {values:?}"));
         Status::Ok
     }
 
@@ -141,7 +141,7 @@ impl Instance {
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
             *slot = self.run.values.real(value_reference).unwrap_or(f64::NAN);
         }
-        self.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
+        self.log.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
         status
     }
 
@@ -155,7 +155,7 @@ impl Instance {
                 *field = value;
             }
         }
-        self.trace(|| format!("fmi2SetInteger: {value_references:?} = {values:?}"));
+        self.log.trace(|| format!("fmi2SetInteger: {value_references:?} = {values:?}"));
         Status::Ok
     }
 
@@ -167,7 +167,7 @@ impl Instance {
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
             *slot = self.run.values.integer(value_reference).unwrap_or_default();
         }
-        self.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
+        self.log.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
         status
     }
 
@@ -182,7 +182,7 @@ impl Instance {
                 value.as_ref().clone_into(field);
             }
         }
-        self.trace(|| {
+        self.log.trace(|| {
             let texts: Vec<&str> = values.iter().map(AsRef::as_ref).collect();
             format!("fmi2SetString: {value_references:?} = {texts:?}")
         });
@@ -204,7 +204,7 @@ impl Instance {
                 CString::new(text).unwrap_or_default()
             })
             .collect();
-        self.trace(|| format!("fmi2GetString: {value_references:?} = {texts:?}"));
+        self.log.trace(|| format!("fmi2GetString: {value_references:?} = {texts:?}"));
         self.returned_strings = texts;
         Ok(&self.returned_strings)
     }
