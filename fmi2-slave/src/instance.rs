@@ -78,6 +78,17 @@ pub fn step_end(time: f64, stop_time: Option<f64>, t: f64, h: f64) -> Result<f64
     }
 }
 
+/// fmi2SerializeFMUstate's copy of an `encoded` state into the master's buffer `bytes`, or why
+/// not (a buffer of another size than fmi2SerializedFMUstateSize gave).
+pub fn copy_serialized(encoded: &[u8], bytes: &mut [u8]) -> Result<(), String> {
+    if bytes.len() != encoded.len() {
+        let (size, needed) = (bytes.len(), encoded.len());
+        return Err(format!("size = {size} is not the serialized size {needed} (see fmi2SerializedFMUstateSize)"));
+    }
+    bytes.copy_from_slice(encoded);
+    Ok(())
+}
+
 /// The message of a panic caught in `call`.
 pub fn panic_message(call: Call, payload: &(dyn std::any::Any + Send)) -> String {
     let reason = payload
@@ -468,16 +479,10 @@ impl<M: Model> Slave for Instance<M> {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        let encoded = state.encode();
-        if bytes.len() != encoded.len() {
-            let (size, needed) = (bytes.len(), encoded.len());
-            return self.log.fail(
-                CALL,
-                &format!("size = {size} is not the serialized size {needed} (see fmi2SerializedFMUstateSize)"),
-            );
+        match copy_serialized(&state.encode(), bytes) {
+            Ok(()) => Status::Ok,
+            Err(reason) => self.log.fail(CALL, &reason),
         }
-        bytes.copy_from_slice(&encoded);
-        Status::Ok
     }
 
     fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState<M>, Status> {

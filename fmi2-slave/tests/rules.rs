@@ -3,8 +3,8 @@
 //! and each message word for word.
 
 use fmi2_slave::instance::{
-    discard_message, experiment_problem, instantiate_problem, panic_message, step_end, unknown_categories_message,
-    TIME_TOLERANCE,
+    copy_serialized, discard_message, experiment_problem, instantiate_problem, panic_message, step_end,
+    unknown_categories_message, TIME_TOLERANCE,
 };
 use fmi2_slave::mode::Call;
 use fmi2_slave::{InstantiateArguments, StatusKind};
@@ -110,4 +110,17 @@ fn messages_name_the_call_and_say_what_happened() {
         unknown_categories_message(&["logCalls", "verbose"], &known).as_deref(),
         Some(r#"fmi2SetDebugLogging: unknown log categories ["verbose"] ignored; known: ["logAll", "logCalls"]"#)
     );
+}
+
+#[test]
+fn a_serialized_state_fills_a_buffer_of_exactly_its_size() {
+    let mut buffer = [0u8; 3];
+    assert_eq!(copy_serialized(&[1, 2, 3], &mut buffer), Ok(()));
+    assert_eq!(buffer, [1, 2, 3]);
+    let mut short = [9u8; 2];
+    assert_eq!(
+        copy_serialized(&[1, 2, 3], &mut short),
+        Err("size = 2 is not the serialized size 3 (see fmi2SerializedFMUstateSize)".to_owned())
+    );
+    assert_eq!(short, [9, 9]);
 }

@@ -5,6 +5,7 @@ use super::Instance;
 use crate::logging::Status;
 use crate::mode::Call;
 use crate::snapshot::{decode, encode, Snapshot};
+use fmi2_slave::instance as rules;
 
 /// The opaque object behind an `fmi2FMUstate` pointer.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,16 +61,10 @@ impl Instance {
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        let encoded = encode(&state.0);
-        if bytes.len() != encoded.len() {
-            let (size, needed) = (bytes.len(), encoded.len());
-            return self.log.fail(
-                CALL,
-                &format!("size = {size} is not the serialized size {needed} (see fmi2SerializedFMUstateSize)"),
-            );
+        match rules::copy_serialized(&encode(&state.0), bytes) {
+            Ok(()) => Status::Ok,
+            Err(reason) => self.log.fail(CALL, &reason),
         }
-        bytes.copy_from_slice(&encoded);
-        Status::Ok
     }
 
     /// fmi2DeSerializeFMUstate: the state in `bytes`, after checking all of them (see
