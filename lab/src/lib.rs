@@ -6,6 +6,8 @@
 //! - `convergence_survey`: cold exact-theory solves of random contacts on one grid;
 //! - `node_grid_study`, `kink_alignment_experiment`, `exact_table_at_point`: how exact_table's
 //!   nodes were chosen and where its errors come from (docs/exact_table.md);
+//! - `exact_table_load_time`: what reading, checking and decoding the table costs the FMU
+//!   (docs/exact_table.md, "Where the table lives");
 //! - `kalker_table_check`, `kalker_c33_check`: the exact solver against Kalker's table
 //!   (docs/reference/);
 //! - `wheelset_contact_data`: the passenger-coach wheelset's contact data on S1002/UIC60 for the
