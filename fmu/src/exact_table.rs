@@ -8,8 +8,9 @@
 //! - When an instance first selects `creep_force_model = exact_table`, [`table`] decodes it.
 //!
 //! Both are done once per process and resources directory (instances of one FMU share the
-//! table, and a scene that never selects the model never decodes it: ≈ 48 MB of memory and ≈ 0.11 s it does
-//! not pay). A decoded table lives until the process ends, as the compiled-in one did.
+//! table, and a scene that never selects the model never decodes it: ≈ 48 MB of memory and
+//! ≈ 0.11 s it does not pay). A decoded table lives until the process ends, as the compiled-in
+//! one did.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
