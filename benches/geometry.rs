@@ -109,12 +109,6 @@ fn a22(c: &mut Criterion) {
             assert_eq!(inputs.len(), 21);
             let mut cache = WheelCache::default();
             let state = WheelState::default();
-            // exact_table's flange patches (a/b beyond its table) fall back to the exact theory:
-            // milliseconds per step; that bench is the tread cases only (y_ws < 5 mm).
-            let inputs: Vec<WheelInput> = match model {
-                ModelChoice::ExactTable(_) => inputs.into_iter().filter(|i| i.position.lateral < 4.75e-3).collect(),
-                _ => inputs,
-            };
             let name = format!("a22_{model_name}_{side_name}_{}_steps", inputs.len());
             c.bench_function(&name, |bencher| {
                 bencher.iter(|| {

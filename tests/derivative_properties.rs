@@ -31,6 +31,7 @@ mod common;
 use common::fastsim;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence, RngAlgorithm, TestRng, TestRunner};
+use wheel_rail_contact::models::exact_table::A_OVER_B_LEAST;
 use wheel_rail_contact::scene::{
     CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneState,
     TractionLaw,
@@ -268,14 +269,16 @@ fn at_or_near_edges(low: f64, high: f64, log: bool) -> impl Strategy<Value = f64
     prop_oneof![1 => Just(low), 1 => Just(high), 2 => near, 4 => inside]
 }
 
-/// A scene point over the whole domain the exact_table covers (a/b ∈ [0.1, 10]): both signs
+/// A scene point over the domain the first exact_table covered (a/b ∈ [0.1, 10]; the table's
+/// long patches beyond, to 10^1.5, are not sampled here yet: docs/exact_table.md, "Long
+/// patches"): both signs
 /// and exact zeros of every creepage and of V, a/b and ν at and near their edges, Q and μ at
 /// and near 0 as well as realistic.
 fn scene_input() -> impl Strategy<Value = (SceneInput, f64)> {
     let creepages = (signed_or_zero(-6.0, -0.5), signed_or_zero(-6.0, -0.5), signed_or_zero(-3.0, 1.0));
     let load = prop_oneof![1 => (-6.0..2.0_f64).prop_map(|e| 10f64.powf(e)), 3 => 1e3..2e5_f64];
     let friction = prop_oneof![1 => (-9.0..-3.0_f64).prop_map(|e| 10f64.powf(e)), 3 => 0.05..0.6_f64];
-    let shape = (at_or_near_edges(0.1, 10.0, true), 3e-3..8e-3_f64);
+    let shape = (at_or_near_edges(A_OVER_B_LEAST.0, A_OVER_B_LEAST.1, true), 3e-3..8e-3_f64);
     (creepages, load, friction, shape, signed_or_zero(-1.0, 2.0), at_or_near_edges(0.0, 0.5, false)).prop_map(
         |((xi, eta, phi), normal_force, friction_coefficient, (a_over_b, size), rolling_speed, poisson_ratio)| {
             let input = SceneInput {

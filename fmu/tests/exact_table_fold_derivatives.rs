@@ -128,7 +128,7 @@ fn derivatives_agree_with_differences_of_the_steps_outputs() {
         let xi = pick(3, 3e-3 * (0.7 * t).sin());
         let eta = pick(4, -2e-3 * (1.3 * t).cos());
         let phi = pick(5, 0.8 * (0.9 * t).sin());
-        let a_over_b = [0.1, 10.0, 0.1 * (1.0 + 1e-6), 1.0 + 0.5 * (0.4 * t).sin()][n % 4];
+        let a_over_b = [0.1, 10f64.powf(1.5), 0.1 * (1.0 + 1e-6), 1.0 + 0.5 * (0.4 * t).sin()][n % 4];
         let c = 6e-3;
         let inputs = [xi, eta, phi, 60e3 + 40e3 * (0.3 * t).cos(), c * a_over_b.sqrt(), c / a_over_b.sqrt(), 0.3];
         let saturation = inputs[6] * inputs[3] / (82e9 * c * c * 3.0);

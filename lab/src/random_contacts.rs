@@ -50,7 +50,13 @@ pub fn contact_along(a_over_b: f64, poisson_ratio: f64, level: f64, z: f64, angl
 /// [0, 0.5], the creepage direction uniform on the sphere of (ξ/ξ*, η/η*, φ/φ*), its size
 /// log-uniform from 0.01 to 30 × the characteristic creepage.
 pub fn random_contact(uniform: &mut Uniform, span: f64) -> ContactInput {
-    let a_over_b = 10f64.powf(span * (2.0 * uniform.sample() - 1.0));
+    random_contact_over(uniform, (-span, span))
+}
+
+/// A random contact as [`random_contact`]'s, with a/b log-uniform in [10^`low`, 10^`high`]
+/// for `exponents` = (low, high).
+pub fn random_contact_over(uniform: &mut Uniform, (low, high): (f64, f64)) -> ContactInput {
+    let a_over_b = 10f64.powf(low + (high - low) * uniform.sample());
     let poisson_ratio = 0.5 * uniform.sample();
     let level = 10f64.powf(-2.0 + uniform.sample() * (30f64.log10() + 2.0));
     let (z, angle) = (2.0 * uniform.sample() - 1.0, 2.0 * std::f64::consts::PI * uniform.sample());

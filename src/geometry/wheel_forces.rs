@@ -35,7 +35,6 @@ use std::fmt;
 
 use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
 use super::profile_file::ProfileError;
-use crate::models::exact_table::A_OVER_B_RANGE;
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
     CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
@@ -411,15 +410,14 @@ impl WheelRailContact {
 }
 
 impl WheelRailContact {
-    /// The scene for one patch: the wheel's, but beyond exact_table's a/b range
-    /// ([`A_OVER_B_RANGE`]) — a flange's Hertz ellipse is often longer, a/b = 16–22 on —
-    /// the exact theory on CONTACT's grid, the theory the table interpolates, solves it instead
-    /// (slower, as accurate).
+    /// The scene for one patch: the wheel's, but beyond the a/b range of exact_table's table
+    /// (the shipped one's [0.1, 10^1.5] holds a flange's long Hertz ellipse, a/b = 16–22 on
+    /// ) the exact theory on CONTACT's grid, the theory the table interpolates, solves it
+    /// instead (slower, as accurate).
     fn patch_scene(&self, patch: &ContactPatch) -> Scene {
         let ratio = patch.ellipse.semi_axis_a / patch.ellipse.semi_axis_b;
-        let outside = !(A_OVER_B_RANGE.0..=A_OVER_B_RANGE.1).contains(&ratio);
         match self.scene.model {
-            ModelChoice::ExactTable(_) if outside => {
+            ModelChoice::ExactTable(model) if !model.table().covers_a_over_b(ratio) => {
                 Scene { model: ModelChoice::Exact(ExactTheory::default()), ..self.scene }
             }
             _ => self.scene,

@@ -16,7 +16,7 @@ use wheel_rail_contact::{
     KalkerCoefficients, TractionBound,
 };
 
-use lab::random_contacts::{random_contact, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
+use lab::random_contacts::{random_contact_over, Uniform, FRICTION, MEAN_SEMI_AXIS, NORMAL_FORCE, SHEAR_MODULUS};
 use wheel_rail_contact::models::{fastsim, polach};
 use wheel_rail_contact::ModelChoice;
 
@@ -41,6 +41,8 @@ struct Settings {
     fastsim_grids: &'static [usize],
     /// Random held-out points for `exact_table`, and the exact grid they are checked against.
     held_out: (usize, (usize, usize)),
+    /// Their a/b range, as powers of ten.
+    held_out_exponents: (f64, f64),
     /// The worst held-out points re-checked against the converged theory: two grids that differ
     /// only along x, extrapolated to n_x → ∞ (first order, as the solver converges along x).
     held_out_recheck: Option<(usize, [(usize, usize); 2])>,
@@ -62,6 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             exact_rows: &[(40, 10)],
             fastsim_grids: &[5, 10, 20],
             held_out: (40, (80, 20)),
+            held_out_exponents: (-1.0, 1.5),
             held_out_recheck: None,
             repetitions: 3,
             out_dir: "target/trade-quick",
@@ -75,11 +78,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             exact_rows: &[(40, 40), (200, 50)],
             fastsim_grids: &[5, 10, 20, 40, 70, 100],
             held_out: (1000, (120, 30)),
+            held_out_exponents: (-1.0, 1.0),
             held_out_recheck: Some((12, [(320, 400), (400, 400)])),
             repetitions: 15,
             out_dir: "docs/trade",
         }
     };
+    if std::env::args().any(|a| a == "--held-out-long") {
+        // The table's nodes beyond a/b = 10, added for a flange's long patches
+        // (docs/exact_table.md, "Long patches"): only this section, on stdout. Long patches
+        // need more elements along x than across for the converged reference.
+        let settings = Settings {
+            held_out: (400, (160, 30)),
+            held_out_exponents: (1.0, 1.5),
+            held_out_recheck: Some((10, [(240, 60), (320, 60)])),
+            ..settings
+        };
+        let mut report = String::new();
+        write_held_out(&mut report, &settings);
+        println!("{report}");
+        return Ok(());
+    }
     std::fs::create_dir_all(settings.out_dir)?;
     let cases = case_set(&settings);
     let (coarse, fine) = settings.exact_grids;
@@ -370,8 +389,8 @@ fn write_convergence(report: &mut String, rows: &[Row], finest: &[CreepForces]) 
     report.push_str("\n(max over F_x and F_y of the median and max errors / (μQ).)\n\n");
 }
 
-/// `exact_table` on random points over its whole domain (never its nodes) against the exact
-/// solver: a/b log-uniform in [0.1, 10], ν uniform in [0, 0.5], the creepage direction uniform
+/// `exact_table` on random points over its domain (never its nodes) against the exact
+/// solver: a/b log-uniform over `Settings::held_out_exponents`, ν uniform in [0, 0.5], the creepage direction uniform
 /// on the sphere of (ξ/ξ*, η/η*, φ/φ*) and its size log-uniform over [0.01, 30] × the
 /// characteristic creepage.
 fn write_held_out(report: &mut String, settings: &Settings) {
@@ -379,7 +398,7 @@ fn write_held_out(report: &mut String, settings: &Settings) {
     let mut uniform = Uniform::new(0x5eed);
     let mut cases = Vec::with_capacity(count);
     for _ in 0..count {
-        cases.push(random_contact(&mut uniform, 1.0));
+        cases.push(random_contact_over(&mut uniform, settings.held_out_exponents));
     }
     let started = Instant::now();
     let exact: Vec<CreepForces> = ExactTheory::new(longitudinal, lateral)
@@ -404,14 +423,16 @@ fn write_held_out(report: &mut String, settings: &Settings) {
     let mz = component(&|f| f.spin_moment.unwrap(), limit * MEAN_SEMI_AXIS);
     writeln!(
         report,
-        "## `exact_table` on held-out points\n\n{count} random points over the table's whole domain (never its \
-         nodes): a/b log-uniform in [0.1, 10], ν uniform in [0, 0.5], the creepage direction uniform on the \
+        "## `exact_table` on held-out points\n\n{count} random points over the table's domain (never its \
+         nodes): a/b log-uniform in [{:.4}, {:.4}], ν uniform in [0, 0.5], the creepage direction uniform on the \
          sphere of (ξ/ξ*, η/η*, φ/φ*) (φ* with C23), its size log-uniform in [0.01, 30] × the characteristic \
          creepage. Reference: the exact solver on {longitudinal} × {lateral} elements ({solve_time:.0} s on all \
          cores; its own grid error reaches 0.009 μQ at the worst points, see the re-check below). Table: {}.\n\n\
          | output | median | 95th percentile | max |\n|---|---|---|---|\n\
          | F_x/(μQ) | {:.4} | {:.4} | {:.4} |\n| F_y/(μQ) | {:.4} | {:.4} | {:.4} |\n\
          | M_z/(μQc) | {:.4} | {:.4} | {:.4} |\n",
+        10f64.powf(settings.held_out_exponents.0),
+        10f64.powf(settings.held_out_exponents.1),
         table.table().provenance,
         fx.0,
         fx.1,

@@ -9,7 +9,7 @@
 //!
 //! ```
 //! use wheel_rail_contact::models::exact_table::generation::{
-//!     assemble, extrapolate, refresh_full_slip, scales, slice_values,
+//!     assemble, extrapolate, refresh_full_slip, scales, slice_values, slices_of,
 //! };
 //! use wheel_rail_contact::models::exact_table::{TableAxes, A_OVER_B_RANGE};
 //! use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable, ExactTheory};
@@ -31,6 +31,12 @@
 //!     }
 //! }
 //! let table = assemble("example: 16 × 8 and 8 × 8 elements".into(), axes, slices).unwrap();
+//! // A table's slices assemble into the same table up to a count of its 16-bit values (μQ/32767;
+//! // their units, the largest value per τ node, move by the values' f32 rounding):
+//! // `cargo fmu exact-table --extend-from` reuses a table's nodes so.
+//! let again = assemble(table.provenance.clone(), table.axes.clone(), slices_of(&table)).unwrap();
+//! assert_eq!((&again.axes, again.to_bytes().len()), (&table.axes, table.to_bytes().len()));
+//! let again = ExactTable::with_table(Box::leak(Box::new(again)));
 //! let model = ExactTable::with_table(Box::leak(Box::new(table)));
 //! // Full sliding is analytic in any table: |F| = μQ against the creepage.
 //! let input = ContactInput {
@@ -46,6 +52,9 @@
 //! };
 //! let forces = model.creep_forces(&input).unwrap();
 //! assert!((forces.force_longitudinal + 0.3 * 80e3).abs() < 1e-3 * 0.3 * 80e3, "{forces:?}");
+//! let partial = ContactInput { creepage_longitudinal: 4e-4, creepage_lateral: -3e-4, spin_creepage: 0.2, ..input };
+//! let (first, second) = (model.creep_forces(&partial).unwrap(), again.creep_forces(&partial).unwrap());
+//! assert!(first.force_lateral.abs() > 1e3 && (first.force_lateral - second.force_lateral).abs() < 0.3 * 80e3 / 32767.0);
 //! ```
 
 use rayon::prelude::*;
@@ -343,6 +352,23 @@ pub fn extrapolate(fine: &Slice, coarse: &Slice) -> Slice {
         values.extend([v[0] * inside, v[1] * inside, v[2]].map(|x| x as f32));
     }
     Slice { values, collapse: fine.collapse.clone() }
+}
+
+/// The slices of a table (in the order i_ab, then i_ν), as [`assemble`] takes them, with the
+/// values as stored (16-bit): to make a table over a longer a/b axis from a shorter one at the
+/// same node spacing without solving its nodes again (`cargo fmu exact-table --extend-from`).
+pub fn slices_of(table: &Table) -> Vec<Slice> {
+    let [n_ab, n_nu, n_beta, n_alpha, n_t] = table.axes.counts;
+    let rays = n_beta * n_alpha;
+    (0..n_ab * n_nu)
+        .map(|slice| Slice {
+            values: table.nodes[slice * rays * n_t..(slice + 1) * rays * n_t]
+                .iter()
+                .flat_map(|node| [node[0], node[1], node[2]])
+                .collect(),
+            collapse: table.collapse[slice * rays..(slice + 1) * rays].to_vec(),
+        })
+        .collect()
 }
 
 /// The table from its slices (in the order i_ab, then i_ν), with its provenance text.

@@ -1,7 +1,7 @@
 //! Evaluation: from a contact to the table's cell, and the multilinear blend of its 32 nodes.
 
 use super::coordinates::{fold, kink_fitted, IDENTITY_END};
-use super::table::{AxisMap, Table};
+use super::table::{AxisMap, Table, A_OVER_B_RANGE};
 use super::zero_forces;
 use crate::models::kalker_linear::linear_forces;
 use crate::numerics::{magnitude, moves_negative, value, Scalar};
@@ -10,8 +10,6 @@ use crate::{ContactInput, CreepForces, InvalidInput};
 /// Exact power of two the direction is scaled by before it is formed, so that creepages up to
 /// f64::MAX times the scale factors (≤ 5) stay finite; undone in the size.
 const DIRECTION_SCALE: f64 = 1.0 / 1024.0;
-/// Relative rounding of a/b accepted at the ends of the table's range.
-const RANGE_ROUNDING: f64 = 1e-12;
 
 /// The forces for a validated input.
 pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Result<CreepForces<D>, InvalidInput> {
@@ -19,17 +17,17 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
         return Ok(zero_forces());
     }
     let a_over_b = input.semi_axis_a / input.semi_axis_b;
-    let (low, high) = table.axes.a_over_b;
-    // The range's ends are accepted up to the rounding of a/b (a = c√10, b = c/√10 gives
-    // 10.000000000000002); `cell` keeps such values in the end cell.
-    if !(low * (1.0 - RANGE_ROUNDING)..=high * (1.0 + RANGE_ROUNDING)).contains(&value(a_over_b)) {
-        return Err(InvalidInput::new(
-            "semi_axis_a",
-            value(input.semi_axis_a),
-            // The range is `table::A_OVER_B_RANGE`, which every table is checked to have.
-            "over semi_axis_b must lie in the exact_table's a/b range [0.1, 10]",
-        )
-        .involving([Some(("semi_axis_b", value(input.semi_axis_b))), None]));
+    // The range's ends are accepted up to the rounding of a/b; `cell` keeps such values in the
+    // end cell.
+    if !table.covers_a_over_b(value(a_over_b)) {
+        // (The message is static: the shipped table's range, or where another table's is.)
+        let requirement = if table.axes.a_over_b == A_OVER_B_RANGE {
+            "over semi_axis_b must lie in the exact_table's a/b range [0.1, 31.62] (10^-1 to 10^1.5)"
+        } else {
+            "over semi_axis_b must lie in the a/b range of the exact_table's table (Table::axes)"
+        };
+        return Err(InvalidInput::new("semi_axis_a", value(input.semi_axis_a), requirement)
+            .involving([Some(("semi_axis_b", value(input.semi_axis_b))), None]));
     }
     let [ab_map, nu_map, beta_map, alpha_map, t_map] = table.maps;
     let (i_ab, w_ab) = cell(a_over_b.ln(), ab_map);

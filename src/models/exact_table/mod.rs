@@ -23,8 +23,9 @@
 //! pure spin) the one-sided derivative along the direction (`coordinates::fold`), at the a/b
 //! edges of the table the one from inside.
 //!
-//! Domain: a/b within the table's range ([0.1, 10]); outside it the model returns an error
-//! naming the semi-axes (no silent extrapolation). ν ∈ [0, 0.5], any creepage.
+//! Domain: a/b within the table's range (the shipped table's [0.1, 10^1.5 = 31.6], which holds a
+//! flange's long Hertz patch); outside it the model returns an error naming the semi-axes (no
+//! silent extrapolation). ν ∈ [0, 0.5], any creepage.
 //!
 //! With the `embedded-table` feature (the default) the table is compiled into the library
 //! (`data/exact_table.bin`, read and checked once at first use by [`ExactTable::new`]): Rust users
@@ -46,7 +47,7 @@ use crate::creep_force_model::{dual_derivative, NoForceBoundary};
 use crate::models::rung::Rung;
 use crate::numerics::Scalar;
 use crate::{ContactInput, CreepForceModel, CreepForces, InvalidInput, ModelChoice};
-pub use table::{Table, TableAxes, TableError, A_OVER_B_RANGE, FORMAT_VERSION};
+pub use table::{Table, TableAxes, TableError, A_OVER_B_LEAST, A_OVER_B_RANGE, FORMAT_VERSION};
 
 /// The table compiled into this library: empty without the `embedded-table` feature, or when
 /// `data/exact_table.bin` was missing when it was built.
@@ -99,14 +100,14 @@ pub const RUNG: Rung = Rung {
     spin_moment: true,
     friction_limited: true,
     offline: false,
-    summary: "Kalker's exact theory tabulated by our solver over a/b ∈ [0.1, 10], ν ∈ [0, 0.5] and every creepage (similarity-scaled, folded by the symmetries, full sliding analytic), multilinear: F, M_z at about Polach's cost; `cargo fmu exact-table` regenerates `data/exact_table.bin`",
+    summary: "Kalker's exact theory tabulated by our solver over a/b ∈ [0.1, 31.6], ν ∈ [0, 0.5] and every creepage (similarity-scaled, folded by the symmetries, full sliding analytic), multilinear: F, M_z at about Polach's cost; `cargo fmu exact-table` regenerates `data/exact_table.bin`",
     source: "Kalker 1990; Kalker's USETAB (1996) idea; [docs/exact_table.md](docs/exact_table.md)",
     documentation: "Kalker's exact theory interpolated from a table stored once in this FMU,
 <code>resources/exact_table.bin</code> (made by the exact solver above; the idea of Kalker's USETAB, 1996; its
 frame and checksum are checked at fmi2Instantiate, which fails if it is missing or corrupted, and it is read
 when an instance first selects this model). By Kalker's similarity law the forces in units of μQ (and
 M<sub>z</sub> in μQc) depend only on a/b, ν and the creepages scaled by μp<sub>0</sub>/G with Kalker's coefficients;
-the table spans a/b ∈ [0.1, 10] (outside: an error naming both semi-axes), ν ∈ [0, 0.5] and every creepage up
+the table spans a/b ∈ [0.1, 31.6] (a flange's long patch included; outside: an error naming both semi-axes), ν ∈ [0, 0.5] and every creepage up
 to full sliding, which it reaches continuously (computed analytically). Multilinear interpolation: |F| ≤ μQ,
 continuous, the problem's symmetries exact, Kalker's linear theory at small creepage. Gives M<sub>z</sub>. Its
 time per evaluation and its error against the exact theory on random held-out contacts are measured in
@@ -136,7 +137,7 @@ impl ExactTable {
     /// let bytes = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/data/exact_table.bin")).unwrap();
     /// let table: &'static Table = Box::leak(Box::new(Table::from_bytes(&bytes).unwrap()));
     /// let model = ExactTable::with_table(table);
-    /// assert_eq!(model.table().axes.a_over_b, (0.1, 10.0));
+    /// assert_eq!(model.table().axes.a_over_b, (0.1, 10f64.powf(1.5)));
     /// // A damaged file is refused, never read as a table.
     /// let mut damaged = bytes.clone();
     /// damaged[bytes.len() / 2] ^= 1;
@@ -238,7 +239,7 @@ mod tests {
             "{left_out}"
         );
         let bytes = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/data/exact_table.bin")).unwrap();
-        assert_eq!(table_as_built(&bytes, false).unwrap().axes.a_over_b, (0.1, 10.0));
+        assert_eq!(table_as_built(&bytes, false).unwrap().axes.a_over_b, A_OVER_B_RANGE);
         // This build (the tests' default features) has its table.
         assert_eq!(compiled_in_table().is_ok(), cfg!(feature = "embedded-table"));
     }

@@ -9,7 +9,8 @@
 //! F_y/(μQ), M_z/(μQc); differenced along τ and ν and split into byte planes, see
 //! `encode_counts`), and a CRC-32 of all the bytes before it.
 //!
-//! The values are 16-bit, which is what lets 29 a/b nodes fit in the 20 MB the table may take.
+//! The values are 16-bit, which is what lets the 29 a/b nodes up to a/b = 10 fit in the 20 MB
+//! issue 11 allowed (18.4 MB; the 7 nodes on to 10^1.5 for a flange's long patches add 4.5 MB).
 //! Each τ node has its own units, its largest |F| and |M_z| over the table divided by 32767:
 //! near t = 0 the forces are O(s), and one unit for all nodes (1/32767 μQ) made the first τ
 //! node's spin-driven F_y (≈ 2e-5 μQ at a/b = 0.1) wrong by up to 80 %, and the linear limit by
@@ -33,7 +34,7 @@
 //!
 //! let axes = TableAxes { counts: [2, 2, 2, 2, 5], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) };
 //! assert_eq!((axes.len(), axes.is_empty()), (80, false));
-//! assert!((axes.a_over_b_node(0) - 0.1).abs() < 1e-16 && axes.a_over_b_node(1) == 10.0);
+//! assert!(axes.a_over_b_node(0) == 0.1 && axes.a_over_b_node(1) == A_OVER_B_RANGE.1);
 //! assert_eq!(axes.poisson_node(1), 0.5);
 //! assert_eq!(axes.direction_node(0, 1, 4), (-1.0, 1.0, 1.0)); // β, α, τ
 //! // F_x/(μQ) = 0.6, F_y/(μQ) = −0.8 (on the Coulomb circle), M_z/(μQc) = 0.1 at every node.
@@ -59,8 +60,14 @@ use super::coordinates::{COLLAPSE_RANGE, IDENTITY_END};
 const MAGIC: &[u8; 16] = b"WRC-EXACT-TABLE\0";
 /// Version of this file format (not of the values: the provenance text says how they were made).
 pub const FORMAT_VERSION: u32 = 3;
-/// The a/b range of every table (the error for contacts outside it names this range).
-pub const A_OVER_B_RANGE: (f64, f64) = (0.1, 10.0);
+/// The a/b range of the shipped table: 10^±1 as the first table had, then on to 10^1.5 (at the
+/// same node spacing), for the long Hertz patches of a wheel's flange (a/b = 16–22 on the
+/// Manchester benchmark's case A-2.2). Exactly 10^1.5 in f64 (`10f64.powf(1.5)`).
+pub const A_OVER_B_RANGE: (f64, f64) = (0.1, 31.622776601683793);
+/// The a/b range every table must cover (the first table's): the model's domain.
+pub const A_OVER_B_LEAST: (f64, f64) = (0.1, 10.0);
+/// Relative rounding of a/b accepted at the ends of a table's range.
+const RANGE_ROUNDING: f64 = 1e-12;
 /// Values this far outside the Coulomb disc are refused (float rounding of the solver's values).
 const BOUND_TOLERANCE: f32 = 1e-5;
 /// The largest stored count: a unit is the largest |value| of its τ node over FULL_SCALE.
@@ -92,6 +99,10 @@ impl TableAxes {
     /// a/b of node `i` along the first axis.
     pub fn a_over_b_node(&self, i: usize) -> f64 {
         let (low, high) = (self.a_over_b.0.ln(), self.a_over_b.1.ln());
+        // The ends exactly (exp(ln 0.1) is 0.10000000000000002).
+        if i == 0 {
+            return self.a_over_b.0;
+        }
         if i + 1 == self.counts[0] {
             return self.a_over_b.1;
         }
@@ -350,15 +361,33 @@ impl Table {
         Self::from_parts(provenance, axes, scales, collapse, units, stored)
     }
 
+    /// Whether the table covers this a/b (its ends up to the rounding of a/b: a = c√10,
+    /// b = c/√10 gives 10.000000000000002), as the model's evaluation checks:
+    ///
+    /// ```
+    /// use wheel_rail_contact::ExactTable;
+    ///
+    /// let table = ExactTable::new().unwrap().table();
+    /// assert!(table.covers_a_over_b(0.1) && table.covers_a_over_b(22.0)); // a flange's long patch
+    /// assert!(table.covers_a_over_b(10f64.powf(1.5) * (1.0 + 1e-15)));
+    /// assert!(!table.covers_a_over_b(0.0999) && !table.covers_a_over_b(32.0) && !table.covers_a_over_b(f64::NAN));
+    /// ```
+    pub fn covers_a_over_b(&self, a_over_b: f64) -> bool {
+        let (low, high) = self.axes.a_over_b;
+        (low * (1.0 - RANGE_ROUNDING)..=high * (1.0 + RANGE_ROUNDING)).contains(&a_over_b)
+    }
+
     /// The invariants the interpolation relies on.
     fn check(&self) -> Result<(), TableError> {
         let axes = &self.axes;
         let (ab, nu) = (axes.a_over_b, axes.poisson_ratio);
-        // The model's messages name this a/b range, and every valid ν must be inside the table
-        // (outside, the interpolation would clamp silently).
-        if ab != A_OVER_B_RANGE || nu != (0.0, 0.5) {
+        // Every table covers the model's domain in a/b (the model's error names the table's own
+        // range), and every valid ν must be inside the table (outside, the interpolation would
+        // clamp silently).
+        let covers_least = ab.0 > 0.0 && ab.0 <= A_OVER_B_LEAST.0 && ab.1 >= A_OVER_B_LEAST.1 && ab.1.is_finite();
+        if !covers_least || nu != (0.0, 0.5) {
             return Err(TableError(format!(
-                "a/b range {ab:?} and ν range {nu:?}: this build reads tables over a/b {A_OVER_B_RANGE:?}, ν (0, 0.5)"
+                "a/b range {ab:?} and ν range {nu:?}: this build reads tables over a/b covering {A_OVER_B_LEAST:?}, ν (0, 0.5)"
             )));
         }
         if self.scales.len() != axes.counts[0] * axes.counts[1]
