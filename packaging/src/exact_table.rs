@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use wheel_rail_contact::models::exact_table::generation::{
-    assemble, extrapolate, refresh_full_slip, slice_values, slices_of, Slice, SliceStatistics,
+    assemble, extend, extrapolate, refresh_full_slip, slice_values, Slice, SliceStatistics,
 };
 use wheel_rail_contact::models::exact_table::{Table, TableAxes, A_OVER_B_RANGE};
 use wheel_rail_contact::ExactTheory;
@@ -122,9 +122,9 @@ impl Settings {
     }
 }
 
-/// The slices of the table at `path` and its provenance, checked to be the first a/b nodes of
-/// `axes` (the same nodes along every other axis).
-fn earlier_slices(path: &Path, axes: &TableAxes) -> Result<(Vec<Slice>, String), String> {
+/// The table at `path`, checked to have the first a/b nodes of `axes` (the same nodes along
+/// every other axis).
+fn earlier_table(path: &Path, axes: &TableAxes) -> Result<Table, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("--extend-from {}: {e}", path.display()))?;
     let table = Table::from_bytes(&bytes).map_err(|e| format!("--extend-from {}: {e}", path.display()))?;
     let earlier = &table.axes;
@@ -142,7 +142,7 @@ fn earlier_slices(path: &Path, axes: &TableAxes) -> Result<(Vec<Slice>, String),
             axes.a_over_b
         ));
     }
-    Ok((slices_of(&table), table.provenance))
+    Ok(table)
 }
 
 /// Generates (or resumes) the table and writes it to `out`.
@@ -150,11 +150,12 @@ pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), 
     let [n_ab, n_nu, ..] = settings.axes.counts;
     let started = Instant::now();
     let mut totals = SliceStatistics::default();
-    let (mut slices, earlier_provenance) = match &settings.extend_from {
-        Some(path) => earlier_slices(path, &settings.axes)?,
-        None => (Vec::new(), String::new()),
+    let earlier = match &settings.extend_from {
+        Some(path) => Some(earlier_table(path, &settings.axes)?),
+        None => None,
     };
-    let reused = slices.len() / n_nu;
+    let reused = earlier.as_ref().map_or(0, |table| table.axes.counts[0]);
+    let mut slices = Vec::new();
     for i_ab in reused..n_ab {
         for i_nu in 0..n_nu {
             let grid = settings.grid_at(settings.axes.a_over_b_node(i_ab));
@@ -218,12 +219,20 @@ pub fn generate(settings: &Settings, work_dir: &Path, out: &Path) -> Result<(), 
         settings.axes.counts[3],
         settings.axes.counts[4],
         if reused > 0 {
-            format!("; a/b nodes 0 to {} taken from an earlier table: {earlier_provenance}", reused - 1)
+            format!(
+                "; a/b nodes 0 to {} taken from an earlier table: {}",
+                reused - 1,
+                earlier.as_ref().map_or("", |table| table.provenance.as_str())
+            )
         } else {
             String::new()
         },
     );
-    let table = assemble(provenance, settings.axes.clone(), slices).map_err(|e| e.to_string())?;
+    let table = match &earlier {
+        Some(earlier) => extend(earlier, provenance, settings.axes.clone(), slices),
+        None => assemble(provenance, settings.axes.clone(), slices),
+    }
+    .map_err(|e| e.to_string())?;
     let bytes = table.to_bytes();
     if let Some(dir) = out.parent() {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -289,6 +298,7 @@ fn write_slice(path: &Path, slice: &Slice) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use wheel_rail_contact::models::exact_table::generation::slices_of;
 
     fn parse(args: &str) -> Result<Settings, String> {
         Settings::from_args(&args.split_whitespace().map(String::from).collect::<Vec<_>>())
@@ -322,19 +332,25 @@ mod tests {
             Table::new("earlier".into(), axes((0.1, 10.0), [2, 2, 3, 2, 5]), vec![[1.0; 3]; 4], vec![0.6; 24], values)
                 .unwrap();
         std::fs::write(&path, earlier.to_bytes()).unwrap();
-        // Nodes 0.1, 10 and 1000: the earlier table's two, then one more.
-        let (slices, provenance) = earlier_slices(&path, &axes((0.1, 1000.0), [3, 2, 3, 2, 5])).unwrap();
-        assert_eq!((slices.len(), provenance.as_str()), (4, "earlier"));
-        assert_eq!((slices[3].values.len(), slices[3].values[3 * 29], slices[3].collapse.len()), (90, 0.5, 6));
+        // Nodes 0.1, 10 and 1000: the earlier table's two, then one more, whose slices extend it.
+        let longer = axes((0.1, 1000.0), [3, 2, 3, 2, 5]);
+        let read = earlier_table(&path, &longer).unwrap();
+        assert_eq!(read.provenance, "earlier");
+        let new_slice = || Slice { values: vec![0.25; 90], collapse: vec![0.6; 6] };
+        let extended = extend(&read, "extended".into(), longer, vec![new_slice(), new_slice()]).unwrap();
+        assert_eq!(extended.axes.counts[0], 3);
+        // The earlier table's bytes are the extended table's first ones, up to the axes.
+        assert_eq!(slices_of(&extended)[3], slices_of(&earlier)[3]);
+        assert!((slices_of(&extended)[4].values[0] - 0.25).abs() < 1e-4); // within a count
         for (other, what) in [
             (axes((0.1, 100.0), [3, 2, 3, 2, 5]), "its nodes [2, 2, 3, 2, 5] over a/b (0.1, 10.0) are not the first"),
             (axes((0.1, 1000.0), [3, 2, 5, 2, 5]), "are not the first of [3, 2, 5, 2, 5]"),
             (axes((0.1, 10.0), [1, 2, 3, 2, 5]), "are not the first of [1, 2, 3, 2, 5]"),
         ] {
-            let error = earlier_slices(&path, &other).unwrap_err();
+            let error = earlier_table(&path, &other).unwrap_err();
             assert!(error.contains(what) && error.starts_with("--extend-from "), "{error}");
         }
-        let missing = earlier_slices(&directory.path().join("none.bin"), &axes((0.1, 1000.0), [3, 2, 3, 2, 5]));
+        let missing = earlier_table(&directory.path().join("none.bin"), &axes((0.1, 1000.0), [3, 2, 3, 2, 5]));
         assert!(missing.unwrap_err().contains("none.bin"));
     }
 

@@ -371,6 +371,20 @@ pub fn slices_of(table: &Table) -> Vec<Slice> {
         .collect()
 }
 
+/// `earlier` extended along a/b: its slices, then `new_slices` (the next a/b nodes of `axes`,
+/// whose first nodes must be `earlier`'s), assembled, with `earlier`'s force counts kept where
+/// the units allow ([`Table::keeping_force_counts_of`]).
+pub fn extend(
+    earlier: &Table,
+    provenance: String,
+    axes: TableAxes,
+    new_slices: Vec<Slice>,
+) -> Result<Table, TableError> {
+    let mut slices = slices_of(earlier);
+    slices.extend(new_slices);
+    assemble(provenance, axes, slices)?.keeping_force_counts_of(earlier)
+}
+
 /// The table from its slices (in the order i_ab, then i_ν), with its provenance text.
 pub fn assemble(provenance: String, axes: TableAxes, slices: Vec<Slice>) -> Result<Table, TableError> {
     let scales = scales(&axes);

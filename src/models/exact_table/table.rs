@@ -361,6 +361,40 @@ impl Table {
         Self::from_parts(provenance, axes, scales, collapse, units, stored)
     }
 
+    /// This table with `earlier`'s force counts at `earlier`'s nodes (this table's first ones,
+    /// as in a table extended along a/b, [`super::generation::extend`]) for every τ node whose
+    /// force unit is the same in both. Quantizing a table's own values again can move a force by
+    /// a count (a stored length is its length rounded up, a quantized one is rounded to the
+    /// nearest), which on the full-sliding plateau broke the resultant's monotone rise along a
+    /// ray (tests/ladder_invariants.rs); where a τ node's unit grew, its counts are the new one's.
+    pub(crate) fn keeping_force_counts_of(self, earlier: &Table) -> Result<Self, TableError> {
+        if earlier.axes.counts[1..] != self.axes.counts[1..] || earlier.nodes.len() > self.nodes.len() {
+            return Err(TableError(format!(
+                "nodes {:?} are not the first of {:?}",
+                earlier.axes.counts, self.axes.counts
+            )));
+        }
+        let n_t = self.axes.counts[4];
+        let count = |value: f32, unit: f64| (f64::from(value) / unit).round() as i16;
+        let mut stored: Vec<i16> = self
+            .nodes
+            .iter()
+            .enumerate()
+            .flat_map(|(i, node)| {
+                let [force_unit, moment_unit] = self.units[i % n_t];
+                [count(node[0], force_unit), count(node[1], force_unit), count(node[2], moment_unit)]
+            })
+            .collect();
+        for (i, node) in earlier.nodes.iter().enumerate() {
+            let force_unit = earlier.units[i % n_t][0];
+            if force_unit == self.units[i % n_t][0] {
+                stored[3 * i] = count(node[0], force_unit);
+                stored[3 * i + 1] = count(node[1], force_unit);
+            }
+        }
+        Self::from_parts(self.provenance, self.axes, self.scales, self.collapse, self.units, stored)
+    }
+
     /// Whether the table covers this a/b (its ends up to the rounding of a/b: a = c√10,
     /// b = c/√10 gives 10.000000000000002), as the model's evaluation checks:
     ///
