@@ -35,6 +35,7 @@ use std::fmt;
 
 use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
 use super::profile_file::ProfileError;
+use crate::scene::hertz::HertzContact;
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
     CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
@@ -410,18 +411,23 @@ impl WheelRailContact {
 }
 
 impl WheelRailContact {
-    /// The scene for one patch: the wheel's, but beyond the a/b range of exact_table's table
-    /// (the shipped one's [0.1, 10^1.5] holds a flange's long Hertz ellipse, a/b = 16–22 on
-    /// ) the exact theory on CONTACT's grid, the theory the table interpolates, solves it
-    /// instead (slower, as accurate).
+    /// The scene for one patch ([`scene_for_ellipse`]).
     fn patch_scene(&self, patch: &ContactPatch) -> Scene {
-        let ratio = patch.ellipse.semi_axis_a / patch.ellipse.semi_axis_b;
-        match self.scene.model {
-            ModelChoice::ExactTable(model) if !model.table().covers_a_over_b(ratio) => {
-                Scene { model: ModelChoice::Exact(ExactTheory::default()), ..self.scene }
-            }
-            _ => self.scene,
+        scene_for_ellipse(self.scene, &patch.ellipse)
+    }
+}
+
+/// The scene for a patch of this ellipse: `scene`, but beyond the a/b range of exact_table's
+/// table (the shipped one's [0.1, 10^1.5] holds a flange's long Hertz ellipse, a/b = 16–22 on
+/// ) the exact theory on CONTACT's grid, the theory the table interpolates, solves it
+/// instead (slower, as accurate).
+fn scene_for_ellipse(scene: Scene, ellipse: &HertzContact) -> Scene {
+    let ratio = ellipse.semi_axis_a / ellipse.semi_axis_b;
+    match scene.model {
+        ModelChoice::ExactTable(model) if !model.table().covers_a_over_b(ratio) => {
+            Scene { model: ModelChoice::Exact(ExactTheory::default()), ..scene }
         }
+        _ => scene,
     }
 }
 
@@ -512,7 +518,27 @@ fn check_velocity(velocity: &WheelsetVelocity) -> Result<(), InvalidInput> {
 
 #[cfg(test)]
 mod tests {
-    use super::secant_root;
+    use super::{scene_for_ellipse, secant_root, HertzContact};
+    use crate::scene::Scene;
+    use crate::{ExactTable, ModelChoice, Polach};
+
+    #[test]
+    fn a_patch_beyond_the_tables_a_over_b_goes_to_the_exact_theory() {
+        let table = Scene::of_model(ModelChoice::ExactTable(ExactTable::new().unwrap()), 82e9, 0.28);
+        let ellipse =
+            |a: f64, b: f64| HertzContact { semi_axis_a: a, semi_axis_b: b, max_pressure: 1e9, approach: 1e-5 };
+        // A flange's (a/b = 20), one near the table's end (31), beyond it (40), and wide ones.
+        for (a, b, beyond) in
+            [(20e-3, 1e-3, false), (31e-3, 1e-3, false), (40e-3, 1e-3, true), (1e-3, 9e-3, false), (1e-3, 20e-3, true)]
+        {
+            let scene = scene_for_ellipse(table, &ellipse(a, b));
+            assert_eq!(matches!(scene.model, ModelChoice::Exact(_)), beyond, "a/b = {}", a / b);
+            assert_eq!(Scene { model: table.model, ..scene }, table, "only the model changes");
+        }
+        // Other rungs are kept whatever the shape.
+        let polach = Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28);
+        assert_eq!(scene_for_ellipse(polach, &ellipse(40e-3, 1e-3)), polach);
+    }
 
     #[test]
     fn the_secant_step_finds_a_linear_residuals_root_and_refuses_far_or_flat_lines() {
