@@ -373,7 +373,8 @@ pub fn slices_of(table: &Table) -> Vec<Slice> {
 
 /// `earlier` extended along a/b: its slices, then `new_slices` (the next a/b nodes of `axes`,
 /// whose first nodes must be `earlier`'s), assembled, with `earlier`'s force counts kept where
-/// the units allow ([`Table::keeping_force_counts_of`]).
+/// the units allow (`Table::keeping_force_counts_of`, within the crate): counts not moved by a
+/// second rounding.
 pub fn extend(
     earlier: &Table,
     provenance: String,
