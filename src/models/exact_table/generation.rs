@@ -427,6 +427,77 @@ mod tests {
         }
     }
 
+    /// Extending keeps the earlier table's force counts wherever a τ node's force unit stays
+    /// (quantizing its decoded values again moves some by a count), quantizes again where the
+    /// new slices' forces make a unit grow, and refuses a table whose nodes are not the first.
+    #[test]
+    fn extending_keeps_the_earlier_counts_where_the_units_stay() {
+        let axes = |n_ab: usize, high: f64| TableAxes {
+            counts: [n_ab, 2, 3, 2, 5],
+            a_over_b: (0.1, high),
+            poisson_ratio: (0.0, 0.5),
+        };
+        // Per slice 30 nodes (β 3 × α 2 × τ 5); node i of a slice is at τ node i % 5.
+        // Each τ node's largest |F| is 0.25 (exact in f32, so its unit decodes to itself); the
+        // others are lengths a second rounding can move.
+        let earlier_values: Vec<f32> = (0..120)
+            .flat_map(|node| {
+                let x = 0.009 * (node % 17) as f32 + 0.0004 * (node % 5) as f32;
+                if node % 30 < 5 {
+                    [0.25, 0.0, 0.01]
+                } else {
+                    [x, 0.7 * x + 0.001 * (node % 3) as f32, 0.01]
+                }
+            })
+            .collect();
+        let earlier =
+            Table::new("earlier".into(), axes(2, 10.0), scales(&axes(2, 10.0)), vec![0.6; 24], earlier_values).unwrap();
+        // The new slices: small forces, but at τ node 3 one larger than any earlier one there.
+        let new_slice = |grow: bool| Slice {
+            values: (0..30)
+                .flat_map(|node| if grow && node == 8 { [0.5f32, 0.5, 0.0] } else { [0.01, 0.0, 0.0] })
+                .collect(),
+            collapse: vec![0.6; 6],
+        };
+        let longer = axes(3, 1000.0);
+        let extended =
+            extend(&earlier, "extended".into(), longer.clone(), vec![new_slice(true), new_slice(false)]).unwrap();
+        let again = assemble(
+            "again".into(),
+            longer.clone(),
+            [slices_of(&earlier), vec![new_slice(true), new_slice(false)]].concat(),
+        )
+        .unwrap();
+        let unit = |table: &Table, m: usize| table.units[m][0];
+        assert!(
+            unit(&extended, 3) > unit(&earlier, 3)
+                && (0..5).filter(|&m| m != 3).all(|m| unit(&extended, m) == unit(&earlier, m))
+        );
+        let (mut kept, mut moved_by_assembly) = (0, 0);
+        for (node, (old, new)) in earlier.nodes.iter().zip(&extended.nodes).enumerate() {
+            if node % 5 == 3 {
+                // Quantized in the grown unit: within 2 of its counts (`quantize_force`).
+                assert!((old[0] - new[0]).abs() as f64 <= 2.0 * unit(&extended, 3) + 1e-7, "node {node}");
+                continue;
+            }
+            assert_eq!((old[0], old[1]), (new[0], new[1]), "node {node}: the earlier counts");
+            kept += 1;
+            moved_by_assembly += usize::from(again.nodes[node][..2] != old[..2]);
+        }
+        assert_eq!(kept, 96);
+        assert!(moved_by_assembly > 0, "the test's values must be ones a second rounding moves");
+        // The new a/b node's values are the new slices'.
+        assert!((extended.nodes[120 + 8][0] - 0.5).abs() < 1e-4 && (extended.nodes[121][0] - 0.01).abs() < 1e-4);
+        // Nodes that are not the first of the new axes are refused.
+        let other = TableAxes { counts: [3, 2, 5, 2, 5], ..longer };
+        let error = extend(&earlier, "x".into(), other.clone(), vec![]).unwrap_err().to_string();
+        assert!(error.contains("are not the first of [3, 2, 5, 2, 5]") || error.contains("values for"), "{error}");
+        let refused = again.keeping_force_counts_of(&Table { axes: other, ..earlier.clone() }).unwrap_err().to_string();
+        assert!(refused.contains("nodes [3, 2, 5, 2, 5] are not the first of [3, 2, 3, 2, 5]"), "{refused}");
+        let shorter = earlier.clone().keeping_force_counts_of(&extended).unwrap_err().to_string();
+        assert!(shorter.contains("nodes [3, 2, 3, 2, 5] are not the first of [2, 2, 3, 2, 5]"), "{shorter}");
+    }
+
     #[test]
     #[should_panic(expected = "solved at the fine slice's nodes")]
     fn extrapolation_refuses_slices_of_different_nodes() {

@@ -158,7 +158,7 @@ pub struct Table {
     /// F_x/(μQ), F_y/(μQ), M_z/(μQc) and |F|/(μQ) at each node.
     pub(crate) nodes: Vec<[f32; 4]>,
     /// The value of one count of the stored forces F_x, F_y and of M_z, at each τ node.
-    units: Vec<[f64; 2]>,
+    pub(crate) units: Vec<[f64; 2]>,
     /// The axes as [`AxisMap`]s: ln(a/b), ν, β, α, τ.
     pub(crate) maps: [AxisMap; 5],
     /// Distances between neighbouring rays along a/b, ν, β and α ([`TableAxes::ray_strides`]),
