@@ -468,6 +468,7 @@ mod tests {
             [slices_of(&earlier), vec![new_slice(true), new_slice(false)]].concat(),
         )
         .unwrap();
+        assert_eq!((slices_of(&extended).len(), slices_of(&earlier).len()), (6, 4));
         let unit = |table: &Table, m: usize| table.units[m][0];
         assert!(
             unit(&extended, 3) > unit(&earlier, 3)
