@@ -495,6 +495,8 @@ mod tests {
         assert!(error.contains("are not the first of [3, 2, 5, 2, 5]") || error.contains("values for"), "{error}");
         let refused = again.keeping_force_counts_of(&Table { axes: other, ..earlier.clone() }).unwrap_err().to_string();
         assert!(refused.contains("nodes [3, 2, 5, 2, 5] are not the first of [3, 2, 3, 2, 5]"), "{refused}");
+        // A table is its own prefix: its counts kept, itself again.
+        assert_eq!(earlier.clone().keeping_force_counts_of(&earlier).unwrap().nodes, earlier.nodes);
         let shorter = earlier.clone().keeping_force_counts_of(&extended).unwrap_err().to_string();
         assert!(shorter.contains("nodes [3, 2, 3, 2, 5] are not the first of [2, 2, 3, 2, 5]"), "{shorter}");
     }
