@@ -110,21 +110,25 @@ fn held_out_points_match_the_exact_theory() {
         .flat_map(|&level| (0..4).map(move |_| level))
         .map(|level| points.contact(level))
         .collect();
-    let exact = ExactTheory::new(120, 30).creep_forces_many(&cases);
+    let (median, max, moment_max) = held_out_errors(&cases, ExactTheory::new(120, 30));
+    // Issue 11's goals (measured on this sample: median 0.0017, max 0.0055, M_z max 0.0058;
+    // with the second table, uniform in t: 0.0026, 0.0085, 0.0092).
+    assert!(median <= 0.003 && max <= 0.02, "F: median {median}, max {max}");
+    assert!(moment_max <= 0.02, "M_z: max {moment_max}");
+}
+
+/// The table against `reference` at `cases`: the median and largest max(|ΔF_x|, |ΔF_y|)/(μQ)
+/// and the largest |ΔM_z|/(μQc).
+fn held_out_errors(cases: &[ContactInput], reference: ExactTheory) -> (f64, f64, f64) {
     let mut forces = Vec::new();
     let mut moments = Vec::new();
-    for (input, reference) in cases.iter().zip(exact) {
-        let (force, moment) = deviation(input, &model().creep_forces(input).unwrap(), &reference.unwrap());
+    for (input, solved) in cases.iter().zip(reference.creep_forces_many(cases)) {
+        let (force, moment) = deviation(input, &model().creep_forces(input).unwrap(), &solved.unwrap());
         forces.push(force);
         moments.push(moment);
     }
     forces.sort_by(f64::total_cmp);
-    moments.sort_by(f64::total_cmp);
-    let (median, max) = (forces[forces.len() / 2], forces[forces.len() - 1]);
-    // Issue 11's goals (measured on this sample: median 0.0017, max 0.0055, M_z max 0.0058;
-    // with the second table, uniform in t: 0.0026, 0.0085, 0.0092).
-    assert!(median <= 0.003 && max <= 0.02, "F: median {median}, max {max}");
-    assert!(moments[moments.len() - 1] <= 0.02, "M_z: max {}", moments[moments.len() - 1]);
+    (forces[forces.len() / 2], forces[forces.len() - 1], moments.into_iter().fold(0.0, f64::max))
 }
 
 /// The same goals on a flange's long patches, a/b ∈ [10, 10^1.5], against the exact solver on
@@ -138,19 +142,9 @@ fn held_out_points_on_long_patches_match_the_exact_theory() {
         .flat_map(|&level| (0..3).map(move |_| level))
         .map(|level| points.contact_over(level, (1.0, 1.5)))
         .collect();
-    let exact = ExactTheory::new(160, 30).creep_forces_many(&cases);
-    let mut forces = Vec::new();
-    let mut moments = Vec::new();
-    for (input, reference) in cases.iter().zip(exact) {
-        let (force, moment) = deviation(input, &model().creep_forces(input).unwrap(), &reference.unwrap());
-        forces.push(force);
-        moments.push(moment);
-    }
-    forces.sort_by(f64::total_cmp);
-    moments.sort_by(f64::total_cmp);
-    let (median, max) = (forces[forces.len() / 2], forces[forces.len() - 1]);
+    let (median, max, moment_max) = held_out_errors(&cases, ExactTheory::new(160, 30));
     assert!(median <= 0.003 && max <= 0.02, "F: median {median}, max {max}");
-    assert!(moments[moments.len() - 1] <= 0.02, "M_z: max {}", moments[moments.len() - 1]);
+    assert!(moment_max <= 0.02, "M_z: max {moment_max}");
 }
 
 /// The contact at a point of the table's coordinates (a/b, ν, α, β, t) (docs/exact_table.md):
