@@ -9,8 +9,8 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use wheel_rail_contact::geometry::{
-    builtin_profile, ContactPoint, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput,
-    WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    ContactPoint, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelRailContact, WheelSide, WheelState,
+    WheelsetPosition, WheelsetVelocity,
 };
 use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable, ModelChoice, Polach};
@@ -21,11 +21,7 @@ fn cosine(point: &ContactPoint) -> f64 {
 }
 
 fn geometry(c: &mut Criterion) {
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
-    let pair =
-        WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, WheelSide::Right, 82e9, 0.28)
-            .unwrap();
+    let pair = WheelOnRail::manchester_benchmark(WheelSide::Right);
     for (name, lateral) in [("geometry_direct_tread", 0.002), ("geometry_direct_flange", 0.007)] {
         let position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 };
         c.bench_function(name, |bencher| {
@@ -73,21 +69,12 @@ fn geometry(c: &mut Criterion) {
 /// per wheel, y_ws 0–10 mm with their yaw and roll, 10 kN), each wheel's 21 steps in one
 /// iteration: criterion's time divided by 21 is the mean wheel step over the benchmark.
 fn a22(c: &mut Criterion) {
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
     for (model, model_name) in [
         (ModelChoice::Polach(Polach::default()), "polach"),
         (ModelChoice::ExactTable(ExactTable::new().unwrap()), "exact_table"),
     ] {
         for (side, side_name) in [(WheelSide::Right, "right"), (WheelSide::Left, "left")] {
-            let pair = WheelOnRail::new(
-                profile("MBench_S1002"),
-                profile("MBench_UIC60"),
-                TrackDimensions::MANCHESTER_BENCHMARK,
-                side,
-                82e9,
-                0.28,
-            )
-            .unwrap();
+            let pair = WheelOnRail::manchester_benchmark(side);
             let contact = WheelRailContact::new(pair, Scene::of_model(model, 82e9, 0.28));
             let inputs: Vec<WheelInput> = include_str!("../tests/data/manchester_a22_inputs.csv")
                 .lines()

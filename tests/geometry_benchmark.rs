@@ -19,11 +19,9 @@ fn benchmark_pair() -> WheelOnRail {
 }
 
 fn side_pair(side: WheelSide) -> WheelOnRail {
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
     // The benchmark's track (gauge 1435 mm at 14 mm below the top, flange backs 1360 mm apart
     // at −70 mm in the wheel profile, r0 = 460 mm); G = 82 GPa, ν = 0.28.
-    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
-    WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, side, 82e9, 0.28).unwrap()
+    WheelOnRail::manchester_benchmark(side)
 }
 
 /// (case, y_ws, yaw, roll, F_z) of one wheel (`prefix` "right," or "left,") [m, rad, N].

@@ -6,15 +6,10 @@
 //! equivalent conicity of CONTACT's Δr by an independent method (Runge–Kutta integration of
 //! Klingel's kinematic motion, `tests/data/conicity_contact_tan_gamma.csv`, same script).
 
-use wheel_rail_contact::geometry::{
-    builtin_profile, first_touch, ConicityError, RollingRadiusDifference, SmoothProfile, TrackDimensions, WheelOnRail,
-    WheelSide,
-};
+use wheel_rail_contact::geometry::{first_touch, ConicityError, RollingRadiusDifference, WheelOnRail, WheelSide};
 
 fn wheel(side: WheelSide) -> WheelOnRail {
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
-    WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, side, 82e9, 0.28).unwrap()
+    WheelOnRail::manchester_benchmark(side)
 }
 
 /// One wheel's contact in CONTACT's output: y on the wheel and rolling radius [m].

@@ -6,16 +6,14 @@
 //! code's own output.
 
 use wheel_rail_contact::geometry::{
-    builtin_profile, ContactPoint, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput,
-    WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    builtin_profile, ContactPoint, SmoothProfile, VerticalContact, WheelCache, WheelInput, WheelOnRail,
+    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
 };
 use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::{ModelChoice, Polach};
 
 fn pair(side: WheelSide) -> WheelOnRail {
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    let dimensions = TrackDimensions::MANCHESTER_BENCHMARK;
-    WheelOnRail::new(profile("MBench_S1002"), profile("MBench_UIC60"), dimensions, side, 82e9, 0.28).unwrap()
+    WheelOnRail::manchester_benchmark(side)
 }
 
 fn cosine(point: &ContactPoint) -> f64 {

@@ -5,8 +5,8 @@
 //! creepages, normal and creep forces per patch, totals on the wheel; invariants.
 
 use wheel_rail_contact::geometry::{
-    builtin_profile, PatchState, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
-    WheelOutput, WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    PatchState, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelOutput, WheelRailContact, WheelSide,
+    WheelState, WheelsetPosition, WheelsetVelocity,
 };
 use wheel_rail_contact::models::fastsim::{Flexibility, TractionBound};
 use wheel_rail_contact::scene::{Evaluation, Relaxation, Scene, SceneState};
@@ -61,17 +61,7 @@ fn angular_speed(side: &str, case: u32) -> f64 {
 }
 
 fn wheel(side: WheelSide, model: ModelChoice) -> WheelRailContact {
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    let geometry = WheelOnRail::new(
-        profile("MBench_S1002"),
-        profile("MBench_UIC60"),
-        TrackDimensions::MANCHESTER_BENCHMARK,
-        side,
-        82e9,
-        0.28,
-    )
-    .unwrap();
-    WheelRailContact::new(geometry, Scene::of_model(model, 82e9, 0.28))
+    WheelRailContact::new(WheelOnRail::manchester_benchmark(side), Scene::of_model(model, 82e9, 0.28))
 }
 
 fn a22_input(side: &str, reference: &Reference) -> WheelInput {

@@ -7,8 +7,8 @@ use std::ffi::CString;
 
 use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
 use wheel_rail_contact::geometry::{
-    builtin_profile, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
-    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition,
+    WheelsetVelocity,
 };
 use wheel_rail_contact::scene::{CreepageSource, Evaluation, Scene};
 use wheel_rail_contact::{ModelChoice, Polach};
@@ -204,16 +204,7 @@ fn the_outputs_are_the_cores_wheel_on_its_rail() {
     let log = MessageLog::default();
     let fmu = profiles(SideChoice::Right, &CASE_11, &log);
     let outputs = fmu.get_real(&WHEEL_OUTPUTS);
-    let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-    let geometry = WheelOnRail::new(
-        profile("MBench_S1002"),
-        profile("MBench_UIC60"),
-        TrackDimensions::MANCHESTER_BENCHMARK,
-        WheelSide::Right,
-        82e9,
-        0.28,
-    )
-    .unwrap();
+    let geometry = WheelOnRail::manchester_benchmark(WheelSide::Right);
     let scene = Scene {
         creepages: CreepageSource::Kinematics { regularisation_speed: 0.01 },
         ..Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28)

@@ -5,8 +5,8 @@
 //! plane (a box, to be seen). Computed with the core, as the FMU computes it.
 
 use wheel_rail_contact::geometry::{
-    builtin_profile, ProfilePoints, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput,
-    WheelOnRail, WheelOutput, WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    builtin_profile, ProfilePoints, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelOutput,
+    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
 };
 use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::{ModelChoice, Polach};
@@ -29,16 +29,7 @@ fn points(name: &str) -> ProfilePoints {
 
 /// The wheel's forces at `lateral` (roll and yaw 0, rolling freely at 2 m/s, μ = 0.3).
 pub fn wheel_at(lateral: f64) -> WheelOutput {
-    let smooth = |name| SmoothProfile::new(&points(name)).expect("a built-in profile is smooth");
-    let geometry = WheelOnRail::new(
-        smooth("MBench_S1002"),
-        smooth("MBench_UIC60"),
-        TrackDimensions::MANCHESTER_BENCHMARK,
-        WheelSide::Right,
-        82e9,
-        0.28,
-    )
-    .expect("the benchmark's track");
+    let geometry = WheelOnRail::manchester_benchmark(WheelSide::Right);
     let wheel = WheelRailContact::new(geometry, Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28));
     let input = WheelInput {
         position: WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw: 0.0 },

@@ -115,9 +115,7 @@ pub fn first_touch(wheel: &WheelOnRail, lateral: f64) -> Result<ContactPoint, Co
 /// CONTACT's Δr (`tests/data/conicity_contact.csv`):
 ///
 /// ```
-/// use wheel_rail_contact::geometry::{
-///     builtin_profile, first_touch, RollingRadiusDifference, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide,
-/// };
+/// use wheel_rail_contact::geometry::{first_touch, RollingRadiusDifference, WheelOnRail, WheelSide};
 ///
 /// let lateral: Vec<f64> = (-10..=10).map(|i| f64::from(i) * 1e-3).collect();
 /// let difference = lateral.iter().map(|y| 2.0 * 0.04 * y).collect();
@@ -130,12 +128,7 @@ pub fn first_touch(wheel: &WheelOnRail, lateral: f64) -> Result<ContactPoint, Co
 ///     assert!((cone.harmonic_conicity(amplitude).unwrap() - 0.04).abs() < 1e-6);
 /// }
 ///
-/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-/// let wheel = |side| {
-///     let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
-///     WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, side, 82e9, 0.28).unwrap()
-/// };
-/// let (right, left) = (wheel(WheelSide::Right), wheel(WheelSide::Left));
+/// let (right, left) = (WheelOnRail::manchester_benchmark(WheelSide::Right), WheelOnRail::manchester_benchmark(WheelSide::Left));
 /// // CONTACT: the right wheel rolls on 460.76 mm with the wheelset 3 mm to the right.
 /// assert!((first_touch(&right, 3e-3).unwrap().rolling_radius - 0.46076).abs() < 0.05e-3);
 /// let s1002 = RollingRadiusDifference::from_wheelset(&right, &left, 3e-3, 1e-4).unwrap();

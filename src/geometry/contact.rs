@@ -366,6 +366,46 @@ impl WheelOnRail {
         Ok(placed)
     }
 
+    /// The Manchester contact benchmark's wheel on its rail, on `side`: the built-in S1002 wheel
+    /// on the UIC60 rail (canted 1:40 in its file), [`TrackDimensions::MANCHESTER_BENCHMARK`],
+    /// steel with G = 82 GPa and ν = 0.28 (CONTACT's decks of case A-2.2). The set-up of the
+    /// benchmark's tests, examples and figures, in one place.
+    ///
+    /// The benchmark's wheelset is symmetric: the left wheel at y_ws = −3 mm touches as the right
+    /// one does at +3 mm, on the mirrored side of the track.
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+    ///
+    /// let touch = |side, lateral| {
+    ///     let placed = WheelOnRail::manchester_benchmark(side);
+    ///     let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
+    ///     let points = placed.contact_points(&position).unwrap();
+    ///     *points.iter().min_by(|a, b| a.gap_at_zero.total_cmp(&b.gap_at_zero)).unwrap()
+    /// };
+    /// let (right, left) = (touch(WheelSide::Right, 3e-3), touch(WheelSide::Left, -3e-3));
+    /// // CONTACT's module 1 on these profiles: wheel y −12.91 mm, rolling radius 460.76 mm.
+    /// assert!((right.wheel_lateral + 12.91e-3).abs() < 0.1e-3, "wheel y {}", right.wheel_lateral);
+    /// assert!((right.rolling_radius - 0.46076).abs() < 0.05e-3, "r {}", right.rolling_radius);
+    /// assert!((left.rolling_radius - right.rolling_radius).abs() < 1e-12);
+    /// assert!((left.track_lateral + right.track_lateral).abs() < 1e-12, "{} {}", left.track_lateral, right.track_lateral);
+    /// ```
+    pub fn manchester_benchmark(side: WheelSide) -> Self {
+        let profile = |name| {
+            let points = super::builtin_profile(name).expect("a built-in profile's name");
+            SmoothProfile::new(&points).expect("the built-in profiles are smooth")
+        };
+        Self::new(
+            profile("MBench_S1002"),
+            profile("MBench_UIC60"),
+            TrackDimensions::MANCHESTER_BENCHMARK,
+            side,
+            82e9,
+            0.28,
+        )
+        .expect("the benchmark's track and steel are valid")
+    }
+
     /// The wheel's contact locus at wheel profile y `profile_y` (module doc, "Yaw"): the point
     /// of the wheel's circle there whose surface normal has no x component in track
     /// coordinates, with its track position (x, y, z at z_ws = `position.vertical`) and the
@@ -947,11 +987,8 @@ fn gauge_face(rail: &SmoothProfile, height: f64) -> Result<(f64, f64), ProfileEr
 
 #[cfg(test)]
 mod tests {
-    use super::{
-        brent_minimum, GapSearch, LocusFrame, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
-        SAMPLES_PER_STEP,
-    };
-    use crate::geometry::{builtin_profile, ContactCandidates, ContactPoint, SmoothProfile};
+    use super::{brent_minimum, GapSearch, LocusFrame, WheelOnRail, WheelSide, WheelsetPosition, SAMPLES_PER_STEP};
+    use crate::geometry::{ContactCandidates, ContactPoint};
     use std::cell::Cell;
 
     /// The scan's locus without yaw gives the general formula's numbers at yaw 0, bit for bit
@@ -959,16 +996,7 @@ mod tests {
     /// −0 among them), and both refuse the same samples.
     #[test]
     fn the_unyawed_locus_is_the_yawed_one_at_zero_yaw() {
-        let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-        let pair = WheelOnRail::new(
-            profile("MBench_S1002"),
-            profile("MBench_UIC60"),
-            TrackDimensions::MANCHESTER_BENCHMARK,
-            WheelSide::Right,
-            82e9,
-            0.28,
-        )
-        .unwrap();
+        let pair = WheelOnRail::manchester_benchmark(WheelSide::Right);
         let samples = &pair.wheel_samples;
         let placement = (pair.dimensions.nominal_radius, pair.wheel_offset);
         for (lateral, roll) in [(0.0, 0.0), (-0.0, -0.0), (3.7e-3, 0.0), (-8.2e-3, 0.0113), (1e-3, -0.004), (0.0, 0.1)]
@@ -1006,7 +1034,6 @@ mod tests {
     /// 8.8e-10 m, 1.4e-6, all on the flat gap near y_ws = 0).
     #[test]
     fn sampling_every_0_2_mm_finds_what_0_1_mm_finds() {
-        let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
         let near = |c: &ContactCandidates| -> Vec<ContactPoint> {
             let touch = c.touch();
             c.points().into_iter().filter(|p| p.gap_at_zero - touch < 1e-3).collect()
@@ -1014,15 +1041,7 @@ mod tests {
         let cosine = |point: &ContactPoint| point.contact_angle_sin_cos().1;
         let (mut worst, mut born) = ([0.0f64; 4], 0);
         for side in [WheelSide::Right, WheelSide::Left] {
-            let pair = WheelOnRail::new(
-                profile("MBench_S1002"),
-                profile("MBench_UIC60"),
-                TrackDimensions::MANCHESTER_BENCHMARK,
-                side,
-                82e9,
-                0.28,
-            )
-            .unwrap();
+            let pair = WheelOnRail::manchester_benchmark(side);
             // The candidates sampled every `stride` wheel samples, by the full scan.
             let scan = |position: &WheelsetPosition, stride: usize| -> ContactCandidates {
                 let right = side.mirror_position(position);

@@ -60,11 +60,9 @@ impl Candidate {
 /// δ = (z_ws − touch)·cos γ along the normal:
 ///
 /// ```
-/// use wheel_rail_contact::geometry::{builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+/// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
 ///
-/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-/// let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
-/// let placed = WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, WheelSide::Left, 82e9, 0.28).unwrap();
+/// let placed = WheelOnRail::manchester_benchmark(WheelSide::Left);
 /// let candidates = placed.candidates(&WheelsetPosition { lateral: -3e-3, ..WheelsetPosition::default() }).unwrap();
 /// assert_eq!(candidates.points(), placed.contact_points(&WheelsetPosition { lateral: -3e-3, ..Default::default() }).unwrap());
 /// let touch = candidates.touch();

@@ -203,17 +203,15 @@ impl From<InvalidInput> for WheelContactError {
 ///
 /// ```
 /// use wheel_rail_contact::geometry::{
-///     builtin_profile, SmoothProfile, TrackDimensions, VerticalContact, WheelCache, WheelInput, WheelOnRail,
-///     WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+///     VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition,
+///     WheelsetVelocity,
 /// };
 /// use wheel_rail_contact::scene::{Evaluation, Relaxation, Scene};
 /// use wheel_rail_contact::{ModelChoice, Polach};
 ///
-/// let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
-/// let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
-/// let placed = WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, WheelSide::Right, 82e9, 0.28);
+/// let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
 /// let scene = Scene { relaxation: Relaxation::On { length: 0.01 }, ..Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28) };
-/// let contact = WheelRailContact::new(placed.unwrap(), scene);
+/// let contact = WheelRailContact::new(placed, scene);
 /// let input = WheelInput {
 ///     position: WheelsetPosition { lateral: 5e-3, yaw: 2e-3, ..WheelsetPosition::default() },
 ///     velocity: WheelsetVelocity { rolling_speed: 20.0, wheel_angular_speed: 20.0 / 0.46, ..WheelsetVelocity::default() },
