@@ -238,8 +238,9 @@ const DIFFERENCE_STEP: f64 = 1e-6;
 
 /// J·direction by a central difference (F(x + t d) − F(x − t d)) / 2t. The step t moves every
 /// input by at most 1e-6 of its own size; creepages at or near zero are moved by at most 1e-6 of
-/// the creepage at which the force reaches μQ in Kalker's linear theory, μQ/(G·ab·C), taken
-/// with C = 3 (the smallest coefficient of Kalker's table is 2.5).
+/// the larger of the creepage at which the force reaches μQ in Kalker's linear theory,
+/// μQ/(G·ab·C), taken with C = 3 (the smallest coefficient of Kalker's table is 2.5), and 1e-3
+/// of the resultant creepage |ξ| + |η| + a|φ|; the spin creepage by those over a.
 ///
 /// On the no-force boundary (μ = 0 with a rate of μ, or Q = 0 with a rate of Q) the forces have
 /// no central difference (μ < 0 is not an input; lift-off has no force): the one-sided
@@ -257,8 +258,27 @@ pub fn central_difference<M: CreepForceModel + ?Sized>(
     let d = fields(direction);
     let area = input.semi_axis_a * input.semi_axis_b;
     let saturation_creepage = input.friction_limit() / (input.shear_modulus * area * 3.0);
-    let saturation_spin = saturation_creepage / input.semi_axis_a.min(input.semi_axis_b);
-    let scales = [saturation_creepage, saturation_creepage, saturation_spin, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    // Spin acts on the lateral creepage as aφ (the spin creepage's share at the leading edge,
+    // Kalker; Polach's eq. 21): on the rolling semi-axis a its step moves the forces about as
+    // much as the creepages' steps do for every a/b (c·C23/(a·C22) = 0.3 … 0.45 over a/b = 0.1
+    // … 31.6, where the smaller semi-axis gave 0.3 … 11).
+    let (a, creepages) = (input.semi_axis_a, [x[0], x[1], x[2]]);
+    let saturation_spin = saturation_creepage / a;
+    // A creepage that is 0 beside large ones moves on 1e-3 of them: in full slip the forces are
+    // computed on the scale of μQ, and a step of the saturation creepage alone would be lost
+    // in their rounding.
+    let resultant = 1e-3 * (creepages[0].abs() + creepages[1].abs() + a * creepages[2].abs());
+    let scales = [
+        saturation_creepage.max(resultant),
+        saturation_creepage.max(resultant),
+        saturation_spin.max(resultant / a),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ];
     let step = (0..9)
         .filter(|&i| d[i] != 0.0)
         .map(|i| DIFFERENCE_STEP * x[i].abs().max(scales[i]) / d[i].abs())

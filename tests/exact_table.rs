@@ -397,6 +397,42 @@ fn derivatives_match_finite_differences() {
     }
 }
 
+/// At pure spin in full sliding the forces nearly vanish (F_y ≈ 2e-9 μQ at a normalised spin of
+/// 1e9), and the chord correction, which divides by their length, is left out there: ∂F_y/∂ξ is
+/// the differences' (≈ 1.5e-6 μQ per unit ξ), not the 350 μQ of a bump 1e-9 μQ high and 1e-11
+/// wide that the correction made (it came out equal to ∂F_x/∂ξ).
+#[test]
+fn at_pure_spin_in_full_sliding_the_lateral_derivative_is_the_differences() {
+    let model = model();
+    for a_over_b in [0.1, 3.0, 31.6] {
+        let input = ContactInput {
+            friction_coefficient: 1.4e-7,
+            normal_force: 2.5e-5,
+            ..contact(a_over_b, 0.0, 0.0, 0.0, 1.0)
+        };
+        let along_xi = |sign: f64| ContactInput { creepage_longitudinal: sign, ..NO_RATES };
+        let size = limit(&input);
+        let at = |xi: f64| model.creep_forces(&ContactInput { creepage_longitudinal: xi, ..input }).unwrap();
+        let h = 1e-9;
+        for sign in [1.0, -1.0] {
+            let derivative = model.directional_derivative(&input, &along_xi(sign)).unwrap();
+            // The one-sided difference of the side the direction moves to (F_y is even in ξ).
+            let difference = (at(sign * h).force_lateral - at(0.0).force_lateral) / h;
+            assert!(
+                derivative.force_longitudinal.abs() > 10.0 * size,
+                "a/b {a_over_b}: ∂F_x/∂ξ {}",
+                derivative.force_longitudinal / size
+            );
+            assert!(
+                (derivative.force_lateral - difference).abs() <= 1e-5 * size,
+                "a/b {a_over_b}, along {sign}ξ: ∂F_y/∂ξ {} μQ against {} μQ",
+                derivative.force_lateral / size,
+                difference / size
+            );
+        }
+    }
+}
+
 #[test]
 fn corrupted_or_missing_tables_are_refused_with_a_message() {
     let bytes = model().table().to_bytes();

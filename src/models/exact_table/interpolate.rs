@@ -121,25 +121,45 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
 /// linearly, so the result is continuous. Returns the factor for both components and the
 /// corrected length. The length never exceeds `size`, a convex combination of node lengths ≤ 1,
 /// so |F| ≤ μQ still holds.
+///
+/// Where the interpolated lengths themselves nearly vanish (below 2 % of μQ; 1 % and less gets
+/// no correction, between the two it fades in linearly) the correction is left out: there it
+/// is worth at most 0.3 % of 0.02 μQ, but it divides by a vanishing length. At pure spin in full
+/// sliding (F ≈ 1e-9 μQ, every node's force nearly 0 but those off pure spin) that ratio turned
+/// the cell's first-order change of node lengths into ∂F_y/∂ξ ≈ ∂F_x/∂ξ, 350 μQ per unit ξ,
+/// over a bump 1e-9 μQ high and 1e-11 wide in ξ: the exact derivative of a feature no
+/// difference sees.
 fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
     let length = magnitude(x, y);
     let (l, s) = (value(length), value(size));
-    // s = l (every node's force parallel, e.g. pure spin, where all α rays are one contact):
-    // the branch is the side the derivative's direction moves to, consistent with the value.
-    if !(l > CHORD_BLEND_START * s && moves_negative(length - size)) {
+    // s = l (every node's force parallel, e.g. pure spin, where all α rays are one contact) and
+    // s at the start of the fade: the branch is the side the derivative's direction moves to,
+    // consistent with the value.
+    if !(l > CHORD_BLEND_START * s && moves_negative(length - size) && !moves_negative(size - CHORD_SIZE_START)) {
         return (D::from(1.0), length);
     }
-    if l >= CHORD_BLEND_END * s {
+    let one = D::from(1.0);
+    let by_ratio = if l >= CHORD_BLEND_END * s {
+        one
+    } else {
+        (length / size - CHORD_BLEND_START) / (CHORD_BLEND_END - CHORD_BLEND_START)
+    };
+    let by_size =
+        if s >= CHORD_SIZE_END { one } else { (size - CHORD_SIZE_START) / (CHORD_SIZE_END - CHORD_SIZE_START) };
+    if l >= CHORD_BLEND_END * s && s >= CHORD_SIZE_END {
         return (size / length, size);
     }
-    let weight = (length / size - CHORD_BLEND_START) / (CHORD_BLEND_END - CHORD_BLEND_START);
-    let corrected = length + (size - length) * weight;
+    let corrected = length + (size - length) * (by_ratio * by_size);
     (corrected / length, corrected)
 }
 
 /// The ratio |Σ w F_i| / Σ w |F_i| from which [`chord_correction`] starts, and where it is full.
 const CHORD_BLEND_START: f64 = 0.95;
 const CHORD_BLEND_END: f64 = 0.99;
+/// The interpolated length Σ w |F_i| / μQ from which [`chord_correction`] starts, and where it
+/// is full.
+const CHORD_SIZE_START: f64 = 0.01;
+const CHORD_SIZE_END: f64 = 0.02;
 
 /// The end of the blend into Kalker's linear theory, in t: s_lin = (1/31)² ≈ 1.04e-3, about
 /// 0.1 % of saturation. Fixed, so that the small-creepage behaviour does not depend on the t
@@ -251,6 +271,23 @@ mod tests {
                 assert!((length - expected).abs() < 1e-12 && (factor * l - expected).abs() < 1e-12, "{size} {at}");
             }
         }
+    }
+
+    /// Where the interpolated lengths nearly vanish the correction fades out: none at 1 % of μQ
+    /// and below, half at 1.5 %, full from 2 %, continuous through both ends.
+    #[test]
+    fn the_chord_correction_fades_out_where_the_forces_vanish() {
+        for (size, weight) in [(1e-9, 0.0), (0.005, 0.0), (0.01, 0.0), (0.015, 0.5), (0.02, 1.0), (0.03, 1.0)] {
+            let l = 0.995 * size;
+            let (factor, length) = chord_correction(0.6 * l, 0.8 * l, size);
+            let expected = l + (size - l) * weight;
+            assert!((length - expected).abs() < 1e-15 * size, "{size}: {length} against {expected}");
+            assert!((factor * l - expected).abs() < 1e-15 * size, "{size}: factor {factor}");
+        }
+        // Half-way through both blends: the weights multiply.
+        let (size, l) = (0.015, 0.97 * 0.015);
+        let (_, length) = chord_correction(0.6 * l, 0.8 * l, size);
+        assert!((length - (l + (size - l) * 0.25)).abs() < 1e-15, "{length}");
     }
 
     /// On a node the cell is the one the direction moves into: the rate decides, the value
