@@ -165,7 +165,8 @@ fn reproduces_contacts_published_spin_case() {
     let contact_area = contact_elements as f64 * solution.element_length * solution.element_width;
     assert!(relative_error(solution.adhesion_area + solution.slip_area, contact_area) < 1e-12);
     // CONTACT's grid is centred on the contact: 22 elements either side of each axis.
-    for ((i, j), (x, y)) in [((0, 0), (-8.6e-3, -4.3e-3)), ((43, 43), (8.6e-3, 4.3e-3)), ((22, 21), (0.2e-3, -0.1e-3))] {
+    for ((i, j), (x, y)) in [((0, 0), (-8.6e-3, -4.3e-3)), ((43, 43), (8.6e-3, 4.3e-3)), ((22, 21), (0.2e-3, -0.1e-3))]
+    {
         let (centre_x, centre_y) = solution.element_centre(i, j);
         assert!((centre_x - x).abs() < 1e-15 && (centre_y - y).abs() < 1e-15, "({i}, {j}): ({centre_x}, {centre_y})");
     }
