@@ -124,6 +124,32 @@ fn fastsim_spin_moment_meets_the_simplified_theory_linear_limit() {
     assert!((got / expected - 1.0).abs() < 1e-3, "{got} vs {expected}");
 }
 
+/// The simplified theory's adhesion area under a pure longitudinal creepage, parabolic bound:
+/// on the strip of half-length l the traction ξ(l − x)/L1 reaches the bound μp_max(l² − x²)/a² at
+/// x = κ − l, κ = ξa²/(L1 μ p_max), so the strip adheres over 2l − κ. With ε = κ/(2a) =
+/// 3π C11 G ab ξ/(32 μQ) (L1 = 8a/(3 C11 G), p_max = 2Q/(πab)) the strips with l > εa adhere, and
+/// the adhering share of the ellipse is 2(asin U − εU)/π, U = √(1 − ε²): 1 at rest, 0 at ε = 1.
+#[test]
+fn fastsim_adhesion_area_is_the_simplified_theorys() {
+    let model = Fastsim::new(200, 200, TractionBound::Parabolic, Flexibility::ThreeBlended).unwrap();
+    let input = typical_contact(0.0, 0.0, 0.0);
+    let (a, b, q, mu, g) =
+        (input.semi_axis_a, input.semi_axis_b, input.normal_force, input.friction_coefficient, input.shear_modulus);
+    let c11 = KalkerCoefficients::new(a / b, input.poisson_ratio).c11;
+    for epsilon in [0.1, 0.3, 0.5, 0.8] {
+        let xi = epsilon * 32.0 * mu * q / (3.0 * PI * c11 * g * a * b);
+        let result = model.evaluate(&ContactInput { creepage_longitudinal: xi, ..input }).unwrap();
+        let u = (1.0 - epsilon * epsilon).sqrt();
+        let expected = 2.0 * (u.asin() - epsilon * u) / PI;
+        // Measured on 400 × 400: within 5e-5 of it at every ε (0.8729, 0.6238, 0.3910, 0.1041).
+        assert!(
+            (result.adhesion_area_fraction - expected).abs() < 2e-3,
+            "ε {epsilon}: {} vs {expected}",
+            result.adhesion_area_fraction
+        );
+    }
+}
+
 #[test]
 fn fastsim_blend_leaves_pure_creepages_unchanged() {
     // With one creepage CONTACT's combined flexibility L_crss is that creepage's own L_i, so the

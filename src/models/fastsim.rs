@@ -541,3 +541,36 @@ fn blended(weight: f64, (xi, eta, spin_a): (f64, f64, f64), (k1, k2, k3): (f64, 
 fn clamp_rate(value: f64) -> f64 {
     value.clamp(-RATE_MAX, RATE_MAX)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference_cases::FASTSIM_CASE;
+
+    /// CONTACT's blend weight (`simpflex`) worked in millimetres on its `examples/fastsim` case:
+    /// a = 8, b = 4, c = √32 mm, η = −6.25e-4, φ = 6.25e-4 /mm, G ab/(μQ) = 82e3 N/mm² · 32 mm² /
+    /// 24.6e3 N; ξ* = 1/(g C11), η* = 1/(g C22), φ* = 1/(g c C23) [1/mm];
+    /// w = √((η² + φ²)/(ξ*² + η*² + φ*²))/3.
+    #[test]
+    fn the_blend_weight_is_contacts_creepage_ratio_over_three() {
+        let c = KalkerCoefficients::new(2.0, 0.28);
+        let g = 82e3 * 32.0 / (0.3 * 82e3);
+        let characteristic = [1.0 / (g * c.c11), 1.0 / (g * c.c22), 1.0 / (g * 32f64.sqrt() * c.c23)];
+        let ratio =
+            ((6.25e-4f64.powi(2) + 6.25e-4f64.powi(2)) / characteristic.iter().map(|s| s * s).sum::<f64>()).sqrt();
+        let g_area_per_load = 82e9 * 8e-3 * 4e-3 / (0.3 * 82e3);
+        let weight = blend_weight(&FASTSIM_CASE, &c, g_area_per_load);
+        assert!((weight - ratio / 3.0).abs() < 1e-12 * ratio, "{weight} against {}", ratio / 3.0);
+        assert!(weight > 0.1 && weight < 1.0, "{weight}: the case lies inside the blend");
+        // At rest none; from three times the characteristic size on, full.
+        let at = |scale: f64| {
+            let input = ContactInput {
+                creepage_lateral: scale * FASTSIM_CASE.creepage_lateral,
+                spin_creepage: scale * FASTSIM_CASE.spin_creepage,
+                ..FASTSIM_CASE
+            };
+            blend_weight(&input, &c, g_area_per_load)
+        };
+        assert_eq!((at(0.0), at(3.0 / ratio), at(1e3)), (0.0, 1.0, 1.0));
+    }
+}
