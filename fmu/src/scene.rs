@@ -477,6 +477,54 @@ mod tests {
     use wheel_rail_contact::scene::relaxation::RelaxationLengths;
     use wheel_rail_contact::{CreepForceModel, LargeCreepage};
 
+    /// Every zero an output carries is written as +0 (masters print −0 as `-0`): a scene's and a
+    /// wheel's outputs that are all −0 come out all +0, field by field.
+    #[test]
+    fn every_zero_output_is_written_as_positive_zero() {
+        let z = -0.0;
+        let scene = SceneOutput {
+            force_longitudinal: z,
+            force_lateral: z,
+            adhesion_utilisation: z,
+            spin_moment: z,
+            current_friction_coefficient: z,
+            slip_velocity: z,
+            effective_creepage_longitudinal: z,
+            effective_creepage_lateral: z,
+            effective_spin_creepage: z,
+            contact_semi_axis_a: z,
+            contact_semi_axis_b: z,
+            max_pressure: z,
+            approach: z,
+            ..SceneOutput::default()
+        };
+        let patch = crate::profiles::PatchOutputs {
+            contact_angle: z,
+            rail_lateral_position: z,
+            rolling_radius: z,
+            normal_force: z,
+            force_longitudinal: z,
+            force_lateral: z,
+            creepage_longitudinal: z,
+            creepage_lateral: z,
+            spin_creepage: z,
+            semi_axis_a: z,
+            semi_axis_b: z,
+        };
+        // (A patch count is a whole number, never −0.)
+        let wheel = WheelOutputs {
+            track_force: [z; 3],
+            track_moment: [z; 3],
+            contact_patch_count: 0.0,
+            wheelset_vertical_position_solved: z,
+            patches: [patch; 2],
+        };
+        let written = super::outputs(&scene, &wheel).reals();
+        for (name, value) in Outputs::NAMES.iter().zip(written) {
+            assert!(value == 0.0 && value.is_sign_positive(), "{name} = {value:?}");
+        }
+    }
+
     /// The repository's `data/`, which holds `exact_table.bin` as the FMU's `resources/` does.
     const TEST_RESOURCES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../data");
 
