@@ -55,6 +55,28 @@
 //! let partial = ContactInput { creepage_longitudinal: 4e-4, creepage_lateral: -3e-4, spin_creepage: 0.2, ..input };
 //! let (first, second) = (model.creep_forces(&partial).unwrap(), again.creep_forces(&partial).unwrap());
 //! assert!(first.force_lateral.abs() > 1e3 && (first.force_lateral - second.force_lateral).abs() < 0.3 * 80e3 / 32767.0);
+//! // A node below full sliding is the solver's, extrapolated as the table's are, 2F(16 × 8) −
+//! // F(8 × 8): a/b = 0.1, ν = 0, at t = 1/4 (τ = 1/4, the identity piece; s = 1/9), along ξ
+//! // (β = 0, α = 0) and along −φ (β = −1, a ray mirrored from +φ by y → −y).
+//! let (a, b) = (5e-3 * 0.1f64.sqrt(), 5e-3 / 0.1f64.sqrt());
+//! let node = ContactInput { semi_axis_a: a, semi_axis_b: b, poisson_ratio: 0.0, ..input };
+//! let creepage_unit = 0.3 * 3.0 * 80e3 / (2.0 * std::f64::consts::PI * a * b) / 82e9; // μp₀/G
+//! let c = wheel_rail_contact::KalkerCoefficients::new(0.1, 0.0);
+//! let c33 = wheel_rail_contact::KalkerCoefficients::spin_moment_c33(0.1, 0.0);
+//! let k = [c.c11, c.c23 + c33].map(|c| 3.0 * c / (2.0 * std::f64::consts::PI));
+//! let along_xi = ContactInput { creepage_longitudinal: creepage_unit / (9.0 * k[0]), ..node };
+//! let along_spin = ContactInput { creepage_longitudinal: 0.0, spin_creepage: -creepage_unit / (9.0 * k[1] * (a * b).sqrt()), ..node };
+//! let solved = |input: &ContactInput| {
+//!     let (fine, coarse) = (grid.creep_forces(input).unwrap(), half_grid.creep_forces(input).unwrap());
+//!     (2.0 * fine.force_longitudinal - coarse.force_longitudinal, 2.0 * fine.spin_moment.unwrap() - coarse.spin_moment.unwrap())
+//! };
+//! let (limit, lever) = (0.3 * 80e3, (a * b).sqrt());
+//! let (f_x, _) = solved(&along_xi);
+//! let table_x = model.creep_forces(&along_xi).unwrap().force_longitudinal;
+//! assert!(f_x < -0.1 * limit && (table_x - f_x).abs() < 1e-4 * limit, "F_x {table_x} against {f_x}");
+//! let (_, m_z) = solved(&along_spin);
+//! let table_m = model.creep_forces(&along_spin).unwrap().spin_moment.unwrap();
+//! assert!(m_z.abs() > 1e-3 * limit * lever && (table_m - m_z).abs() < 1e-4 * limit * lever, "M_z {table_m} against {m_z}");
 //! ```
 
 use rayon::prelude::*;
