@@ -36,6 +36,9 @@
 //! assert_eq!((axes.len(), axes.is_empty()), (80, false));
 //! assert!(axes.a_over_b_node(0) == 0.1 && axes.a_over_b_node(1) == A_OVER_B_RANGE.1);
 //! assert_eq!(axes.poisson_node(1), 0.5);
+//! // The shipped table's axes: ν every 0.1, a/b = 10 at its 29th node.
+//! let shipped = TableAxes { counts: [36, 6, 17, 17, 49], ..axes.clone() };
+//! assert!((shipped.poisson_node(3) - 0.3).abs() < 1e-15 && (shipped.a_over_b_node(28) - 10.0).abs() < 1e-12);
 //! assert_eq!(axes.direction_node(0, 1, 4), (-1.0, 1.0, 1.0)); // β, α, τ
 //! // F_x/(μQ) = 0.6, F_y/(μQ) = −0.8 (on the Coulomb circle), M_z/(μQc) = 0.1 at every node.
 //! let values = [0.6f32, -0.8, 0.1].repeat(axes.len());
