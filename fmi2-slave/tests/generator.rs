@@ -1,0 +1,112 @@
+//! The model-description generator (`fmi2_slave::build::generate`, run by both FMUs' build
+//! scripts) on a small model description of its own: what it writes (the packaged description
+//! with the standard `<ModelStructure>`, the state layout tag) and what it refuses, each refusal
+//! by its message.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+
+/// A valid description: one input, one parameter, one output depending on both.
+const VALID: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="probe" guid="{00000000-0000-0000-0000-000000000001}">
+  <CoSimulation modelIdentifier="probe" canHandleVariableCommunicationStepSize="true"/>
+  <UnitDefinitions>
+    <Unit name="N">
+      <BaseUnit kg="1" m="1" s="-2"/>
+    </Unit>
+  </UnitDefinitions>
+  <ModelVariables>
+    <ScalarVariable name="load" valueReference="0" causality="input" variability="continuous" description="A load">
+      <Real unit="N" start="1"/>
+    </ScalarVariable>
+    <ScalarVariable name="gain" valueReference="100" causality="parameter" variability="fixed" description="A gain">
+      <Real unit="N" start="2"/>
+    </ScalarVariable>
+    <ScalarVariable name="force" valueReference="200" causality="output" variability="continuous" description="A force">
+      <Real unit="N"/>
+    </ScalarVariable>
+  </ModelVariables>
+  <!-- By name: the generator writes the indices. -->
+  <ModelStructure>
+    <Output name="force" dependsOn="load gain"/>
+  </ModelStructure>
+</fmiModelDescription>
+"#;
+
+/// The generated Rust source and packaged description, or the message the generator stopped
+/// with.
+fn generate(xml: &str, name: &str) -> Result<(String, String), String> {
+    let directory = std::env::temp_dir().join(format!("fmi2-slave-generator-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&directory).unwrap();
+    let xml_path = directory.join("modelDescription.in.xml");
+    std::fs::write(&xml_path, xml).unwrap();
+    let out_path: PathBuf = directory.join("model_description.rs");
+    let result = catch_unwind(AssertUnwindSafe(|| fmi2_slave::build::generate(xml_path.to_str().unwrap(), &out_path)));
+    let outcome = match result {
+        Ok(()) => Ok((
+            std::fs::read_to_string(&out_path).unwrap(),
+            std::fs::read_to_string(directory.join("modelDescription.xml")).unwrap(),
+        )),
+        Err(panic) => Err(panic
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| panic.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+            .unwrap_or_default()),
+    };
+    std::fs::remove_dir_all(&directory).unwrap();
+    outcome
+}
+
+/// 64-bit FNV-1a, checked on the published test vectors below.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |hash, &byte| (hash ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
+#[test]
+fn the_packaged_description_has_the_standard_model_structure_and_the_rest_unchanged() {
+    let (source, packaged) = generate(VALID, "packaged").unwrap();
+    // FMI 2.0 section 2.2.8: outputs and initial unknowns by 1-based index of ModelVariables.
+    let structure = "<ModelStructure>\n    <Outputs>\n      <Unknown index=\"3\" dependencies=\"1\" dependenciesKind=\"dependent\"/>";
+    assert!(packaged.contains(structure), "{packaged}");
+    assert!(!packaged.contains("dependsOn") && !packaged.contains("By name"), "{packaged}");
+    let before = &VALID[..VALID.find("  <!-- By name").unwrap()];
+    assert!(packaged.starts_with(before) && packaged.ends_with("</ModelStructure>\n</fmiModelDescription>\n"));
+    assert!(source.contains("pub const GUID: &str = \"{00000000-0000-0000-0000-000000000001}\";"), "{source}");
+}
+
+#[test]
+fn the_state_layout_tag_is_fnv1a_over_the_variable_rows() {
+    // FNV's published vectors (Fowler, Noll, Vo: the FNV-1a 64-bit test suite).
+    assert_eq!(fnv1a(b""), 0xcbf2_9ce4_8422_2325);
+    assert_eq!(fnv1a(b"a"), 0xaf63_dc4c_8601_ec8c);
+    assert_eq!(fnv1a(b"foobar"), 0x8594_4171_f739_67e8);
+    let (source, _) = generate(VALID, "tag").unwrap();
+    let rows = "load|0|Input|Real;gain|100|Parameter|Real;force|200|Output|Real;";
+    let expected = format!("pub const STATE_LAYOUT_TAG: u64 = {:#018x};", fnv1a(rows.as_bytes()));
+    assert!(source.contains(&expected), "{expected} not in the source");
+}
+
+#[test]
+fn malformed_descriptions_are_refused_by_their_fault() {
+    let refusal = |name: &str, from: &str, to: &str| -> String {
+        assert!(VALID.contains(from), "{from}");
+        generate(&VALID.replace(from, to), name).expect_err(name)
+    };
+    let root = "modelDescription.xml: the root must be <fmiModelDescription fmiVersion=\"2.0\">";
+    assert_eq!(refusal("version", "fmiVersion=\"2.0\"", "fmiVersion=\"3.0\""), root);
+    assert_eq!(refusal("root", "fmiModelDescription", "fmiModelDescriptions"), root);
+    assert_eq!(
+        refusal("output start", "<Real unit=\"N\"/>", "<Real unit=\"N\" start=\"0\"/>"),
+        "modelDescription.xml: output force: initial=\"calculated\" forbids a start value"
+    );
+    assert_eq!(
+        refusal("input start", "<Real unit=\"N\" start=\"1\"/>", "<Real unit=\"N\"/>"),
+        "modelDescription.xml: load: inputs and parameters need a start"
+    );
+    // Value references up to 4095 (the dense lookup table's bound), not beyond.
+    assert!(generate(&VALID.replace("valueReference=\"200\"", "valueReference=\"4095\""), "4095").is_ok());
+    assert_eq!(
+        refusal("4096", "valueReference=\"200\"", "valueReference=\"4096\""),
+        "modelDescription.xml: value references up to 4095 keep the lookup table small; 4096 is too large"
+    );
+}
