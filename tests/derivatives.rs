@@ -463,3 +463,57 @@ fn at_zero_friction_extreme_scales_give_finite_derivatives() {
         }
     }
 }
+
+/// A model that records where it is evaluated (its forces are zero).
+struct Recorder(std::cell::RefCell<Vec<ContactInput>>);
+
+impl CreepForceModel for Recorder {
+    fn creep_forces(&self, input: &ContactInput) -> Result<CreepForces, InvalidInput> {
+        self.0.borrow_mut().push(*input);
+        Ok(CreepForces { spin_moment: Some(0.0), ..CreepForces::default() })
+    }
+}
+
+/// `central_difference` steps as its documentation says: by 1e-6 of the larger of the input's
+/// own size, the saturation creepage μQ/(G·ab·3) (the spin's over a) and 1e-3 of the resultant
+/// creepage |ξ| + |η| + a|φ| (the spin's over a), at x ± t·d.
+#[test]
+fn the_central_difference_steps_as_documented() {
+    let x = ContactInput { creepage_longitudinal: 0.0, creepage_lateral: 0.0, spin_creepage: 0.0, ..contact_case() };
+    let (a, b) = (x.semi_axis_a, x.semi_axis_b);
+    let saturation = x.friction_coefficient * x.normal_force / (x.shear_modulus * a * b * 3.0);
+    let along_xi = ContactInput { creepage_longitudinal: 1.0, ..NO_RATES };
+    let along_spin = ContactInput { spin_creepage: 2.0, ..NO_RATES };
+    assert!(1e-3 * 10.0 > saturation && 0.02 > saturation);
+    for (at, direction, known, step) in [
+        // At rest: the saturation creepage, and for spin that over a.
+        (x, along_xi, 0, 1e-6 * saturation),
+        (x, along_spin, 2, 1e-6 * saturation / a / 2.0),
+        // A creepage of its own: its size.
+        (ContactInput { creepage_longitudinal: -0.02, ..x }, along_xi, 0, 1e-6 * 0.02),
+        // Zero beside large ones (beyond 1e3 saturation creepages): 1e-3 of the resultant (for
+        // spin, over a).
+        (ContactInput { creepage_lateral: 10.0, ..x }, along_xi, 0, 1e-9 * 10.0),
+        (
+            ContactInput { creepage_longitudinal: 5.0, creepage_lateral: 10.0, ..x },
+            along_spin,
+            2,
+            1e-9 * 15.0 / a / 2.0,
+        ),
+    ] {
+        let recorder = Recorder(Default::default());
+        wheel_rail_contact::central_difference(&recorder, &at, &direction).unwrap();
+        let points = recorder.0.into_inner();
+        let value = |p: &ContactInput| [p.creepage_longitudinal, p.creepage_lateral, p.spin_creepage][known];
+        let moved: Vec<f64> = points.iter().map(|p| value(p) - value(&at)).collect();
+        let rate = [direction.creepage_longitudinal, direction.creepage_lateral, direction.spin_creepage][known];
+        assert_eq!(moved.len(), 2, "{at:?}");
+        for (moved, sign) in moved.iter().zip([1.0, -1.0]) {
+            let expected = sign * step * rate;
+            assert!(
+                (moved - expected).abs() <= 1e-9 * expected.abs(),
+                "{at:?}: moved {moved:e}, expected {expected:e}"
+            );
+        }
+    }
+}
