@@ -109,6 +109,26 @@ fn fastsim_single_flexibility_meets_the_linear_theory_for_each_pure_creepage() {
     }
 }
 
+/// Kalker's single flexibility weighted by the creepages (1982), L = (|ξ|L1 + |η|L2 + c|φ|L3) /
+/// √(ξ² + η² + c²φ²), with L1 = 8a/(3 C11 G) and L3 = πa√(a/b)/(4 G C23): in the linear range the
+/// simplified theory's F_x is Kalker's −G ab C11 ξ scaled by L1/L (spin adds none to F_x, odd in
+/// y), for ξ and φ together.
+#[test]
+fn fastsim_single_weighted_flexibility_is_kalkers_for_combined_creepages() {
+    let model = Fastsim::new(200, 200, TractionBound::Parabolic, Flexibility::SingleWeighted).unwrap();
+    for (xi, phi) in [(1e-9, 4e-7), (-2e-9, 1e-7), (1e-9, -1e-6)] {
+        let input = typical_contact(xi, 0.0, phi);
+        let (a, b, g) = (input.semi_axis_a, input.semi_axis_b, input.shear_modulus);
+        let c = (a * b).sqrt();
+        let k = KalkerCoefficients::new(a / b, input.poisson_ratio);
+        let (l1, l3) = (8.0 * a / (3.0 * k.c11 * g), PI * a * (a / b).sqrt() / (4.0 * g * k.c23));
+        let weighted = (xi.abs() * l1 + c * phi.abs() * l3) / (xi * xi + c * c * phi * phi).sqrt();
+        let expected = -g * a * b * k.c11 * xi * l1 / weighted;
+        let got = model.creep_forces(&input).unwrap().force_longitudinal;
+        assert!((got / expected - 1.0).abs() < 1e-3, "ξ {xi}, φ {phi}: {got} vs {expected}");
+    }
+}
+
 #[test]
 fn fastsim_spin_moment_meets_the_simplified_theory_linear_limit() {
     // Simplified theory in adhesion: M_z = −8 φ a² b³ / (15 L3) − ... ; for pure spin the lateral
