@@ -262,12 +262,12 @@ pub fn central_difference<M: CreepForceModel + ?Sized>(
     // Kalker; Polach's eq. 21): on the rolling semi-axis a its step moves the forces about as
     // much as the creepages' steps do for every a/b (c·C23/(a·C22) = 0.3 … 0.45 over a/b = 0.1
     // … 31.6, where the smaller semi-axis gave 0.3 … 11).
-    let (a, creepages) = (input.semi_axis_a, [x[0], x[1], x[2]]);
+    let a = input.semi_axis_a;
     let saturation_spin = saturation_creepage / a;
     // A creepage that is 0 beside large ones moves on 1e-3 of them: in full slip the forces are
     // computed on the scale of μQ, and a step of the saturation creepage alone would be lost
     // in their rounding.
-    let resultant = 1e-3 * (creepages[0].abs() + creepages[1].abs() + a * creepages[2].abs());
+    let resultant = 1e-3 * (x[0].abs() + x[1].abs() + a * x[2].abs());
     let scales = [
         saturation_creepage.max(resultant),
         saturation_creepage.max(resultant),

@@ -484,7 +484,8 @@ fn the_central_difference_steps_as_documented() {
     let saturation = x.friction_coefficient * x.normal_force / (x.shear_modulus * a * b * 3.0);
     let along_xi = ContactInput { creepage_longitudinal: 1.0, ..NO_RATES };
     let along_spin = ContactInput { spin_creepage: 2.0, ..NO_RATES };
-    assert!(1e-3 * 10.0 > saturation && 0.02 > saturation);
+    // (The own-size case, 0.02, lies above it too.)
+    assert!(1e-3 * 10.0 > saturation);
     for (at, direction, known, step) in [
         // At rest: the saturation creepage, and for spin that over a.
         (x, along_xi, 0, 1e-6 * saturation),

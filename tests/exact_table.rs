@@ -30,7 +30,18 @@ impl Points {
         self.contact_over(level, (-1.0, 1.0))
     }
 
-    /// The same with a/b log-uniform in [10^`low`, 10^`high`].
+    /// The held-out sample: `per_level` contacts at each level from the linear range to full
+    /// sliding, a/b log-uniform in [10^`low`, 10^`high`].
+    fn held_out(&mut self, per_level: usize, exponents: (f64, f64)) -> Vec<ContactInput> {
+        let levels = [0.05, 0.3, 0.7, 1.0, 1.5, 2.5, 4.0, 8.0];
+        levels
+            .iter()
+            .flat_map(|&level| vec![level; per_level])
+            .map(|level| self.contact_over(level, exponents))
+            .collect()
+    }
+
+    /// [`Points::contact`] with a/b log-uniform in [10^`low`, 10^`high`].
     fn contact_over(&mut self, level: f64, (low, high): (f64, f64)) -> ContactInput {
         let a_over_b = 10f64.powf(low + (high - low) * self.next());
         let nu = 0.5 * self.next();
@@ -104,12 +115,7 @@ fn the_compiled_in_table_says_how_it_was_made_and_fits_in_20_mb_up_to_a_over_b_1
 /// theory) is in the trade report.
 #[test]
 fn held_out_points_match_the_exact_theory() {
-    let mut points = Points(20261122);
-    let cases: Vec<ContactInput> = [0.05, 0.3, 0.7, 1.0, 1.5, 2.5, 4.0, 8.0]
-        .iter()
-        .flat_map(|&level| (0..4).map(move |_| level))
-        .map(|level| points.contact(level))
-        .collect();
+    let cases = Points(20261122).held_out(4, (-1.0, 1.0));
     let (median, max, moment_max) = held_out_errors(&cases, ExactTheory::new(120, 30));
     // Issue 11's goals (measured on this sample: median 0.0017, max 0.0055, M_z max 0.0058;
     // with the second table, uniform in t: 0.0026, 0.0085, 0.0092).
@@ -136,12 +142,7 @@ fn held_out_errors(cases: &[ContactInput], reference: ExactTheory) -> (f64, f64,
 /// 400 points and the worst re-checked against the converged theory).
 #[test]
 fn held_out_points_on_long_patches_match_the_exact_theory() {
-    let mut points = Points(20261126);
-    let cases: Vec<ContactInput> = [0.05, 0.3, 0.7, 1.0, 1.5, 2.5, 4.0, 8.0]
-        .iter()
-        .flat_map(|&level| (0..3).map(move |_| level))
-        .map(|level| points.contact_over(level, (1.0, 1.5)))
-        .collect();
+    let cases = Points(20261126).held_out(3, (1.0, 1.5));
     let (median, max, moment_max) = held_out_errors(&cases, ExactTheory::new(160, 30));
     assert!(median <= 0.003 && max <= 0.02, "F: median {median}, max {max}");
     assert!(moment_max <= 0.02, "M_z: max {moment_max}");

@@ -138,6 +138,9 @@ fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
     if !(l > CHORD_BLEND_START * s && moves_negative(length - size) && !moves_negative(size - CHORD_SIZE_START)) {
         return (D::from(1.0), length);
     }
+    if l >= CHORD_BLEND_END * s && s >= CHORD_SIZE_END {
+        return (size / length, size);
+    }
     let one = D::from(1.0);
     let by_ratio = if l >= CHORD_BLEND_END * s {
         one
@@ -146,9 +149,6 @@ fn chord_correction<D: Scalar>(x: D, y: D, size: D) -> (D, D) {
     };
     let by_size =
         if s >= CHORD_SIZE_END { one } else { (size - CHORD_SIZE_START) / (CHORD_SIZE_END - CHORD_SIZE_START) };
-    if l >= CHORD_BLEND_END * s && s >= CHORD_SIZE_END {
-        return (size / length, size);
-    }
     let corrected = length + (size - length) * (by_ratio * by_size);
     (corrected / length, corrected)
 }
