@@ -295,15 +295,55 @@ fn rail_cant_turns_the_rail_towards_the_track_centre() {
             assert!((a.point.contact_angle - b.point.contact_angle).abs() < 1e-5);
         }
     }
-    // Past ±0.1 rad, or turning a flank past the vertical: errors naming the cause.
+    // Past ±0.1 rad: an error naming it.
     let wheel = SmoothProfile::new(&builtin_profile("MBench_S1002").unwrap()).unwrap();
     let rail = SmoothProfile::new(&upright).unwrap();
     let error = WheelOnRail::new(wheel.clone(), rail, track(0.2), WheelSide::Right, 82e9, 0.28).unwrap_err();
     assert!(error.to_string().contains("rail_cant = 0.2"), "{error}");
-    // The shipped UIC60's gauge face is steep: a further 0.02 rad turns it past the vertical.
-    let shipped = SmoothProfile::new(&builtin_profile("MBench_UIC60").unwrap()).unwrap();
-    let error = WheelOnRail::new(wheel, shipped, track(0.02), WheelSide::Right, 82e9, 0.28).unwrap_err();
-    assert!(error.to_string().contains("rail_cant = 0.02 rad turns a flank"), "{error}");
+    // The shipped UIC60 (already 1:40) canted further turns the lower part of its gauge-side
+    // flank past the vertical (below 17 mm under the top at 1:40 more, 14.6 mm at 0.1 rad), and
+    // a cant of −0.1 rad its field side: that part, which no wheel reaches, is dropped and the
+    // running surface kept, so every cant of the documented ±0.1 rad places the rail. The
+    // placement must equal the rail turned by hand — its points rotated, those beyond the
+    // first reversal of y on either side of the top left out — placed upright.
+    let points = builtin_profile("MBench_UIC60").unwrap();
+    let shipped = SmoothProfile::new(&points).unwrap();
+    for cant in [-0.1, 0.025, 0.05, 0.1] {
+        let placed = WheelOnRail::new(wheel.clone(), shipped.clone(), track(cant), WheelSide::Right, 82e9, 0.28)
+            .unwrap_or_else(|e| panic!("rail_cant {cant}: {e}"));
+        let (sin, cos) = (-cant).sin_cos();
+        let turned: Vec<(f64, f64)> =
+            points.lateral.iter().zip(&points.vertical).map(|(y, z)| (y * cos - z * sin, y * sin + z * cos)).collect();
+        let top = (0..turned.len()).min_by(|&a, &b| turned[a].1.total_cmp(&turned[b].1)).unwrap();
+        let first = (0..top).rev().find(|&i| turned[i].0 >= turned[i + 1].0).map_or(0, |i| i + 1);
+        let last = (top + 1..turned.len()).find(|&i| turned[i].0 <= turned[i - 1].0).unwrap_or(turned.len());
+        assert!(first > 0 || last < turned.len(), "rail_cant {cant}: nothing to leave out, nothing tested");
+        let kept = &turned[first..last];
+        let by_hand = wheel_rail_contact::geometry::ProfilePoints {
+            lateral: kept.iter().map(|p| p.0).collect(),
+            vertical: kept.iter().map(|p| p.1).collect(),
+        };
+        let upright = WheelOnRail::new(
+            wheel.clone(),
+            SmoothProfile::new(&by_hand).unwrap(),
+            track(0.0),
+            WheelSide::Right,
+            82e9,
+            0.28,
+        )
+        .unwrap();
+        for lateral in [0.0, 0.004, 0.008] {
+            let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
+            let (z, patches) = placed.patches_for_force(10e3, &position, cosine).unwrap();
+            let (z_hand, on_hand) = upright.patches_for_force(10e3, &position, cosine).unwrap();
+            assert!((z - z_hand).abs() < 1e-7, "rail_cant {cant}, y {lateral}: z_ws {z} vs {z_hand}");
+            assert_eq!(patches.len(), on_hand.len(), "rail_cant {cant}, y {lateral}");
+            for (a, b) in patches.iter().zip(&on_hand) {
+                assert!((a.point.track_lateral - b.point.track_lateral).abs() < 1e-6, "rail_cant {cant}, y {lateral}");
+                assert!((a.point.contact_angle - b.point.contact_angle).abs() < 1e-5, "rail_cant {cant}, y {lateral}");
+            }
+        }
+    }
 }
 
 #[test]

@@ -152,20 +152,25 @@ fn simpack_options_are_applied_in_simpacks_order() {
     assert_eq!(plain.lateral, [-2e-3, -1e-3, 0.0, 1e-3, 2e-3]);
     assert_eq!(plain.vertical, [1e-3, 0.25e-3, 0.0, 0.25e-3, 1e-3]);
     // Shift, then mirror y (shifted points mirrored), inversion (order only: the reader sorts
-    // by y again), z mirrored; metres when no unit is given.
-    let options = "shift.y = 1.0\nshift.z = 0.5 ! comment\nmirror.y = 1\nmirror.z = 1\ninversion = 1";
+    // by y again), z mirrored; shifts in the file's units, applied before the unit.
+    let options =
+        "shift.y = 1.0\nshift.z = 0.5 ! comment\nmirror.y = 1\nmirror.z = 1\ninversion = 1\nunits.len.f = 1000";
     let moved = parse_profile(&simpack(options, POINTS), ProfileFormat::Simpack).unwrap();
-    assert_eq!(moved.lateral, [-3.0, -2.0, -1.0, 0.0, 1.0]);
-    assert_eq!(moved.vertical, [-1.5, -0.75, -0.5, -0.75, -1.5]);
+    assert_eq!(moved.lateral, [-3e-3, -2e-3, -1e-3, 0.0, 1e-3]);
+    assert_eq!(moved.vertical, [-1.5e-3, -0.75e-3, -0.5e-3, -0.75e-3, -1.5e-3]);
+    // Metres when no unit is given.
+    let metres = parse_profile(&simpack("", "-0.02 0.01\n-0.01 0\n0 0\n0.01 0.001"), ProfileFormat::Simpack);
+    assert_eq!(metres.unwrap().lateral, [-0.02, -0.01, 0.0, 0.01]);
     // A quarter turn about x: (y, z) → (−z, y); then the bounds drop the points with y outside
-    // [−1.6, 0].
-    let turned = "rotate = 90.0\nunits.ang.f = 57.29577951308232\nbound.y.min = -1.6\nbound.y.max = 0.0";
+    // [−1.6, 0] (in the file's units, before the unit).
+    let turned =
+        "rotate = 90.0\nunits.ang.f = 57.29577951308232\nbound.y.min = -1.6\nbound.y.max = 0.0\nunits.len.f = 1000";
     let turned = parse_profile(&simpack(turned, "-2 0\n-1 0.5\n0 1\n1 1.5\n2 1.75\n3 2"), ProfileFormat::Simpack);
     let turned = turned.unwrap();
     assert_eq!(turned.lateral.len(), 4);
-    let expected = [(-1.5, 1.0), (-1.0, 0.0), (-0.5, -1.0), (0.0, -2.0)];
+    let expected = [(-1.5e-3, 1e-3), (-1e-3, 0.0), (-0.5e-3, -1e-3), (0.0, -2e-3)];
     for ((y, z), (expected_y, expected_z)) in turned.lateral.iter().zip(&turned.vertical).zip(expected) {
-        assert!((y - expected_y).abs() < 1e-12 && (z - expected_z).abs() < 1e-12, "({y}, {z})");
+        assert!((y - expected_y).abs() < 1e-15 && (z - expected_z).abs() < 1e-15, "({y}, {z})");
     }
 }
 
@@ -185,9 +190,9 @@ fn malformed_simpack_files_name_the_line_and_reason() {
     // y turns back: the line of the point that breaks the order is named.
     let e = simpack_error("units.len.f = 1000", "-2.0 1.0\n-1.0 0.5\n-1.5 0.4\n1 1\n2 2");
     assert_eq!(e.to_string(), "line 9: the profile is not monotonic in y: y = -1.5 mm follows y = -1 mm (line 8)");
-    let e = simpack_error("", "-2.0 1.0\n-1.0 0.5\n-1.0 0.4\n1 1");
+    let e = simpack_error("units.len.f = 1000", "-2.0 1.0\n-1.0 0.5\n-1.0 0.4\n1 1");
     assert_eq!(e.line, Some(9));
-    let e = simpack_error("", "-2.0 1.0\n-1.0 0.5\n1 1");
+    let e = simpack_error("units.len.f = 1000", "-2.0 1.0\n-1.0 0.5\n1 1");
     assert_eq!(e.to_string(), "3 profile points; a profile needs at least 4");
     let e = simpack_error("mirror.y = 2", POINTS);
     assert_eq!(e.to_string(), "line 5: `mirror.y` must be 0 or 1, found `2`");
@@ -246,4 +251,32 @@ fn a_point_on_a_near_vertical_flank_is_found_at_its_lateral_position() {
         assert!((point.lateral - y).abs() <= 1e-13, "y {y}: found {}", point.lateral);
         assert!(point.vertical > -0.2e-3 && point.vertical < 1.2e-3, "z({y}) = {}", point.vertical);
     }
+}
+
+#[test]
+fn a_turned_profile_keeps_its_running_surface_and_drops_flanks_turned_past_the_vertical() {
+    // A rail-head-like profile (mm): steep flanks (1 mm across for 18 mm down) beside a crown.
+    let lateral = [-31.0, -30.5, -30.0, -20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 30.5, 31.0].map(|y: f64| y * 1e-3);
+    let vertical = [20.0, 10.0, 2.0, 0.8, 0.2, 0.0, 0.2, 0.8, 2.0, 10.0, 20.0].map(|z: f64| z * 1e-3);
+    let head = SmoothProfile::new(&ProfilePoints { lateral: lateral.to_vec(), vertical: vertical.to_vec() }).unwrap();
+    let turn = |angle: f64, i: usize| {
+        let (sin, cos) = angle.sin_cos();
+        (lateral[i] * cos - vertical[i] * sin, lateral[i] * sin + vertical[i] * cos)
+    };
+    // Turned by 0.1 rad, (y, z) → (y cos α − z sin α, y sin α + z cos α), the right flank's y
+    // runs 29.65, 29.35, 28.85 mm: it turns back after point 8, so points 9 and 10 are dropped;
+    // the left flank's y still increases (−32.84, −31.35, −30.05 mm) and is kept whole.
+    let turned = head.rotated(0.1).unwrap();
+    let (first, last) = turned.lateral_range();
+    assert!((first - turn(0.1, 0).0).abs() < 1e-15, "first y {first}");
+    assert!((last - turn(0.1, 8).0).abs() < 1e-15, "last y {last}");
+    // Its highest point (least z) is point 3, its lowest point 0: the kept knots' own values.
+    let (top, bottom) = turned.vertical_range();
+    assert!((top - turn(0.1, 3).1).abs() < 1e-15 && (bottom - turn(0.1, 0).1).abs() < 1e-15, "{top} {bottom}");
+    // Turned by −0.1 rad, the mirror image: points 0 and 1 dropped.
+    let (first, last) = head.rotated(-0.1).unwrap().lateral_range();
+    assert!((first - turn(-0.1, 2).0).abs() < 1e-15 && (last - turn(-0.1, 10).0).abs() < 1e-15, "{first} {last}");
+    // Nearly upside down (3 rad), three points remain before y turns back: an error saying so.
+    let error = head.rotated(3.0).unwrap_err();
+    assert!(error.reason.contains("keeps 3 points around its top"), "{error}");
 }

@@ -78,6 +78,30 @@ unsafe fn string_argument<'a>(text: fmi2String) -> Option<Cow<'a, str>> {
     (!text.is_null()).then(|| unsafe { CStr::from_ptr(text) }.to_string_lossy())
 }
 
+/// A string argument that must be UTF-8: the text, or why not (NULL, or the position of its
+/// first byte that is not UTF-8, with the bytes around it escaped).
+/// SAFETY: `text` is NULL or NUL-terminated.
+unsafe fn utf8_argument<'a>(text: fmi2String) -> Result<Cow<'a, str>, String> {
+    if text.is_null() {
+        return Err("a value is a NULL string".to_owned());
+    }
+    // SAFETY: by the caller's contract.
+    let bytes = unsafe { CStr::from_ptr(text) }.to_bytes();
+    match std::str::from_utf8(bytes) {
+        Ok(text) => Ok(Cow::Borrowed(text)),
+        Err(error) => {
+            let at = error.valid_up_to();
+            let around = &bytes[at.saturating_sub(16)..(at + 16).min(bytes.len())];
+            Err(format!(
+                "a value is not UTF-8 (byte {at} of {}, near \"{}\"): FMI 2.0 strings are UTF-8, so a file name \
+                 must be passed in UTF-8",
+                bytes.len(),
+                around.escape_ascii()
+            ))
+        }
+    }
+}
+
 /// SAFETY: `pointer` is NULL or valid for `n` reads.
 unsafe fn slice<'a, T>(pointer: *const T, n: usize) -> Option<&'a [T]> {
     match (n, pointer.is_null()) {
@@ -376,10 +400,13 @@ pub unsafe fn set_string<S: Slave>(
     unsafe {
         with_instance(c, CALL, |instance: &mut S| match (slice(vr, nvr), slice(value, nvr)) {
             (Some(vr), Some(value)) => {
-                // Copied now: the master's strings need not outlive the call.
-                match value.iter().map(|&text| string_argument(text)).collect::<Option<Vec<_>>>() {
-                    Some(texts) => instance.set_string(vr, &texts),
-                    None => instance.invalid_argument(CALL, "a value is a NULL string"),
+                // Copied now: the master's strings need not outlive the call. FMI 2.0 strings
+                // are UTF-8 (as the model description's XML); one that is not is refused whole rather than
+                // converted lossily, which would change a file name's bytes (the file then
+                // could not be opened, and fmi2GetString would return other bytes than set).
+                match value.iter().map(|&text| utf8_argument(text)).collect::<Result<Vec<_>, _>>() {
+                    Ok(texts) => instance.set_string(vr, &texts),
+                    Err(reason) => instance.invalid_argument(CALL, &reason),
                 }
             }
             _ => instance.invalid_argument(CALL, NULL_ARRAY),

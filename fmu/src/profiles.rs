@@ -1,9 +1,11 @@
 //! `contact_geometry = profiles`: the FMU's values ↔ the core's [`WheelRailContact`] (one wheel
 //! on its rail, from its profiles). Here, and only here, the adapter reads files: the core has no
 //! I/O, so a profile given as a path is read into text and handed to the core's reader
-//! ([`parse_profile`], the format from the extension); a built-in name goes to
-//! [`builtin_profile`]. Errors name the variable, the file and the reason (the core's
-//! [`ProfileError`](wheel_rail_contact::geometry::ProfileError) gives the line).
+//! ([`parse_profile_as`], the format and the kind, wheel or rail, from the extension); a built-in
+//! name goes to [`builtin_profile`]. Only regular files of at most [`MAX_PROFILE_FILE_SIZE`]
+//! bytes are read. Errors name the variable, the file and the reason (the core's
+//! [`ProfileError`](wheel_rail_contact::geometry::ProfileError) gives the line); a value is
+//! repeated in a message up to its first 200 characters.
 //!
 //! Outputs: the totals on the wheel in track axes, the solved vertical position and, for the
 //! first two patches (tread first, as the core orders them), their geometry, forces and
@@ -14,11 +16,15 @@ use super::model_description::{
 };
 use super::resources::file_path;
 use super::scene::enumeration;
+use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
+use std::fs::File;
+use std::io::Read;
 use std::path::Path;
 use wheel_rail_contact::geometry::{
-    builtin_profile, parse_profile, PatchForces, ProfileFormat, ProfilePoints, SmoothProfile, TrackDimensions,
-    VerticalContact, WheelInput, WheelOnRail, WheelOutput, WheelRailContact, WheelSide, WheelsetPosition,
-    WheelsetVelocity, BUILTIN_PROFILE_NAMES,
+    builtin_profile, parse_profile_as, PatchForces, ProfileFormat, ProfileKind, ProfilePoints, SmoothProfile,
+    TrackDimensions, VerticalContact, WheelContactError, WheelInput, WheelOnRail, WheelOutput, WheelRailContact,
+    WheelSide, WheelsetPosition, WheelsetVelocity, BUILTIN_PROFILE_NAMES,
 };
 use wheel_rail_contact::scene::Scene;
 
@@ -30,37 +36,146 @@ pub const REPORTED_PATCHES: usize = 2;
 pub struct ProfileContact {
     contact: WheelRailContact,
     vertical: VerticalChoice,
+    /// What the profiles were read from, for the messages of the geometry's errors.
+    sources: String,
+    /// Their content's fingerprint: an FMU state saved with it refuses another content.
+    digest: ProfileDigest,
 }
 
-/// The points of the profile `variable` names: a built-in one, or the file at that path (a
-/// relative one in the FMU's `resources` first, then in the working directory).
-fn profile_points(variable: &str, value: &str, resources: Option<&Path>) -> Result<ProfilePoints, String> {
+/// A fingerprint of the wheel's and the rail's profile as read (CRC-32 of the file's bytes, or
+/// of a built-in profile's name): an FMU state carries it, so that a state restored after its
+/// profile file changed on disk is refused rather than continued with other profiles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ProfileDigest {
+    pub wheel: u32,
+    pub rail: u32,
+}
+
+/// The largest profile file read \[bytes\]: measured profiles hold hundreds to a few thousand
+/// points (MiniProf's 50–200 kB); a file beyond 16 MiB is not a profile, and reading it whole
+/// would size the FMU's memory by a user's file.
+pub const MAX_PROFILE_FILE_SIZE: u64 = 16 << 20;
+
+/// The longest path a profile parameter may hold \[bytes\] (PATH_MAX on Linux; Windows' is shorter).
+const MAX_PATH_LENGTH: usize = 4096;
+
+/// How much of a parameter's value a message repeats \[characters\].
+const SHOWN_LENGTH: usize = 200;
+
+/// `value` as a message shows it: whole, or its first [`SHOWN_LENGTH`] characters and its length.
+pub fn shown(value: &str) -> Cow<'_, str> {
+    match value.char_indices().nth(SHOWN_LENGTH) {
+        None => Cow::Borrowed(value),
+        Some((end, _)) => Cow::Owned(format!("{}… ({} bytes)", &value[..end], value.len())),
+    }
+}
+
+/// The profile `variable` names — a built-in one, or the file at that path (a relative one in
+/// the FMU's `resources` first, then in the working directory) — its points, and their digest.
+fn profile_points(
+    variable: &str,
+    value: &str,
+    kind: ProfileKind,
+    resources: Option<&Path>,
+) -> Result<(ProfilePoints, u32), String> {
+    let named = || format!("{variable} = \"{}\"", shown(value));
     if BUILTIN_PROFILE_NAMES.contains(&value) {
-        return builtin_profile(value).map_err(|e| format!("{variable} = \"{value}\": {e}"));
+        let points = builtin_profile(value).map_err(|e| format!("{}: {e}", named()))?;
+        return Ok((points, crc32fast::hash(value.as_bytes())));
     }
     let Some(format) = ProfileFormat::from_file_name(value) else {
         return Err(format!(
-            "{variable} = \"{value}\" is invalid: neither a built-in profile ({}) nor a file named .prw, .prr \
-             (SIMPACK), .whl or .ban (MiniProf)",
+            "{} is invalid: neither a built-in profile ({}) nor a file named .prw, .prr (SIMPACK), .whl or .ban \
+             (MiniProf)",
+            named(),
             BUILTIN_PROFILE_NAMES.join(", ")
         ));
     };
+    if ProfileKind::from_file_name(value) != Some(kind) {
+        return Err(format!(
+            "{} is invalid: the extension names a {} profile; {variable} needs a {} profile (.prw or .whl for a \
+             wheel, .prr or .ban for a rail)",
+            named(),
+            opposite(kind).name(),
+            kind.name()
+        ));
+    }
+    if value.len() > MAX_PATH_LENGTH {
+        return Err(format!("{} is invalid: a path is at most {MAX_PATH_LENGTH} bytes long", named()));
+    }
     let path = file_path(value, resources);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
+    let bytes = read_profile_file(&path).map_err(|reason| {
         let looked_in = match resources {
             Some(directory) if Path::new(value).is_relative() => {
                 format!(" (looked in the FMU's resources {} and the working directory)", directory.display())
             }
             _ => String::new(),
         };
-        format!("{variable} = \"{value}\": the file cannot be read ({e}){looked_in}")
+        format!("{}: the file cannot be read: {reason}{looked_in}", named())
     })?;
-    parse_profile(&text, format).map_err(|e| format!("{variable} = \"{value}\": {e}"))
+    // Only the numbers matter: a comment or header in Windows-1252 or Latin-1 (MiniProf's
+    // `Chars=Win`) is read with its other bytes replaced.
+    let text = String::from_utf8_lossy(&bytes);
+    let points = parse_profile_as(&text, format, kind).map_err(|e| format!("{}: {e}", named()))?;
+    Ok((points, crc32fast::hash(&bytes)))
 }
 
-fn smooth_profile(variable: &str, value: &str, resources: Option<&Path>) -> Result<SmoothProfile, String> {
-    SmoothProfile::new(&profile_points(variable, value, resources)?)
-        .map_err(|e| format!("{variable} = \"{value}\": {e}"))
+fn opposite(kind: ProfileKind) -> ProfileKind {
+    match kind {
+        ProfileKind::Wheel => ProfileKind::Rail,
+        ProfileKind::Rail => ProfileKind::Wheel,
+    }
+}
+
+/// The bytes of the profile file at `path`: a regular file (not a device, FIFO, socket or
+/// directory, whatever its name: `/dev/zero`, a FIFO or a link to `/dev/stdin` named `.prw`
+/// would never end or would read the master's input) of at most [`MAX_PROFILE_FILE_SIZE`] bytes.
+fn read_profile_file(path: &Path) -> Result<Vec<u8>, String> {
+    let file = open_without_blocking(path).map_err(|e| e.to_string())?;
+    let metadata = file.metadata().map_err(|e| e.to_string())?;
+    if !metadata.is_file() {
+        return Err("it is not a regular file (a device, FIFO, socket or directory)".to_owned());
+    }
+    let too_large = |size: u64| format!("it has {size} bytes; a profile file has at most {MAX_PROFILE_FILE_SIZE}");
+    if metadata.len() > MAX_PROFILE_FILE_SIZE {
+        return Err(too_large(metadata.len()));
+    }
+    let mut bytes = Vec::new();
+    // At most one byte beyond the cap, should the file grow while it is read.
+    file.take(MAX_PROFILE_FILE_SIZE + 1).read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > MAX_PROFILE_FILE_SIZE {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+/// Opens `path` for reading without waiting for a writer: opening a FIFO blocks until one
+/// comes, so the kind of file is asked of the opened file, not of the path (no race between
+/// the two).
+#[cfg(unix)]
+fn open_without_blocking(path: &Path) -> std::io::Result<File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path)
+}
+
+/// (Windows has no FIFOs in its file system; its named pipes live under `\\.\pipe\`, which
+/// `metadata` reports as not a regular file.)
+#[cfg(not(unix))]
+fn open_without_blocking(path: &Path) -> std::io::Result<File> {
+    File::open(path)
+}
+
+fn smooth_profile(
+    variable: &str,
+    value: &str,
+    kind: ProfileKind,
+    resources: Option<&Path>,
+) -> Result<(SmoothProfile, u32), String> {
+    let (points, digest) = profile_points(variable, value, kind, resources)?;
+    let profile = SmoothProfile::new(&points)
+        .and_then(|profile| profile.check_extent(kind.name()).map(|()| profile))
+        .map_err(|e| format!("{variable} = \"{}\": {e}", shown(value)))?;
+    Ok((profile, digest))
 }
 
 impl ProfileContact {
@@ -90,16 +205,36 @@ impl ProfileContact {
             nominal_radius: parameters.wheel_nominal_radius,
             rail_cant: parameters.rail_cant,
         };
-        let geometry = WheelOnRail::new(
-            smooth_profile("wheel_profile", &strings.wheel_profile, resources)?,
-            smooth_profile("rail_profile", &strings.rail_profile, resources)?,
-            dimensions,
-            side,
-            scene.shear_modulus,
-            scene.poisson_ratio,
-        )
-        .map_err(|e| e.to_string())?;
-        Ok(Self { contact: WheelRailContact::new(geometry, scene), vertical })
+        let (wheel, wheel_digest) =
+            smooth_profile("wheel_profile", &strings.wheel_profile, ProfileKind::Wheel, resources)?;
+        let (rail, rail_digest) = smooth_profile("rail_profile", &strings.rail_profile, ProfileKind::Rail, resources)?;
+        let sources = format!(
+            "wheel_profile = \"{}\", rail_profile = \"{}\"",
+            shown(&strings.wheel_profile),
+            shown(&strings.rail_profile)
+        );
+        let geometry = WheelOnRail::new(wheel, rail, dimensions, side, scene.shear_modulus, scene.poisson_ratio)
+            .map_err(|e| format!("{e} ({sources})"))?;
+        Ok(Self {
+            contact: WheelRailContact::new(geometry, scene),
+            vertical,
+            sources,
+            digest: ProfileDigest { wheel: wheel_digest, rail: rail_digest },
+        })
+    }
+
+    /// The profiles' fingerprint.
+    pub fn digest(&self) -> ProfileDigest {
+        self.digest
+    }
+
+    /// An evaluation's error as the master reads it: one of the geometry (no contact, Hertz
+    /// inapplicable, …) names the profiles it was found with; one of the scene names its input.
+    pub fn describe(&self, error: WheelContactError) -> String {
+        match error {
+            WheelContactError::Geometry(error) => format!("{error} ({})", self.sources),
+            other => other.to_string(),
+        }
     }
 
     /// The wheel.

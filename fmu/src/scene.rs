@@ -16,7 +16,7 @@ use super::model_description::{
     StiffnessSource as StiffnessChoice, Strings, Switch, TractionBound as TractionBoundChoice,
     TractionLaw as TractionLawChoice, Values,
 };
-use super::profiles::{ProfileContact, WheelOutputs};
+use super::profiles::{ProfileContact, ProfileDigest, WheelOutputs};
 use wheel_rail_contact::geometry::{WheelCache, WheelState};
 use wheel_rail_contact::models::exact::{MAX_ITERATIONS, MAX_PRODUCTS};
 use wheel_rail_contact::scene::{
@@ -53,6 +53,8 @@ pub struct ModelCache {
     wheel_cache: WheelCache,
     /// The FMU's resources directory, where relative profile paths are looked up first.
     resources: Option<PathBuf>,
+    /// The profiles' digest of a restored FMU state: the next build must read the same content.
+    expected_profiles: Option<ProfileDigest>,
 }
 
 impl ModelCache {
@@ -68,6 +70,24 @@ impl ModelCache {
         self.built = None;
     }
 
+    /// The digest of the profiles built from, if a contact from profiles is built.
+    #[inline]
+    pub fn profile_digest(&self) -> Option<ProfileDigest> {
+        match &self.built {
+            Some((_, _, Ok(Contact::Profiles(wheel)))) => Some(wheel.digest()),
+            _ => None,
+        }
+    }
+
+    /// An FMU state computed with profiles of `digest` is restored: a contact built from other
+    /// content is rebuilt, and the rebuild must read the same content, else it is an error.
+    pub fn restored(&mut self, digest: Option<ProfileDigest>) {
+        if digest.is_some() && digest != self.profile_digest() {
+            self.built = None;
+        }
+        self.expected_profiles = digest;
+    }
+
     /// The contact for these parameters and the caches; the error names the parameter.
     #[inline]
     fn plan(
@@ -76,9 +96,17 @@ impl ModelCache {
         strings: &Strings,
     ) -> Result<(&Contact, &mut SceneCache, &mut WheelCache), String> {
         let resources = self.resources.as_deref();
-        let (built_for, built_strings, contact) = self
-            .built
-            .get_or_insert_with(|| (*parameters, strings.clone(), contact_of(parameters, strings, resources)));
+        let expected = &mut self.expected_profiles;
+        let (built_for, built_strings, contact) = self.built.get_or_insert_with(|| {
+            let saved = expected.take();
+            let contact = contact_of(parameters, strings, resources).and_then(|contact| match (&contact, saved) {
+                (Contact::Profiles(wheel), Some(saved)) if wheel.digest() != saved => {
+                    Err(changed_profiles(wheel.digest(), saved))
+                }
+                _ => Ok(contact),
+            });
+            (*parameters, strings.clone(), contact)
+        });
         // A NaN parameter never equals itself (`parameters != parameters`): such a scene is an
         // error, reported alike whether cached or rebuilt.
         #[allow(clippy::eq_op)]
@@ -89,6 +117,21 @@ impl ModelCache {
             Err(reason) => Err(reason.clone()),
         }
     }
+}
+
+/// The error of a restored FMU state whose profile files hold other content than when it was saved.
+#[cold]
+fn changed_profiles(read: ProfileDigest, saved: ProfileDigest) -> String {
+    let changed: Vec<String> = [("wheel_profile", read.wheel, saved.wheel), ("rail_profile", read.rail, saved.rail)]
+        .iter()
+        .filter(|(_, read, saved)| read != saved)
+        .map(|(name, read, saved)| format!("{name} (CRC-32 {read:08x}, the state's {saved:08x})"))
+        .collect();
+    format!(
+        "the restored FMU state was computed with other profiles: the content of {} changed since the state was \
+         saved; restore the files, or set the profile parameters again to start from the files as they are",
+        changed.join(" and ")
+    )
 }
 
 /// "name = value is invalid: must be one of 1 (a), 2 (b)".
@@ -318,8 +361,10 @@ pub(crate) fn compute_outputs(
         }
         (Contact::Profiles(wheel), _, wheel_cache) => {
             let input = wheel.input(&values.inputs);
-            let (output, next_state) =
-                wheel.contact().evaluate(&input, wheel_state, wheel_cache, evaluation).map_err(|e| e.to_string())?;
+            let (output, next_state) = wheel
+                .contact()
+                .evaluate(&input, wheel_state, wheel_cache, evaluation)
+                .map_err(|e| wheel.describe(e))?;
             let warning = output.patches.iter().find_map(|patch| unconverged_warning(&patch.output));
             let wheel_outputs = WheelOutputs::of(&output);
             Ok((outputs(&SceneOutput::default(), &wheel_outputs), (scene_state.clone(), next_state), warning))

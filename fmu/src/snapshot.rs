@@ -34,13 +34,14 @@ use serde::{Deserialize, Serialize};
 
 use crate::mode::Mode;
 use crate::model_description::{Causality, Strings, Values, GUID, STATE_LAYOUT_TAG, VARIABLES};
+use crate::profiles::ProfileDigest;
 use wheel_rail_contact::geometry::WheelState;
 use wheel_rail_contact::scene::SceneState;
 
 /// First bytes of every serialized state of this FMU.
 pub const MAGIC: [u8; 8] = *b"WRCstate";
 /// The layout of the header and payload described in the module documentation.
-pub const FORMAT_VERSION: u16 = 4;
+pub const FORMAT_VERSION: u16 = 5;
 
 /// Everything an instance computes with: what an FMU state holds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -62,6 +63,10 @@ pub struct Snapshot {
     /// The wheel's state with `contact_geometry = profiles`: each patch's scene state and where
     /// it was on the rail ([`WheelState`]).
     pub wheel: WheelState,
+    /// The digest of the profiles the outputs were computed with (`contact_geometry =
+    /// profiles`, once evaluated): restored where a profile file's content has since changed,
+    /// the state is refused at the next evaluation rather than continued with other profiles.
+    pub profiles: Option<ProfileDigest>,
 }
 
 impl Snapshot {
@@ -75,6 +80,7 @@ impl Snapshot {
             strings: Strings::default(),
             scene: SceneState::default(),
             wheel: WheelState::default(),
+            profiles: None,
         }
     }
 }
@@ -239,7 +245,7 @@ mod tests {
         );
         let mut version = bytes.clone();
         version[8] = 2;
-        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 4");
+        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 5");
         let mut layout = bytes.clone();
         layout[10] ^= 1;
         let error = decode(&layout).unwrap_err();

@@ -17,7 +17,7 @@ use wheel_rail_contact_fmu::ffi::{
 };
 use wheel_rail_contact_fmu::fmi2::fmi2Status;
 use wheel_rail_contact_fmu::model_description::{
-    value_reference as vr, variable, ContactGeometry, WheelSide as SideChoice,
+    value_reference as vr, variable, ContactGeometry, Model, VerticalContact as VerticalChoice, WheelSide as SideChoice,
 };
 
 /// The wheelset's inputs, in this order.
@@ -309,9 +309,9 @@ fn the_left_wheel_is_the_right_one_mirrored() {
     let mut signs = vec![1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, 1.0];
     signs.extend(patch);
     signs.extend(patch);
-    // The cant turns each rail towards the track's centre, mirrored on the left (here −0.01 rad:
-    // less inclined than the built-in 1:40, which +0.02 would turn past the vertical on its gauge side).
-    for (lateral, cant) in [(5e-3, 0.0), (-2e-3, 0.0), (7e-3, 0.0), (3e-3, -0.01)] {
+    // The cant turns each rail towards the track's centre, mirrored on the left (here −0.01 rad,
+    // less inclined than the built-in 1:40, and +0.05, which drops the lower gauge-side flank).
+    for (lateral, cant) in [(5e-3, 0.0), (-2e-3, 0.0), (7e-3, 0.0), (3e-3, -0.01), (4e-3, 0.05)] {
         let mut right_inputs = CASE_11;
         right_inputs[0] = lateral;
         let left_inputs: [f64; 9] = std::array::from_fn(|i| right_inputs[i] * mirror[i]);
@@ -362,6 +362,21 @@ fn a_rail_cant_beyond_its_range_is_an_error_naming_it() {
     assert_eq!(exit_initialisation(&fmu), ERROR);
     let (_, message) = log.last().unwrap();
     assert!(message.starts_with("fmi2ExitInitializationMode: rail_cant = 0.2"), "{message}");
+    // Defect 10 of the review: the documented ±0.1 rad was mostly refused on the built-in rail
+    // (1:40 = 0.025 "turns a flank … past the vertical"). Every cant of the range places it and
+    // steps: first the same instance, corrected, then fresh ones.
+    assert_eq!(fmu.set_real(&[vr::RAIL_CANT], &[0.025]), OK);
+    // SAFETY: a live instance, still in initialisation mode.
+    assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, OK, "{:?}", log.last());
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK, "{:?}", log.last());
+    for cant in [0.1, -0.1, 0.05] {
+        let fmu = Fmu::instantiate_logged("cant", &log);
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+        assert_eq!(fmu.set_real(&[vr::RAIL_CANT], &[cant]), OK);
+        assert_eq!(exit_initialisation(&fmu), OK, "rail_cant {cant}: {:?}", log.last());
+        assert_eq!(fmu.do_step(0.0, 1e-3), OK, "rail_cant {cant}: {:?}", log.last());
+        assert_eq!(fmu.get_real(&[vr::CONTACT_PATCH_COUNT])[0], 1.0, "rail_cant {cant}");
+    }
 }
 
 #[test]
@@ -390,4 +405,138 @@ fn the_patch_count_and_patch_one_follow_the_load_and_are_declared_to() {
             assert!(declared.dependencies.contains(&input), "{} must list {input}", declared.name);
         }
     }
+}
+
+/// One instance with profiles and `model`, stepping at 10 kN (default inputs) as y_ws changes:
+/// each step's status, patch count and vertical force.
+struct Sweep {
+    fmu: Fmu,
+    /// Boxed: the FMU's logger keeps its address.
+    log: Box<MessageLog>,
+    time: std::cell::Cell<f64>,
+}
+
+impl Sweep {
+    fn new(model: i32) -> Sweep {
+        let log = Box::new(MessageLog::default());
+        let fmu = Fmu::instantiate_logged("balance", &log);
+        let integers = [ContactGeometry::Profiles as i32, model];
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::CREEP_FORCE_MODEL], &integers), OK);
+        fmu.initialise(0.0);
+        Sweep { fmu, log, time: std::cell::Cell::new(0.0) }
+    }
+
+    fn at(&self, lateral: f64) -> (fmi2Status, f64, f64) {
+        assert_eq!(self.fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[lateral]), OK);
+        let status = self.fmu.do_step(self.time.get(), 1e-3);
+        if status == OK {
+            self.time.set(self.time.get() + 1e-3);
+        }
+        let [count, force] = self.fmu.get_real(&[vr::CONTACT_PATCH_COUNT, vr::TRACK_FORCE_Z])[..] else {
+            unreachable!()
+        };
+        (status, count, force)
+    }
+}
+
+#[test]
+fn the_vertical_balance_settles_where_tread_and_flange_patches_join() {
+    // The review's defect 7: at 10 kN the balance "did not settle in 12 rounds" in a window
+    // some 1e-15 m wide near y_ws = −0.24798 mm (SHE, FASTSIM, exact_table), where two
+    // patches join and the carried force jumps, so no height carries the load exactly. Found
+    // here as the patch count's change (bisected to adjacent floats), then stepped through
+    // ±4e-15 m around it every 2e-17 m: every step settles, within 1 % of the load (the jump's
+    // side that carries it more closely), and exactly (1e-9) outside the jump.
+    let mut worst = 0.0f64;
+    let mut boundaries = 0;
+    for model in [Model::ShenHedrickElkins, Model::Fastsim, Model::ExactTable, Model::Polach] {
+        let sweep = Sweep::new(model as i32);
+        let mut previous = None;
+        for k in 0..=100 {
+            let lateral = -0.3e-3 + f64::from(k) * 1e-6;
+            let (status, count, _) = sweep.at(lateral);
+            assert_eq!(status, OK, "{model:?} at {lateral}: {:?}", sweep.log.last());
+            let Some((before, before_count)) = previous.replace((lateral, count)) else { continue };
+            if before_count == count {
+                continue;
+            }
+            let (mut low, mut high) = (before, lateral);
+            while let Some(middle) = Some(0.5 * (low + high)).filter(|&m| m > low && m < high) {
+                if sweep.at(middle).1 == before_count {
+                    low = middle;
+                } else {
+                    high = middle;
+                }
+            }
+            boundaries += 1;
+            for step in -200..=200 {
+                let lateral = high + f64::from(step) * 2e-17;
+                let (status, _, force) = sweep.at(lateral);
+                assert_eq!(status, OK, "{model:?} at y_ws = {lateral:e}: {:?}", sweep.log.last());
+                let miss = (force + 10e3).abs() / 10e3;
+                worst = worst.max(miss);
+                assert!(miss < 0.01, "{model:?} at y_ws = {lateral:e}: F_z = {force}");
+            }
+        }
+    }
+    eprintln!("WORST {worst} over {boundaries} boundaries");
+    assert!(boundaries >= 3, "the joins of tread and flange patches were not found");
+}
+
+#[test]
+fn tiny_loads_settle() {
+    // Defect 7: 0 < vertical_force ≲ 2e-3 N "did not settle in 12 rounds" for every model (the
+    // balance's tolerance, 1e-10 of the load, finer than a penetration of nanometres resolves).
+    for model in [Model::Polach, Model::ShenHedrickElkins, Model::Fastsim, Model::ExactTable, Model::KalkerLinear] {
+        let sweep = Sweep::new(model as i32);
+        for (k, load) in [1e-6, 1e-4, 1e-3, 2e-3, 0.1, 1.0, 1e3].into_iter().enumerate() {
+            assert_eq!(sweep.fmu.set_real(&[vr::VERTICAL_FORCE], &[load]), OK);
+            let (status, count, force) = sweep.at(2e-3 * (k as f64 - 3.0));
+            assert_eq!(status, OK, "{model:?}, {load} N: {:?}", sweep.log.last());
+            assert!(count >= 1.0);
+            assert!((force + load).abs() <= 1e-6 * load, "{model:?}, {load} N: F_z = {force}");
+        }
+    }
+}
+
+#[test]
+fn a_huge_lateral_displacement_is_a_clean_error() {
+    // Defect 2: y_ws ≥ 2e15 m (|yaw| ≤ 0.025) panicked in the contact table (an index sum
+    // wrapped): fmi2Fatal and a Rust panic report on the host's stderr.
+    let sweep = Sweep::new(Model::Polach as i32);
+    for lateral in [2e15, 1e16, 1.8e19, 1e300, f64::MAX, -2e15, -f64::MAX] {
+        for yaw in [0.0, 0.02] {
+            assert_eq!(sweep.fmu.set_real(&[vr::WHEELSET_YAW_ANGLE], &[yaw]), OK);
+            let (status, _, _) = sweep.at(lateral);
+            assert_eq!(status, ERROR, "y_ws = {lateral}");
+            let (_, message) = sweep.log.last().unwrap();
+            assert!(message.contains("do not overlap laterally at wheelset_lateral_displacement"), "{message}");
+        }
+    }
+    assert_eq!(sweep.fmu.set_real(&[vr::WHEELSET_YAW_ANGLE], &[0.0]), OK);
+    assert_eq!(sweep.at(1e-3).0, OK, "the instance carries on");
+}
+
+#[test]
+fn a_prescribed_position_inside_the_rail_is_refused() {
+    // Defect 11: z_ws = 1e6 m gave N = 1.4e20 N and 1.2 km semi-axes with fmi2OK; z_ws = 1e300
+    // blamed normal_force, an input profile mode does not read.
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("position", &log);
+    let integers = [ContactGeometry::Profiles as i32, VerticalChoice::PrescribedPosition as i32];
+    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::VERTICAL_CONTACT], &integers), OK);
+    fmu.initialise(0.0);
+    for vertical in [1e6, 1e300, f64::MAX, 0.2] {
+        assert_eq!(fmu.set_real(&[vr::WHEELSET_VERTICAL_POSITION], &[vertical]), OK);
+        assert_eq!(fmu.do_step(0.0, 1e-3), ERROR, "z_ws = {vertical}");
+        let (_, message) = log.last().unwrap();
+        assert!(
+            message.starts_with(&format!("fmi2DoStep: wheelset_vertical_position = {vertical} m puts the wheel"))
+                && message.contains("more than 0.1 m of penetration"),
+            "{message}"
+        );
+    }
+    // The instance carries on at a real height.
+    assert_eq!(fmu.set_real(&[vr::WHEELSET_VERTICAL_POSITION], &[0.0]), OK);
+    assert_eq!(fmu.do_step(0.0, 1e-3), OK, "{:?}", log.last());
 }

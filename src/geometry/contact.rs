@@ -335,17 +335,15 @@ impl WheelOnRail {
         if !(-0.1..=0.1).contains(&dimensions.rail_cant) {
             return Err(ProfileError::whole(format!("rail_cant = {} rad must be within ±0.1", dimensions.rail_cant)));
         }
+        wheel.check_extent("wheel")?;
+        rail.check_extent("rail")?;
         // The cant turns the rail towards the track's centre (for the right rail, the field
         // side up: −cant about x), about its profile's origin, as CONTACT's CANT.
         let rail = if dimensions.rail_cant == 0.0 {
             rail
         } else {
-            rail.rotated(-dimensions.rail_cant).map_err(|_| {
-                ProfileError::whole(format!(
-                    "rail_cant = {} rad turns a flank of the rail profile past the vertical",
-                    dimensions.rail_cant
-                ))
-            })?
+            rail.rotated(-dimensions.rail_cant)
+                .map_err(|e| ProfileError::whole(format!("rail_cant = {} rad: {e}", dimensions.rail_cant)))?
         };
         let (gauge_face, top) = gauge_face(&rail, dimensions.gauge_measuring_height)?;
         let mut placed = Self {
@@ -857,7 +855,8 @@ impl ContactTable {
         let row = (key + TABLE_REACH_LATERAL) / TABLE_STEP;
         let column = (roll + TABLE_ROLL_REACH) / TABLE_ROLL_STEP;
         let rows = self.minima.first().map_or(0, Vec::len);
-        let inside = row >= reach as f64 && (row as usize) + 1 + reach < rows;
+        // In floating point: an index sum in usize would wrap for a huge key (y_ws ≥ 2e15 m).
+        let inside = row >= reach as f64 && row.floor() + 1.0 + (reach as f64) < rows as f64;
         // (NaN fails `inside` and the column's range.)
         if !inside || !(0.0..self.minima.len().saturating_sub(1) as f64).contains(&column) {
             return None;

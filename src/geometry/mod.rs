@@ -73,8 +73,10 @@ pub mod wheel_forces;
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};
 pub use contact::{ContactPatch, ContactPoint, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
-pub use normal_problem::ContactCandidates;
-pub use profile_file::{parse_profile, ProfileError, ProfileFormat, ProfilePoints};
+pub use normal_problem::{ContactCandidates, MAX_PENETRATION};
+pub use profile_file::{
+    parse_profile, parse_profile_as, ProfileError, ProfileFormat, ProfileKind, ProfilePoints, MAX_COORDINATE,
+};
 pub use smooth_profile::{ProfilePoint, SmoothProfile};
 pub use wheel_forces::{
     PatchForces, PatchState, VerticalContact, WheelCache, WheelContactError, WheelInput, WheelOutput, WheelRailContact,

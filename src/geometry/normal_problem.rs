@@ -19,6 +19,10 @@ use std::cell::{Cell, OnceCell};
 use super::hertz_table::unit_solution;
 use crate::scene::hertz::{HertzContact, RelativeCurvature};
 
+/// The deepest the wheel may be pushed into the rail \[m\], at a prescribed position or to
+/// carry a prescribed force: real contacts penetrate by micrometres to a tenth of a millimetre.
+pub const MAX_PENETRATION: f64 = 0.1;
+
 /// A candidate contact point (right side) with Hertz's solution under 1 N at its curvatures,
 /// solved when the candidate is first loaded (most candidates never are), or why Hertz does not
 /// apply there (an error only once the candidate is loaded).
@@ -102,7 +106,18 @@ impl ContactCandidates {
     }
 
     /// The loaded patches at the wheelset's vertical position z_ws (module doc), tread first.
+    /// A z_ws more than [`MAX_PENETRATION`] below the touch is refused: the wheel would be
+    /// inside the rail, where no contact law holds (and Hertz's load, ∝ δ^{3/2}, overflows).
     pub fn patches_at(&self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
+        let depth = vertical - self.touch();
+        // (NaN, from a NaN height, is refused too.)
+        if !(..=MAX_PENETRATION).contains(&depth) {
+            return Err(ProfileError::whole(format!(
+                "wheelset_vertical_position = {vertical} m puts the wheel {depth:e} m into the rail (it touches at \
+                 {} m): more than {MAX_PENETRATION} m of penetration is a wheel inside its rail, not a contact",
+                self.touch()
+            )));
+        }
         Ok(self.side.mirror_patches(self.right_patches(vertical)?))
     }
 
@@ -233,27 +248,31 @@ impl ContactCandidates {
             low = high;
             high = touch + 2.0 * (high - touch);
             // (NaN, without any candidate, stops here too.)
-            if !(..=0.1).contains(&(high - touch)) {
+            if !(..=MAX_PENETRATION).contains(&(high - touch)) {
                 return Err(ProfileError::whole(format!(
-                    "vertical_force = {vertical_force} N is not carried within 0.1 m of penetration"
+                    "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
                 )));
             }
         }
         // Newton's method inside the bracket, bisection where a step would leave it (joining
-        // patches make the carried force jump).
+        // patches make the carried force jump); until the force is met to 1e-12 or the bracket
+        // is 1e-12 of the penetration — relative, so that a load of millinewtons, a penetration
+        // of nanometres, is solved as finely as 100 kN — or can be halved no more.
         let mut z = high;
-        while high - low > 1e-13 {
+        loop {
             let (force, rate) = carried(z)?;
             if force < vertical_force {
                 low = z;
             } else {
                 high = z;
             }
-            if (force - vertical_force).abs() <= 1e-12 * vertical_force {
+            let middle = 0.5 * (low + high);
+            let resolved = high - low <= 1e-12 * (high - touch) || middle <= low || middle >= high;
+            if (force - vertical_force).abs() <= 1e-12 * vertical_force || resolved {
                 break;
             }
             let newton = z - (force - vertical_force) / rate;
-            z = if newton > low && newton < high { newton } else { 0.5 * (low + high) };
+            z = if newton > low && newton < high { newton } else { middle };
         }
         Ok((z, self.patches_at(z)?))
     }

@@ -76,6 +76,48 @@ impl fmt::Display for ProfileError {
 
 impl std::error::Error for ProfileError {}
 
+/// Which body a profile describes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProfileKind {
+    Wheel,
+    Rail,
+}
+
+impl ProfileKind {
+    /// The kind a file's extension names (case-insensitive): `.prw`, `.whl` a wheel; `.prr`,
+    /// `.ban` a rail; `None` for any other.
+    pub fn from_file_name(name: &str) -> Option<Self> {
+        let extension = name.rsplit_once('.')?.1.to_ascii_lowercase();
+        match extension.as_str() {
+            "prw" | "whl" => Some(Self::Wheel),
+            "prr" | "ban" => Some(Self::Rail),
+            _ => None,
+        }
+    }
+
+    /// "wheel" or "rail".
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Wheel => "wheel",
+            Self::Rail => "rail",
+        }
+    }
+
+    /// SIMPACK's header `type`: 0 a rail profile, 1 a wheel profile.
+    fn simpack_type(self) -> i64 {
+        match self {
+            Self::Wheel => 1,
+            Self::Rail => 0,
+        }
+    }
+}
+
+/// How far from its origin a profile point may lie \[m\]: a wheel or rail profile spans some
+/// 0.15 m (a whole rail with its foot 0.17 m), so a point 1 m away is a mistyped number or a
+/// length unit off by a factor of a thousand, and reading it would size the contact search's
+/// samples by it.
+pub const MAX_COORDINATE: f64 = 1.0;
+
 /// A profile's points \[m\]: y lateral, z downward, y strictly increasing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProfilePoints {
@@ -107,7 +149,31 @@ const MIN_POINTS: usize = 4;
 /// ```
 pub fn parse_profile(text: &str, format: ProfileFormat) -> Result<ProfilePoints, ProfileError> {
     match format {
-        ProfileFormat::Simpack => parse_simpack(text),
+        ProfileFormat::Simpack => parse_simpack(text, None),
+        ProfileFormat::MiniProf => parse_miniprof(text),
+    }
+}
+
+/// [`parse_profile`] of a file that must describe `kind`: a SIMPACK file's header `type`
+/// (0 rail, 1 wheel), where it has one, must agree (MiniProf files say it by their extension
+/// alone, [`ProfileKind::from_file_name`]).
+///
+/// ```
+/// use wheel_rail_contact::geometry::{parse_profile_as, ProfileFormat, ProfileKind};
+///
+/// // The kind by the extension: a wheel's `.prw`/`.whl`, a rail's `.prr`/`.ban`.
+/// assert_eq!(ProfileKind::from_file_name("worn.WHL"), Some(ProfileKind::Wheel));
+/// assert_eq!(ProfileKind::from_file_name("high_rail.ban").map(ProfileKind::name), Some("rail"));
+/// assert_eq!(ProfileKind::from_file_name("rail.csv"), None);
+/// let wheel = "header.begin\n type = 1 ! wheel\nheader.end\nunits.len.f = 1000\n\
+///              point.begin\n-20 1\n-10 0\n0 0\n10 0.5\n20 1\npoint.end\n";
+/// assert!(parse_profile_as(wheel, ProfileFormat::Simpack, ProfileKind::Wheel).is_ok());
+/// let error = parse_profile_as(wheel, ProfileFormat::Simpack, ProfileKind::Rail).unwrap_err();
+/// assert_eq!(error.to_string(), "line 2: the header's `type = 1` says a wheel profile, not a rail profile");
+/// ```
+pub fn parse_profile_as(text: &str, format: ProfileFormat, kind: ProfileKind) -> Result<ProfilePoints, ProfileError> {
+    match format {
+        ProfileFormat::Simpack => parse_simpack(text, Some(kind)),
         ProfileFormat::MiniProf => parse_miniprof(text),
     }
 }
@@ -149,10 +215,11 @@ impl Default for SimpackOptions {
     }
 }
 
-fn parse_simpack(text: &str) -> Result<ProfilePoints, ProfileError> {
+fn parse_simpack(text: &str, kind: Option<ProfileKind>) -> Result<ProfilePoints, ProfileError> {
     let mut options = SimpackOptions::default();
     let mut points = Vec::new();
     let mut in_points = false;
+    let mut in_header = false;
     let mut seen_points = false;
     for (index, raw_line) in text.lines().enumerate() {
         let line = index + 1;
@@ -170,12 +237,27 @@ fn parse_simpack(text: &str) -> Result<ProfilePoints, ProfileError> {
                 in_points = false;
                 continue;
             }
+            "header.begin" => {
+                in_header = true;
+                continue;
+            }
+            "header.end" => {
+                in_header = false;
+                continue;
+            }
             _ => {}
         }
         if in_points {
             points.push(parse_point(content, line, (0, 1))?);
         } else if let Some((key, value)) = content.split_once('=') {
-            apply_simpack_option(&mut options, key.trim(), value.trim(), line)?;
+            let (key, value) = (key.trim(), value.trim());
+            // The header's `type` says wheel or rail (the spline block's `type` is the original
+            // data file's, another thing).
+            if in_header && key == "type" {
+                check_simpack_type(value, kind, line)?;
+            } else {
+                apply_simpack_option(&mut options, key, value, line)?;
+            }
         }
     }
     if !seen_points {
@@ -185,7 +267,34 @@ fn parse_simpack(text: &str) -> Result<ProfilePoints, ProfileError> {
         return Err(ProfileError::at(text.lines().count(), "`point.begin` without `point.end`"));
     }
     let points = process_simpack(points, &options);
-    finish(points)
+    let units = format!(" (units.len.f = {} file units per metre: millimetres need 1000)", options.length_per_metre);
+    finish(points, &units)
+}
+
+/// A SIMPACK header's `type` against the kind the file is read as.
+fn check_simpack_type(value: &str, kind: Option<ProfileKind>, line: usize) -> Result<(), ProfileError> {
+    let declared = match value.parse::<i64>() {
+        Ok(0) => ProfileKind::Rail,
+        Ok(1) => ProfileKind::Wheel,
+        _ => {
+            return Err(ProfileError::at(
+                line,
+                format!("the header's `type` must be 0 (rail) or 1 (wheel), found `{value}`"),
+            ))
+        }
+    };
+    match kind {
+        Some(kind) if kind != declared => Err(ProfileError::at(
+            line,
+            format!(
+                "the header's `type = {}` says a {} profile, not a {} profile",
+                declared.simpack_type(),
+                declared.name(),
+                kind.name()
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
 
 fn apply_simpack_option(options: &mut SimpackOptions, key: &str, value: &str, line: usize) -> Result<(), ProfileError> {
@@ -283,7 +392,7 @@ fn parse_miniprof(text: &str) -> Result<ProfilePoints, ProfileError> {
         point.z *= 1e-3;
         points.push(point);
     }
-    finish(points)
+    finish(points, " (MiniProf files are in millimetres)")
 }
 
 /// The positions of the X (lateral) and Y (vertical) columns in a MiniProf `ColumnDef`.
@@ -315,8 +424,20 @@ fn parse_point(content: &str, line: usize, columns: (usize, usize)) -> Result<Ra
     Ok(RawPoint { y: value(columns.0)?, z: value(columns.1)?, line })
 }
 
-/// Orders the points by increasing y and checks that y is strictly monotonic.
-fn finish(mut points: Vec<RawPoint>) -> Result<ProfilePoints, ProfileError> {
+/// Checks that every point lies within [`MAX_COORDINATE`] of the origin (`units` says how the
+/// file's lengths were read, for the message), orders the points by increasing y and checks
+/// that y is strictly monotonic.
+fn finish(mut points: Vec<RawPoint>, units: &str) -> Result<ProfilePoints, ProfileError> {
+    if let Some(far) = points.iter().find(|p| p.y.abs().max(p.z.abs()) > MAX_COORDINATE) {
+        return Err(ProfileError::at(
+            far.line,
+            format!(
+                "the point (y, z) = ({:e}, {:e}) m lies more than {MAX_COORDINATE} m from the profile's origin: not a \
+                 wheel or rail profile in these units{units}",
+                far.y, far.z
+            ),
+        ));
+    }
     if points.len() < MIN_POINTS {
         return Err(ProfileError::whole(format!(
             "{} profile points; a profile needs at least {MIN_POINTS}",

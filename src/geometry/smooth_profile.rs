@@ -24,6 +24,13 @@
 
 use super::profile_file::{ProfileError, ProfilePoints};
 
+/// The narrowest and widest profile placed \[m\]: a wheel's or a rail head's running surface
+/// is 60–150 mm wide; a profile outside these bounds is in other units, or not a profile.
+pub const PROFILE_WIDTH: (f64, f64) = (0.01, 0.5);
+/// The tallest profile placed \[m\]: a whole rail with its foot is 0.17 m tall, a wheel profile
+/// with its flange some 0.04 m.
+pub const PROFILE_HEIGHT: f64 = 0.25;
+
 /// One coordinate's cubic spline on the shared knots: values and second derivatives at the knots.
 #[derive(Debug, Clone)]
 struct CubicSpline {
@@ -102,6 +109,16 @@ pub struct ProfilePoint {
 /// assert!((point.slope_angle - (y / root).atan()).abs() < 1e-7);
 /// assert!((point.curvature * radius - 1.0).abs() < 1e-4);
 /// assert!(crown.at_lateral(0.031).is_none(), "outside the profile");
+/// // 60 mm wide, 1.5 mm from its top to its ends: a rail's size.
+/// let (top, ends) = crown.vertical_range();
+/// assert_eq!(top, 0.0);
+/// assert!((ends - (radius - (radius * radius - 0.03f64 * 0.03).sqrt())).abs() < 1e-15);
+/// assert!(crown.check_extent("rail").is_ok());
+/// // The same points read in metres as if they were millimetres: 60 µm wide.
+/// let tiny: Vec<f64> = (-60..=60).map(|i| f64::from(i) * 0.5e-6).collect();
+/// let tiny = SmoothProfile::new(&ProfilePoints { vertical: vec![0.0; tiny.len()], lateral: tiny }).unwrap();
+/// let error = tiny.check_extent("rail").unwrap_err();
+/// assert!(error.reason.starts_with("the rail profile is 0.060000 mm wide"), "{error}");
 /// // Along the profile: its length is the chord polygon's (2R·asin(0.1) less a little).
 /// let arc = 2.0 * radius * (0.03 / radius).asin();
 /// assert!(crown.length() < arc && crown.length() > arc - 1e-8);
@@ -143,8 +160,13 @@ impl SmoothProfile {
 
     /// The profile turned by `angle` \[rad\] about its origin, about the x axis: (y, z) →
     /// (y cos α − z sin α, y sin α + z cos α). Exact: the splines are linear in their knot
-    /// values, and a rotation keeps the chord lengths. The turned points must keep y strictly
-    /// increasing (a flank turned past the vertical is an error).
+    /// values, and a rotation keeps the chord lengths.
+    ///
+    /// A flank turned past the vertical (a rail head's steep side, canted further) would make
+    /// y turn back: the profile then keeps its running surface, the knots on either side of the
+    /// highest point (least z) as far as y still increases, and drops the flanks' lower parts
+    /// beyond, which no wheel reaches (the same piecewise cubics on the knots kept). It is an
+    /// error only if fewer than four knots remain.
     pub fn rotated(&self, angle: f64) -> Result<Self, ProfileError> {
         let (sin, cos) = angle.sin_cos();
         let turn = |y: &[f64], z: &[f64]| -> (Vec<f64>, Vec<f64>) {
@@ -152,16 +174,73 @@ impl SmoothProfile {
         };
         let (lateral, vertical) = turn(&self.lateral.values, &self.vertical.values);
         let (lateral_second, vertical_second) = turn(&self.lateral.second, &self.vertical.second);
-        if lateral.windows(2).any(|w| w[1] <= w[0]) {
+        let top = vertical.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).map_or(0, |(i, _)| i);
+        let mut first = top;
+        while first > 0 && lateral[first - 1] < lateral[first] {
+            first -= 1;
+        }
+        let mut last = top;
+        while last + 1 < lateral.len() && lateral[last + 1] > lateral[last] {
+            last += 1;
+        }
+        if last - first + 1 < 4 {
             return Err(ProfileError::whole(format!(
-                "the profile turned by {angle} rad has a flank past the vertical (y no longer increases)"
+                "the profile turned by {angle} rad keeps {} points around its top before a flank turns past the \
+                 vertical (y no longer increases); a profile needs at least 4",
+                last - first + 1
             )));
         }
+        let kept = first..=last;
+        // The chord length is measured from the first knot kept.
+        let start = self.knots[first];
         Ok(Self {
-            knots: self.knots.clone(),
-            lateral: CubicSpline { values: lateral, second: lateral_second },
-            vertical: CubicSpline { values: vertical, second: vertical_second },
+            knots: self.knots[kept.clone()].iter().map(|knot| knot - start).collect(),
+            lateral: CubicSpline {
+                values: lateral[kept.clone()].to_vec(),
+                second: lateral_second[kept.clone()].to_vec(),
+            },
+            vertical: CubicSpline { values: vertical[kept.clone()].to_vec(), second: vertical_second[kept].to_vec() },
         })
+    }
+
+    /// The profile's extent checked against [`PROFILE_WIDTH`] and [`PROFILE_HEIGHT`] (`name`:
+    /// "wheel" or "rail", for the message); [`WheelOnRail::new`](super::WheelOnRail::new)
+    /// checks both profiles so. Besides the user's mistakes it catches (a length unit, a spike),
+    /// it bounds what the placement allocates: the contact search samples the profiles every
+    /// 0.025 mm over their width.
+    pub fn check_extent(&self, name: &str) -> Result<(), ProfileError> {
+        let (first, last) = self.lateral_range();
+        let (top, bottom) = self.vertical_range();
+        let (width, height) = (last - first, bottom - top);
+        let (narrowest, widest) = PROFILE_WIDTH;
+        if !(narrowest..=widest).contains(&width) {
+            return Err(ProfileError::whole(format!(
+                "the {name} profile is {:.6} mm wide (y from {:.6} to {:.6} mm): a wheel or rail profile is {} to {} mm \
+                 wide (are its lengths in the units the file declares?)",
+                width * 1e3,
+                first * 1e3,
+                last * 1e3,
+                narrowest * 1e3,
+                widest * 1e3
+            )));
+        }
+        if !(..=PROFILE_HEIGHT).contains(&height) {
+            return Err(ProfileError::whole(format!(
+                "the {name} profile is {:.6} mm tall (z from {:.6} to {:.6} mm): a wheel or rail profile is at most {} mm \
+                 tall (a spike, or a mistyped point?)",
+                height * 1e3,
+                top * 1e3,
+                bottom * 1e3,
+                PROFILE_HEIGHT * 1e3
+            )));
+        }
+        Ok(())
+    }
+
+    /// The profile's lowest and highest z at its points \[m\] (z downward: its top first).
+    pub fn vertical_range(&self) -> (f64, f64) {
+        let values = &self.vertical.values;
+        (values.iter().copied().fold(f64::INFINITY, f64::min), values.iter().copied().fold(f64::NEG_INFINITY, f64::max))
     }
 
     /// The profile's lateral extent \[m\]: its first and last point's y.

@@ -34,6 +34,7 @@
 use std::fmt;
 
 use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
+use super::normal_problem::ContactCandidates;
 use super::profile_file::ProfileError;
 use crate::scene::hertz::HertzContact;
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
@@ -323,6 +324,13 @@ impl WheelRailContact {
     /// and 0.1 on the flange. From the second round on, the next z_ws is the secant step on
     /// G(z) − z through the last two rounds (superlinear; the first is Aitken's Δ²), where it
     /// keeps the same patches and moves no further than a plain round would by much.
+    ///
+    /// Settled when the patches carry the force within [`BALANCE_TOLERANCE`], or when a round
+    /// moves z_ws by no more than its rounding (a load of millinewtons penetrates nanometres,
+    /// which z_ws resolves to some 1e-10 of the load). Where the rounds do not settle — G jumps
+    /// where two patches join or part, and the fixed point can lie in the jump — a bisection on
+    /// G(z) − z between rounds of opposite sign closes in on it, and the side that carries the
+    /// force more closely is the answer.
     fn balance_vertical_force(
         &self,
         force: f64,
@@ -335,32 +343,36 @@ impl WheelRailContact {
         // The first round without creep forces: each patch's share is cos δ.
         let (mut vertical, mut patches) =
             candidates.patches_for_force(force, |point| point.contact_angle_sin_cos().1)?;
+        let touch = candidates.touch();
+        // What z_ws resolves near here: a few of its ulps.
+        let resolution = |z: f64| 4.0 * f64::EPSILON * z.abs().max(touch.abs());
         // Each round's model memory starts the next round's (the exact theory's warm start: the
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
         // The last round's z_ws and its residual G(z_ws) − z_ws.
         let mut last: Option<(f64, f64)> = None;
+        // The rounds' z_ws with a residual ≥ 0 and < 0, closest to each other: the bracket.
+        let (mut below, mut above): (Option<f64>, Option<f64>) = (None, None);
         for _ in 0..VERTICAL_ROUNDS {
-            let position = WheelsetPosition { vertical, ..input.position };
-            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
+            let round = self.round(&candidates, force, input, vertical, &patches, state, &hints, cache, evaluation)?;
+            let Round { forces, states, carried, next } = round;
             // Settled when the rail carries F_z through these normal and creep forces.
-            let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
             if forces.is_empty() || (carried - force).abs() <= BALANCE_TOLERANCE * force {
                 return Ok((vertical, forces, states));
             }
-            let share = |point: &ContactPoint| {
-                let (sin, cos) = point.contact_angle_sin_cos();
-                let traction = forces
-                    .iter()
-                    .find(|p| p.patch.point.track_lateral == point.track_lateral)
-                    .map_or(0.0, |p| p.output.force_lateral / p.patch.normal_force);
-                cos - traction * sin
-            };
-            let (next, next_patches) = candidates.patches_for_force_near(force, share, Some(vertical))?;
-            hints = states;
+            let (next, next_patches) = next;
             // The secant step on the round's residual r(z) = G(z) − z through this round and the
             // last: the root of the line through them (from a plain round's two, Aitken's Δ²).
             let residual = next - vertical;
+            if residual.abs() <= resolution(vertical) {
+                return Ok((vertical, forces, states));
+            }
+            hints = states;
+            if residual >= 0.0 {
+                below = Some(below.map_or(vertical, |b: f64| b.max(vertical)));
+            } else {
+                above = Some(above.map_or(vertical, |a: f64| a.min(vertical)));
+            }
             let same = |patches: &[ContactPatch]| patches.len() == next_patches.len();
             let secant = last
                 .and_then(|last| secant_root(last, (vertical, residual)))
@@ -368,11 +380,76 @@ impl WheelRailContact {
             last = Some((vertical, residual));
             (vertical, patches) = secant.unwrap_or((next, next_patches));
         }
-        Err(ProfileError::whole(format!(
-            "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
-             {VERTICAL_ROUNDS} rounds"
-        ))
-        .into())
+        let unsettled = || -> WheelContactError {
+            ProfileError::whole(format!(
+                "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
+                 {VERTICAL_ROUNDS} rounds"
+            ))
+            .into()
+        };
+        let (Some(mut low), Some(mut high)) = (below, above) else { return Err(unsettled()) };
+        if low > high {
+            // G(z) − z falls through zero between them (it rises with z nowhere a round saw).
+            return Err(unsettled());
+        }
+        // Bisection of r(z) = G(z) − z on [low, high] to z_ws's rounding (≤ 64 halvings), each
+        // end's round kept; the end whose patches carry the force more closely is the answer.
+        let mut best: Option<(f64, f64, Vec<PatchForces>, WheelState)> = None;
+        for _ in 0..64 {
+            let middle = 0.5 * (low + high);
+            if high - low <= resolution(middle) || middle <= low || middle >= high {
+                break;
+            }
+            let patches = candidates.patches_at(middle)?;
+            let round = self.round(&candidates, force, input, middle, &patches, state, &hints, cache, evaluation)?;
+            let miss = (round.carried - force).abs();
+            if round.forces.is_empty() || miss <= BALANCE_TOLERANCE * force {
+                return Ok((middle, round.forces, round.states));
+            }
+            if round.next.0 >= middle {
+                low = middle;
+            } else {
+                high = middle;
+            }
+            if best.as_ref().is_none_or(|(_, best_miss, _, _)| miss < *best_miss) {
+                best = Some((middle, miss, round.forces, round.states));
+            }
+        }
+        best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(unsettled)
+    }
+
+    /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep
+    /// forces, the force the rail carries through them, and the normal problem's z_ws (with its
+    /// patches) under the shares of these creep forces, G(z_ws).
+    #[allow(clippy::too_many_arguments)]
+    fn round(
+        &self,
+        candidates: &ContactCandidates,
+        force: f64,
+        input: &WheelInput,
+        vertical: f64,
+        patches: &[ContactPatch],
+        state: &WheelState,
+        hints: &WheelState,
+        cache: &mut WheelCache,
+        evaluation: Evaluation,
+    ) -> Result<Round, WheelContactError> {
+        let position = WheelsetPosition { vertical, ..input.position };
+        let (forces, states) = self.patch_forces(input, &position, patches, state, hints, cache, evaluation)?;
+        let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
+        if forces.is_empty() || (carried - force).abs() <= BALANCE_TOLERANCE * force {
+            return Ok(Round { forces, states, carried, next: (vertical, Vec::new()) });
+        }
+        let share = |point: &ContactPoint| {
+            let (sin, cos) = point.contact_angle_sin_cos();
+            let traction = forces
+                .iter()
+                .find(|p| p.patch.point.track_lateral == point.track_lateral)
+                .map_or(0.0, |p| p.output.force_lateral / p.patch.normal_force);
+            cos - traction * sin
+        };
+        let next = candidates.patches_for_force_near(force, share, Some(vertical))?;
+        Ok(Round { forces, states, carried, next })
     }
 
     /// Each patch's creep forces (module doc), with the state of the nearest last patch, its
@@ -427,6 +504,16 @@ fn scene_for_ellipse(scene: Scene, ellipse: &HertzContact) -> Scene {
         }
         _ => scene,
     }
+}
+
+/// One round of the vertical balance ([`WheelRailContact::round`]).
+struct Round {
+    forces: Vec<PatchForces>,
+    states: WheelState,
+    /// The vertical force the rail carries through `forces` \[N\].
+    carried: f64,
+    /// G(z_ws) and its patches (z_ws itself, no patches, when `forces` settle the balance).
+    next: (f64, Vec<ContactPatch>),
 }
 
 /// The secant step on a residual r(z): the root of the line through (z₀, r₀) and (z₁, r₁), if

@@ -37,6 +37,10 @@ impl Instance {
         if parameters_differ {
             self.model.parameters_changed();
         }
+        // A state computed with profiles of other content than the cache's (a file changed on
+        // disk since it was saved, here or in the process that serialized it) is not continued
+        // with the content read now: the next evaluation rereads the files and compares.
+        self.model.restored(state.0.profiles);
         Status::Ok
     }
 

@@ -22,6 +22,7 @@ impl Instance {
                 self.run.values.outputs = outputs;
                 self.run.scene = scene;
                 self.run.wheel = wheel;
+                self.run.profiles = self.model.profile_digest();
                 Ok(match warning {
                     Some(warning) => {
                         self.log.emit(Status::Warning, &format!("{call}: {warning}"));
