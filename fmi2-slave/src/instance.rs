@@ -24,6 +24,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use crate::logging::{LogFilter, LogSink, Logger, Status};
 use crate::mode::{Call, Mode, Modes, LIVE};
+use crate::state_format::StateFormat;
 use crate::variables::{Causality, Kind, Variability, Variable};
 use crate::{InstantiateArguments, Slave, StatusKind, Unsupported};
 
@@ -45,10 +46,22 @@ pub fn instantiate_problem(arguments: &InstantiateArguments, guid: &str, model_i
     }
 }
 
+/// The largest magnitude of an instance's time \[s\] (about 31 700 years): beyond it a step of
+/// a millisecond is below the resolution of the time (its ulp is 1.2e-4 s at 1e12 s), so a
+/// time of −1e300 would never advance.
+pub const MAX_TIME: f64 = 1e12;
+
+/// Why `time` (named `name`) cannot be an instance's time, if it cannot: not finite, or beyond
+/// ±[`MAX_TIME`].
+pub fn time_problem(name: &str, time: f64) -> Option<String> {
+    (!(-MAX_TIME..=MAX_TIME).contains(&time))
+        .then(|| format!("{name} = {time:e} is invalid: must be finite and within ±{MAX_TIME:e} s"))
+}
+
 /// fmi2SetupExperiment's times checked: why they are refused, if they are.
 pub fn experiment_problem(start_time: f64, stop_time: Option<f64>) -> Option<String> {
-    if !start_time.is_finite() {
-        return Some(format!("startTime = {start_time} is invalid: must be finite"));
+    if let Some(problem) = time_problem("startTime", start_time) {
+        return Some(problem);
     }
     stop_time
         .filter(|stop| stop.is_nan() || *stop < start_time)
@@ -67,9 +80,15 @@ pub fn step_end(time: f64, stop_time: Option<f64>, t: f64, h: f64) -> Result<f64
         return Err(format!("currentCommunicationPoint = {t} is not the instance's time {time}"));
     }
     let end = t + h;
-    if !end.is_finite() {
+    if !(-MAX_TIME..=MAX_TIME).contains(&end) {
         return Err(format!(
-            "the step would end at {end}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is not finite"
+            "the step would end at {end:e}: currentCommunicationPoint = {t:e} plus communicationStepSize = {h:e} is \
+             beyond ±{MAX_TIME:e} s"
+        ));
+    }
+    if end == t {
+        return Err(format!(
+            "communicationStepSize = {h:e} is below the resolution of the time {t:e}: the step would not advance it"
         ));
     }
     match stop_time.filter(|stop| end > stop + tolerance) {
@@ -120,9 +139,13 @@ pub trait Model: Clone + Default {
     const LOG_CATEGORIES: &'static [&'static str];
     /// Tags a serialized FMU state with the variable layout it was written with.
     const STATE_LAYOUT_TAG: u64;
+    /// The first bytes of this FMU's serialized states ([`crate::state_format`]).
+    const STATE_MAGIC: [u8; 8];
 
     /// The variable with this value reference.
     fn variable(value_reference: u32) -> Option<&'static Variable>;
+    /// Every variable, in the model description's order.
+    fn variables() -> &'static [Variable];
     fn real(&self, value_reference: u32) -> Option<f64>;
     fn real_mut(&mut self, value_reference: u32) -> Option<&mut f64>;
     /// Computes the outputs at the start (ExitInitializationMode; a read of an output in
@@ -136,7 +159,15 @@ pub trait Model: Clone + Default {
     fn to_bytes(&self) -> Vec<u8>;
     /// The inverse of [`Model::to_bytes`], checking every byte.
     fn from_bytes(bytes: &[u8]) -> Result<Self, String>;
+    /// Whether a deserialized model can be this FMU's in `mode` (its sense, after the bytes'
+    /// integrity is checked): what initialize checks of the parameters, what the state holds
+    /// (outputs, bounds). Inputs may hold any value, as after fmi2SetReal. The reason names the
+    /// variable and its value.
+    fn check_state(&self, mode: Mode) -> Result<(), String>;
 }
+
+/// The version of the generic instance's payload: mode, time, stop time, the model's bytes.
+const FORMAT_VERSION: u16 = 2;
 
 /// Mode, time and the model: what an FMU state saves and restores.
 #[derive(Debug, Clone, PartialEq)]
@@ -152,39 +183,45 @@ impl<M: Model> FmuState<M> {
         FmuState { mode: Mode::Instantiated, time: 0.0, stop_time: None, model: M::default() }
     }
 
-    /// Tag (8 bytes), mode (1), time (8), stop time (8, NaN for none), then the model's bytes;
-    /// little-endian.
+    /// The byte format of this FMU's serialized states (for tools and tests that read or forge
+    /// one: its payload is mode, time, stop time and the model's bytes, see `encode`).
+    pub fn format() -> StateFormat {
+        StateFormat { magic: M::STATE_MAGIC, version: FORMAT_VERSION, layout_tag: M::STATE_LAYOUT_TAG, guid: M::GUID }
+    }
+
+    /// The slave layer's header ([`crate::state_format`]) around: mode (1 byte), time (8), stop
+    /// time (8, NaN for none), then the model's bytes; little-endian.
     fn encode(&self) -> Vec<u8> {
-        let mut bytes = M::STATE_LAYOUT_TAG.to_le_bytes().to_vec();
-        bytes.push(self.mode as u8);
-        bytes.extend(self.time.to_le_bytes());
-        bytes.extend(self.stop_time.unwrap_or(f64::NAN).to_le_bytes());
-        bytes.extend(self.model.to_bytes());
-        bytes
+        let mut payload = vec![self.mode as u8];
+        payload.extend(self.time.to_le_bytes());
+        payload.extend(self.stop_time.unwrap_or(f64::NAN).to_le_bytes());
+        payload.extend(self.model.to_bytes());
+        Self::format().encode(&payload)
     }
 
     fn decode(bytes: &[u8]) -> Result<Self, String> {
-        const HEADER: usize = 8 + 1 + 8 + 8;
-        if bytes.len() < HEADER {
-            return Err(format!("{} bytes, shorter than the {HEADER}-byte header", bytes.len()));
-        }
-        let word = |at: usize| <[u8; 8]>::try_from(&bytes[at..at + 8]).expect("8 bytes");
-        let tag = u64::from_le_bytes(word(0));
-        if tag != M::STATE_LAYOUT_TAG {
+        const RUN: usize = 1 + 8 + 8;
+        let payload = Self::format().decode(bytes)?;
+        if payload.len() < RUN {
             return Err(format!(
-                "layout tag {tag:#018x} is not this FMU's {:#018x} (a state of another FMU or version)",
-                M::STATE_LAYOUT_TAG
+                "corrupted: a payload of {} bytes, shorter than its {RUN}-byte run data",
+                payload.len()
             ));
         }
+        let word = |at: usize| f64::from_le_bytes(<[u8; 8]>::try_from(&payload[at..at + 8]).expect("8 bytes"));
         let modes = [Mode::Instantiated, Mode::InitializationMode, Mode::StepComplete, Mode::Terminated];
-        let Some(&mode) = modes.iter().find(|m| **m as u8 == bytes[8]) else {
-            return Err(format!("mode byte {} is not a state an FMU state can hold", bytes[8]));
+        let Some(&mode) = modes.iter().find(|m| **m as u8 == payload[0]) else {
+            return Err(format!("mode byte {} is not a state an FMU state can hold", payload[0]));
         };
-        let (time, stop) = (f64::from_le_bytes(word(9)), f64::from_le_bytes(word(17)));
-        if !time.is_finite() {
-            return Err(format!("time = {time} is not finite"));
-        }
-        let model = M::from_bytes(&bytes[HEADER..])?;
+        let (time, stop) = (word(1), word(9));
+        let model = M::from_bytes(&payload[RUN..])?;
+        let sense = time_problem("time", time)
+            .or_else(|| {
+                (!stop.is_nan() && stop < time)
+                    .then(|| format!("stopTime = {stop} is invalid: must be >= time = {time}"))
+            })
+            .map_or_else(|| model.check_state(mode), Err);
+        sense.map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
         Ok(FmuState { mode, time, stop_time: (!stop.is_nan()).then_some(stop), model })
     }
 }
@@ -253,10 +290,32 @@ impl<M: Model> Instance<M> {
         let reads_output =
             value_references.iter().any(|&r| M::variable(r).is_some_and(|v| v.causality == Causality::Output));
         if self.run.mode == Mode::InitializationMode && reads_output {
-            if let Err(reason) = self.run.model.initialize() {
+            if let Err(reason) = self.computed(M::initialize) {
                 return Err(self.log.fail(call, &reason));
             }
         }
+        Ok(())
+    }
+
+    /// Runs `compute` (initialize or a step) on a copy of the model and keeps the copy only if
+    /// it succeeded with every output finite: the last guard of "never NaN or Inf out, never a
+    /// half-updated model", for finite values whose arithmetic overflows (V/r with r = 5e-324).
+    fn computed(&mut self, compute: impl FnOnce(&mut M) -> Result<(), String>) -> Result<(), String> {
+        let mut next = self.run.model.clone();
+        compute(&mut next)?;
+        let outputs = M::variables().iter().filter(|v| v.causality == Causality::Output);
+        let overflowing: Vec<String> = outputs
+            .filter_map(|v| {
+                next.real(v.value_reference).filter(|x| !x.is_finite()).map(|x| format!("{} = {x}", v.name))
+            })
+            .collect();
+        if !overflowing.is_empty() {
+            return Err(format!(
+                "{} for these values: an input or parameter is too large or too small for the model's floating-point range",
+                overflowing.join(", ")
+            ));
+        }
+        self.run.model = next;
         Ok(())
     }
 
@@ -359,7 +418,7 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         self.log.trace(|| CALL.name().to_owned());
-        match self.run.model.initialize() {
+        match self.computed(M::initialize) {
             Ok(()) => {
                 self.run.mode = Mode::StepComplete;
                 Status::Ok
@@ -507,7 +566,7 @@ impl<M: Model> Slave for Instance<M> {
             Ok(end) => end,
             Err(problem) => return self.log.fail(CALL, &problem),
         };
-        match self.run.model.step(t, h) {
+        match self.computed(|model| model.step(t, h)) {
             Ok(()) => {
                 self.run.time = end;
                 Status::Ok

@@ -13,6 +13,8 @@
 //! - [`instance`]: a generic instance (lifecycle, Get/Set, step checks, FMU states) around a
 //!   [`instance::Model`] with Real variables only, implementing [`Slave`];
 //! - [`logging`]: statuses, the logger sink and the log filter;
+//! - [`state_format`]: the byte format of a serialized FMU state (magic, version, layout tag,
+//!   GUID, CRC-32 around the FMU's payload), the same for every FMU;
 //! - [`variables`]: the types of the variable tables generated from a `modelDescription.xml`, and
 //!   `build` (feature `build`, for build scripts): the generator itself, which also checks the
 //!   XML against the rules of the standard that masters rely on.
@@ -29,6 +31,7 @@ pub mod fmi2;
 pub mod instance;
 pub mod logging;
 pub mod mode;
+pub mod state_format;
 pub mod variables;
 
 use std::borrow::Cow;

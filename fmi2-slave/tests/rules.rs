@@ -37,8 +37,14 @@ fn an_experiment_starts_at_a_finite_time_and_stops_no_earlier() {
     assert_eq!(experiment_problem(0.0, None), None);
     assert_eq!(experiment_problem(-2.0, Some(-2.0)), None); // stop = start is allowed
     assert_eq!(experiment_problem(1.0, Some(5.0)), None);
-    for start in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        assert_eq!(experiment_problem(start, None), Some(format!("startTime = {start} is invalid: must be finite")),);
+    // Finite and within ±1e12 s, where a millisecond step still advances the time (its ulp is
+    // 1.2e-4 s there); the bound itself is allowed.
+    assert_eq!(experiment_problem(-1e12, Some(1e12)), None);
+    for start in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -1e300, 1.0000001e12] {
+        assert_eq!(
+            experiment_problem(start, None),
+            Some(format!("startTime = {start:e} is invalid: must be finite and within ±1e12 s"))
+        );
     }
     assert_eq!(
         experiment_problem(1.0, Some(0.5)).as_deref(),
@@ -53,6 +59,13 @@ fn an_experiment_starts_at_a_finite_time_and_stops_no_earlier() {
 #[test]
 fn a_step_starts_at_the_instances_time_and_ends_finite_and_by_the_stop_time() {
     assert_eq!(step_end(0.0, None, 0.0, 0.5), Ok(0.5));
+    // A step below the time's resolution would not advance it.
+    assert_eq!(
+        step_end(5e11, None, 5e11, 1e-6),
+        Err("communicationStepSize = 1e-6 is below the resolution of the time 5e11: the step would not advance it"
+            .into())
+    );
+    assert_eq!(step_end(5e11, None, 5e11, 1e-3), Ok(5e11 + 1e-3));
     for h in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
         assert_eq!(
             step_end(0.0, None, 0.0, h),
@@ -73,7 +86,14 @@ fn a_step_starts_at_the_instances_time_and_ends_finite_and_by_the_stop_time() {
     assert!(step_end(0.0, None, f64::NAN, 1.0).is_err());
     assert_eq!(
         step_end(1e308, None, 1e308, 1e308),
-        Err("the step would end at inf: currentCommunicationPoint = 1e308 plus communicationStepSize = 1e308 is not finite"
+        Err("the step would end at inf: currentCommunicationPoint = 1e308 plus communicationStepSize = 1e308 is beyond \
+             ±1e12 s"
+            .to_owned())
+    );
+    assert_eq!(
+        step_end(0.0, None, 0.0, 2e12),
+        Err("the step would end at 2e12: currentCommunicationPoint = 0e0 plus communicationStepSize = 2e12 is beyond \
+             ±1e12 s"
             .to_owned())
     );
     // The stop time, with the same tolerance.

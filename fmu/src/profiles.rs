@@ -63,7 +63,7 @@ const MAX_PATH_LENGTH: usize = 4096;
 const SHOWN_LENGTH: usize = 200;
 
 /// `value` as a message shows it: whole, or its first [`SHOWN_LENGTH`] characters and its length.
-pub fn shown(value: &str) -> Cow<'_, str> {
+fn shown(value: &str) -> Cow<'_, str> {
     match value.char_indices().nth(SHOWN_LENGTH) {
         None => Cow::Borrowed(value),
         Some((end, _)) => Cow::Owned(format!("{}… ({} bytes)", &value[..end], value.len())),

@@ -6,6 +6,7 @@
 //! [`physics::advance`] under the inputs held. Errors name the variable, the value and the time.
 
 use fmi2_slave::instance::Model;
+use fmi2_slave::mode::Mode;
 
 use crate::model_description::{self, Causality, Inputs, Outputs, Parameters, Values, VARIABLES};
 use crate::physics::{self, Loads, State, WheelsetError};
@@ -47,6 +48,25 @@ impl Wheelset {
             forward_speed,
             derailment_displacement,
         }
+    }
+
+    /// The parameters as initialize requires them, or why not (naming the variable and value);
+    /// also the rolling speed Ω = V/r_c they start with must be finite.
+    fn check_parameters(parameters: &Parameters) -> Result<(), String> {
+        Self::physics_parameters(parameters).check().map_err(|e| e.to_string())?;
+        let radius = parameters.centred_rolling_radius;
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(format!("centred_rolling_radius = {radius} is invalid: must be finite and > 0"));
+        }
+        let spin = parameters.forward_speed / radius;
+        if !spin.is_finite() {
+            return Err(format!(
+                "centred_rolling_radius = {radius:e} m is invalid: forward_speed = {} m/s over it, the wheels' angular \
+                 speed, is {spin} rad/s",
+                parameters.forward_speed
+            ));
+        }
+        Ok(())
     }
 
     fn state(outputs: &Outputs) -> State {
@@ -137,9 +157,14 @@ impl Model for Wheelset {
     const MODEL_IDENTIFIER: &'static str = model_description::MODEL_IDENTIFIER;
     const LOG_CATEGORIES: &'static [&'static str] = model_description::LOG_CATEGORIES;
     const STATE_LAYOUT_TAG: u64 = model_description::STATE_LAYOUT_TAG;
+    const STATE_MAGIC: [u8; 8] = *b"WSTstate";
 
     fn variable(value_reference: u32) -> Option<&'static fmi2_slave::variables::Variable> {
         model_description::variable(value_reference)
+    }
+
+    fn variables() -> &'static [fmi2_slave::variables::Variable] {
+        &VARIABLES
     }
 
     fn real(&self, value_reference: u32) -> Option<f64> {
@@ -154,12 +179,7 @@ impl Model for Wheelset {
     /// the derailment bound.
     fn initialize(&mut self) -> Result<(), String> {
         let parameters = self.values.parameters;
-        let physics = Self::physics_parameters(&parameters);
-        physics.check().map_err(|e| e.to_string())?;
-        let radius = parameters.centred_rolling_radius;
-        if !(radius.is_finite() && radius > 0.0) {
-            return Err(format!("centred_rolling_radius = {radius} is invalid: must be finite and > 0"));
-        }
+        Self::check_parameters(&parameters)?;
         let initial = [
             ("initial_lateral_displacement", parameters.initial_lateral_displacement),
             ("initial_yaw_angle", parameters.initial_yaw_angle),
@@ -181,7 +201,7 @@ impl Model for Wheelset {
             yaw_angle: parameters.initial_yaw_angle,
             lateral_velocity: parameters.initial_lateral_velocity,
             yaw_rate: parameters.initial_yaw_rate,
-            ..State::rolling(parameters.forward_speed, radius)
+            ..State::rolling(parameters.forward_speed, parameters.centred_rolling_radius)
         };
         self.values.outputs = Self::outputs(&state, parameters.forward_speed);
         Ok(())
@@ -200,6 +220,31 @@ impl Model for Wheelset {
     /// so this is all of it.
     fn to_bytes(&self) -> Vec<u8> {
         VARIABLES.iter().flat_map(|v| self.values.real(v.value_reference).unwrap_or(f64::NAN).to_le_bytes()).collect()
+    }
+
+    /// A restored state: the parameters as initialize checks them (once out of instantiation);
+    /// every output finite, and within the derailment bound after initialization (a stepping
+    /// instance never holds other outputs).
+    fn check_state(&self, mode: Mode) -> Result<(), String> {
+        if mode == Mode::Instantiated {
+            return Ok(());
+        }
+        Self::check_parameters(&self.values.parameters)?;
+        for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
+            let value = self.values.real(output.value_reference).unwrap_or(f64::NAN);
+            if !value.is_finite() {
+                return Err(format!("{} = {value} is invalid: an output is always finite", output.name));
+            }
+        }
+        let (lateral, limit) =
+            (self.values.outputs.wheelset_lateral_displacement, self.values.parameters.derailment_displacement);
+        if mode != Mode::InitializationMode && lateral.abs() > limit {
+            return Err(format!(
+                "wheelset_lateral_displacement = {lateral} is invalid: beyond derailment_displacement = {limit}, where \
+                 the wheelset stops"
+            ));
+        }
+        Ok(())
     }
 
     fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
