@@ -12,6 +12,7 @@
 //! ≈ 0.11 s it does not pay). A decoded table lives until the process ends, as the compiled-in
 //! one did.
 
+use crate::files::read_regular_file;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -19,6 +20,10 @@ use wheel_rail_contact::models::exact_table::Table;
 
 /// The table's file name in the FMU's `resources/` (`cargo fmu` packs `data/exact_table.bin` there).
 pub const FILE_NAME: &str = "exact_table.bin";
+
+/// The largest table file read \[bytes\]: the shipped one has 22.9 MB; a file beyond 64 MiB in
+/// its place is not a table.
+const MAX_TABLE_SIZE: u64 = 64 << 20;
 
 /// What is known of each resources directory's table: checked, or decoded.
 #[derive(Clone, Copy)]
@@ -46,7 +51,8 @@ fn with_known<T>(file: &Path, body: impl FnOnce(Option<Known>) -> Result<(Known,
 }
 
 fn read(file: &Path) -> Result<Vec<u8>, String> {
-    std::fs::read(file).map_err(|e| format!("cannot read the exact_table model's table {}: {e}", file.display()))
+    read_regular_file(file, MAX_TABLE_SIZE)
+        .map_err(|e| format!("cannot read the exact_table model's table {}: {e}", file.display()))
 }
 
 /// fmi2Instantiate's check of the table in `resources`: `Ok` when it is there and its frame is

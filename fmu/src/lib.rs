@@ -7,8 +7,9 @@
 //! - [`model_description`]: the interface, generated from `modelDescription.xml`.
 //! - [`scene`]: the instance's values ↔ the core's scene (decode parameters and inputs, encode
 //!   outputs, directional derivatives).
-//! - [`profiles`]: `contact_geometry = profiles`: the profiles read (the adapter's only file
-//!   I/O) and placed, the wheel's inputs and outputs.
+//! - [`profiles`]: `contact_geometry = profiles`: the profiles read and placed, the wheel's
+//!   inputs and outputs.
+//! - `files`: the adapter's file reads (profiles, the table): regular files only, bounded in size.
 //! - [`resources`]: the FMU's resources directory from the master's resource URI, and files
 //!   named relative to it.
 //! - [`exact_table`](mod@exact_table): the `exact_table` model's table, one copy in `resources/`,
@@ -28,6 +29,7 @@ pub use fmi2_slave::{fmi2, logging, mode};
 
 pub mod exact_table;
 pub mod ffi;
+mod files;
 pub mod instance;
 pub mod model_description;
 pub mod options;

@@ -11,6 +11,7 @@
 //! first two patches (tread first, as the core orders them), their geometry, forces and
 //! creepages. A third patch, rare, is in the totals only.
 
+use super::files::read_regular_file;
 use super::model_description::{
     Inputs, Parameters, Strings, VerticalContact as VerticalChoice, WheelSide as SideChoice,
 };
@@ -18,8 +19,6 @@ use super::resources::file_path;
 use super::scene::enumeration;
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
-use std::fs::File;
-use std::io::Read;
 use std::path::Path;
 use wheel_rail_contact::geometry::{
     builtin_profile, parse_profile_as, PatchForces, ProfileFormat, ProfileKind, ProfilePoints, SmoothProfile,
@@ -104,7 +103,7 @@ fn profile_points(
         return Err(format!("{} is invalid: a path is at most {MAX_PATH_LENGTH} bytes long", named()));
     }
     let path = file_path(value, resources);
-    let bytes = read_profile_file(&path).map_err(|reason| {
+    let bytes = read_regular_file(&path, MAX_PROFILE_FILE_SIZE).map_err(|reason| {
         let looked_in = match resources {
             Some(directory) if Path::new(value).is_relative() => {
                 format!(" (looked in the FMU's resources {} and the working directory)", directory.display())
@@ -125,44 +124,6 @@ fn opposite(kind: ProfileKind) -> ProfileKind {
         ProfileKind::Wheel => ProfileKind::Rail,
         ProfileKind::Rail => ProfileKind::Wheel,
     }
-}
-
-/// The bytes of the profile file at `path`: a regular file (not a device, FIFO, socket or
-/// directory, whatever its name: `/dev/zero`, a FIFO or a link to `/dev/stdin` named `.prw`
-/// would never end or would read the master's input) of at most [`MAX_PROFILE_FILE_SIZE`] bytes.
-fn read_profile_file(path: &Path) -> Result<Vec<u8>, String> {
-    let file = open_without_blocking(path).map_err(|e| e.to_string())?;
-    let metadata = file.metadata().map_err(|e| e.to_string())?;
-    if !metadata.is_file() {
-        return Err("it is not a regular file (a device, FIFO, socket or directory)".to_owned());
-    }
-    let too_large = |size: u64| format!("it has {size} bytes; a profile file has at most {MAX_PROFILE_FILE_SIZE}");
-    if metadata.len() > MAX_PROFILE_FILE_SIZE {
-        return Err(too_large(metadata.len()));
-    }
-    let mut bytes = Vec::new();
-    // At most one byte beyond the cap, should the file grow while it is read.
-    file.take(MAX_PROFILE_FILE_SIZE + 1).read_to_end(&mut bytes).map_err(|e| e.to_string())?;
-    if bytes.len() as u64 > MAX_PROFILE_FILE_SIZE {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
-}
-
-/// Opens `path` for reading without waiting for a writer: opening a FIFO blocks until one
-/// comes, so the kind of file is asked of the opened file, not of the path (no race between
-/// the two).
-#[cfg(unix)]
-fn open_without_blocking(path: &Path) -> std::io::Result<File> {
-    use std::os::unix::fs::OpenOptionsExt;
-    std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path)
-}
-
-/// (Windows has no FIFOs in its file system; its named pipes live under `\\.\pipe\`, which
-/// `metadata` reports as not a regular file.)
-#[cfg(not(unix))]
-fn open_without_blocking(path: &Path) -> std::io::Result<File> {
-    File::open(path)
 }
 
 fn smooth_profile(

@@ -137,3 +137,37 @@ fn without_resources_only_selecting_the_model_is_an_error() {
         assert_eq!(fmu.do_step(0.0, 1e-3), OK);
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn a_table_that_is_not_a_regular_file_or_too_large_is_refused_at_once() {
+    // Every file the FMU opens is bounded (issue 40's class search): resources/exact_table.bin
+    // as a FIFO would block fmi2Instantiate for ever, as /dev/zero it would read until memory
+    // runs out.
+    let root = std::env::temp_dir().join(format!("wrc-table-kinds-{}", std::process::id()));
+    for (name, make) in [
+        (
+            "fifo",
+            &(|path: &std::path::Path| {
+                let name = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
+                // SAFETY: a NUL-terminated path.
+                assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o600) }, 0);
+            }) as &dyn Fn(&std::path::Path),
+        ),
+        ("zero", &|path: &std::path::Path| std::os::unix::fs::symlink("/dev/zero", path).unwrap()),
+        ("huge", &|path: &std::path::Path| std::fs::File::create(path).unwrap().set_len(65 << 20).unwrap()),
+    ] {
+        let resources = root.join(name);
+        std::fs::create_dir_all(&resources).unwrap();
+        make(&resources.join("exact_table.bin"));
+        let log = MessageLog::default();
+        let location = format!("file://{}/", resources.to_str().unwrap());
+        let start = std::time::Instant::now();
+        assert!(Fmu::try_instantiate_logged_at("table", &log, Some(&location)).is_none(), "{name}");
+        assert!(start.elapsed() < std::time::Duration::from_secs(2), "{name}: {:?}", start.elapsed());
+        let (_, message) = log.last().unwrap();
+        let reason = if name == "huge" { "this file may have at most 67108864" } else { "not a regular file" };
+        assert!(message.contains("cannot read the exact_table model's table") && message.contains(reason), "{message}");
+    }
+    std::fs::remove_dir_all(&root).unwrap();
+}
