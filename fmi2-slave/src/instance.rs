@@ -160,9 +160,11 @@ pub trait Model: Clone + Default {
     /// The inverse of [`Model::to_bytes`], checking every byte.
     fn from_bytes(bytes: &[u8]) -> Result<Self, String>;
     /// Whether a deserialized model can be this FMU's in `mode` (its sense, after the bytes'
-    /// integrity is checked): what initialize checks of the parameters, what the state holds
-    /// (outputs, bounds). Inputs may hold any value, as after fmi2SetReal. The reason names the
-    /// variable and its value.
+    /// integrity and the mode, time and stop time are checked): what the state holds (finite
+    /// outputs, the model's bounds) and, once initialized, the parameters as initialize checked
+    /// them. Inputs, and parameters before initialization, may hold any value, as after
+    /// fmi2SetReal: the next computation reports an invalid one. The reason names the variable
+    /// and its value.
     fn check_state(&self, mode: Mode) -> Result<(), String>;
 }
 
@@ -215,14 +217,22 @@ impl<M: Model> FmuState<M> {
         };
         let (time, stop) = (word(1), word(9));
         let model = M::from_bytes(&payload[RUN..])?;
-        let sense = time_problem("time", time)
-            .or_else(|| {
-                (!stop.is_nan() && stop < time)
-                    .then(|| format!("stopTime = {stop} is invalid: must be >= time = {time}"))
-            })
-            .map_or_else(|| model.check_state(mode), Err);
-        sense.map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
-        Ok(FmuState { mode, time, stop_time: (!stop.is_nan()).then_some(stop), model })
+        let state = FmuState { mode, time, stop_time: (!stop.is_nan()).then_some(stop), model };
+        state.check_sense().map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
+        Ok(state)
+    }
+
+    /// What an intact but forged state must still satisfy (the mode is one a state holds by
+    /// construction): a time fmi2SetupExperiment and the steps could have reached (finite, within
+    /// ±[`MAX_TIME`]), a stop time the time has not passed, and the model's own checks.
+    fn check_sense(&self) -> Result<(), String> {
+        if let Some(problem) = time_problem("time", self.time) {
+            return Err(problem);
+        }
+        if let Some(stop) = self.stop_time.filter(|stop| *stop < self.time) {
+            return Err(format!("stopTime = {stop} is invalid: must be >= time = {}", self.time));
+        }
+        self.model.check_state(self.mode)
     }
 }
 
@@ -299,21 +309,13 @@ impl<M: Model> Instance<M> {
 
     /// Runs `compute` (initialize or a step) on a copy of the model and keeps the copy only if
     /// it succeeded with every output finite: the last guard of "never NaN or Inf out, never a
-    /// half-updated model", for finite values whose arithmetic overflows (V/r with r = 5e-324).
+    /// half-updated model", for finite values whose arithmetic overflows (V/r with r = 5e-324)
+    /// where the model's own checks missed it.
     fn computed(&mut self, compute: impl FnOnce(&mut M) -> Result<(), String>) -> Result<(), String> {
         let mut next = self.run.model.clone();
         compute(&mut next)?;
-        let outputs = M::variables().iter().filter(|v| v.causality == Causality::Output);
-        let overflowing: Vec<String> = outputs
-            .filter_map(|v| {
-                next.real(v.value_reference).filter(|x| !x.is_finite()).map(|x| format!("{} = {x}", v.name))
-            })
-            .collect();
-        if !overflowing.is_empty() {
-            return Err(format!(
-                "{} for these values: an input or parameter is too large or too small for the model's floating-point range",
-                overflowing.join(", ")
-            ));
+        if let Some(problem) = non_finite_output(&next) {
+            return Err(problem);
         }
         self.run.model = next;
         Ok(())
@@ -627,4 +629,33 @@ fn status(result: Result<(), Status>) -> Status {
         Ok(()) => Status::Ok,
         Err(status) => status,
     }
+}
+
+/// Why `model`'s outputs cannot be kept, if they cannot: the first non-finite output, its value
+/// and what it was computed from: the inputs it depends on (`<ModelStructure>`) with their
+/// values, or, for an output no input acts on directly, the parameters and the state.
+fn non_finite_output<M: Model>(model: &M) -> Option<String> {
+    let value = |variable: &Variable| model.real(variable.value_reference).unwrap_or(f64::NAN);
+    // The values in Debug form: 1e308, not its 309 digits.
+    let (output, x) = M::variables()
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+        .map(|v| (v, value(v)))
+        .find(|(_, x)| !x.is_finite())?;
+    let sources = if output.dependencies.is_empty() {
+        "the parameters and the state (no input acts on it directly)".to_owned()
+    } else {
+        let inputs: Vec<String> = output
+            .dependencies
+            .iter()
+            .filter_map(|&r| M::variable(r))
+            .map(|v| format!("{} = {:?}", v.name, value(v)))
+            .collect();
+        inputs.join(", ")
+    };
+    Some(format!(
+        "{} = {x:?} is not finite, computed from {sources}: a value beyond the floating-point range; the previous \
+         values are kept",
+        output.name
+    ))
 }

@@ -6,7 +6,7 @@
 //! [`physics::advance`] under the inputs held. Errors name the variable, the value and the time.
 
 use fmi2_slave::instance::Model;
-use fmi2_slave::mode::Mode;
+use fmi2_slave::mode::{Mode, STEPPED};
 
 use crate::model_description::{self, Causality, Inputs, Outputs, Parameters, Values, VARIABLES};
 use crate::physics::{self, Loads, State, WheelsetError};
@@ -222,23 +222,26 @@ impl Model for Wheelset {
         VARIABLES.iter().flat_map(|v| self.values.real(v.value_reference).unwrap_or(f64::NAN).to_le_bytes()).collect()
     }
 
-    /// A restored state: the parameters as initialize checks them (once out of instantiation);
-    /// every output finite, and within the derailment bound after initialization (a stepping
-    /// instance never holds other outputs).
+    /// A restored state as this FMU can hold it in `mode`: every output finite (start values,
+    /// then only what initialize and step committed, which the slave layer checks); once
+    /// initialized (stepComplete, terminated: the fixed parameters can no longer be set) the
+    /// parameters as initialize checked them and the lateral displacement within the derailment
+    /// bound, where a step stops. Before that, parameters may hold any value, as after
+    /// fmi2SetReal: ExitInitializationMode reports an invalid one.
     fn check_state(&self, mode: Mode) -> Result<(), String> {
-        if mode == Mode::Instantiated {
-            return Ok(());
-        }
-        Self::check_parameters(&self.values.parameters)?;
         for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
             let value = self.values.real(output.value_reference).unwrap_or(f64::NAN);
             if !value.is_finite() {
                 return Err(format!("{} = {value} is invalid: an output is always finite", output.name));
             }
         }
+        if !STEPPED.contains(mode) {
+            return Ok(());
+        }
+        Self::check_parameters(&self.values.parameters)?;
         let (lateral, limit) =
             (self.values.outputs.wheelset_lateral_displacement, self.values.parameters.derailment_displacement);
-        if mode != Mode::InitializationMode && lateral.abs() > limit {
+        if lateral.abs() > limit {
             return Err(format!(
                 "wheelset_lateral_displacement = {lateral} is invalid: beyond derailment_displacement = {limit}, where \
                  the wheelset stops"
@@ -268,7 +271,74 @@ impl Model for Wheelset {
 
 #[cfg(test)]
 mod tests {
-    use super::readable;
+    use fmi2_slave::instance::Model;
+    use fmi2_slave::mode::Mode::{self, InitializationMode, Instantiated, StepComplete, Terminated};
+
+    use super::{readable, Wheelset};
+
+    fn initialized() -> Wheelset {
+        let mut wheelset = Wheelset::default();
+        wheelset.initialize().unwrap();
+        wheelset
+    }
+
+    fn refusal(wheelset: &Wheelset, mode: Mode) -> String {
+        wheelset.check_state(mode).unwrap_err()
+    }
+
+    /// What a restored state may hold depends on its mode: outputs are always finite; the fixed
+    /// parameters, and the bound a step keeps, only once initialized.
+    #[test]
+    fn a_restored_state_is_checked_as_its_mode_allows() {
+        for mode in [Instantiated, InitializationMode, StepComplete, Terminated] {
+            assert_eq!(Wheelset::default().check_state(mode), Ok(()), "{mode:?}");
+            assert_eq!(initialized().check_state(mode), Ok(()), "{mode:?}");
+            let mut output = initialized();
+            output.values.outputs.wheel_angular_speed = f64::INFINITY;
+            assert_eq!(refusal(&output, mode), "wheel_angular_speed = inf is invalid: an output is always finite");
+            // Inputs may hold anything, as after fmi2SetReal: the next step names them.
+            let mut input = initialized();
+            input.values.inputs.left_track_force_z = f64::NAN;
+            assert_eq!(input.check_state(mode), Ok(()), "{mode:?}");
+        }
+        // A parameter set before initialization may be invalid (ExitInitializationMode says so);
+        // after it, the state cannot hold one.
+        let mut mass = initialized();
+        mass.values.parameters.mass = -1.0;
+        let mut radius = initialized();
+        radius.values.parameters.centred_rolling_radius = 5e-324;
+        let mut derailed = initialized();
+        derailed.values.outputs.wheelset_lateral_displacement = -0.5;
+        for mode in [Instantiated, InitializationMode] {
+            for wheelset in [&mass, &radius, &derailed] {
+                assert_eq!(wheelset.check_state(mode), Ok(()), "{mode:?}");
+            }
+        }
+        for mode in [StepComplete, Terminated] {
+            assert!(refusal(&mass, mode).starts_with("mass = -1"), "{}", refusal(&mass, mode));
+            assert!(refusal(&radius, mode).starts_with("centred_rolling_radius = 5e-324 m is invalid"));
+            assert_eq!(
+                refusal(&derailed, mode),
+                "wheelset_lateral_displacement = -0.5 is invalid: beyond derailment_displacement = 0.01, where the \
+                 wheelset stops"
+            );
+        }
+    }
+
+    /// Defect 8: V/r_c overflowed to an infinite wheel_angular_speed for a positive r_c.
+    #[test]
+    fn initialize_refuses_a_rolling_radius_whose_angular_speed_overflows() {
+        let mut wheelset = Wheelset::default();
+        wheelset.values.parameters.centred_rolling_radius = 5e-324;
+        let before = wheelset;
+        assert_eq!(
+            wheelset.initialize(),
+            Err("centred_rolling_radius = 5e-324 m is invalid: forward_speed = 20 m/s over it, the wheels' \
+                 angular speed, is inf rad/s"
+                .to_owned())
+        );
+        assert_eq!(wheelset, before);
+    }
 
     /// A summed time's rounding noise goes, its digits stay: 12 significant ones.
     #[test]

@@ -598,8 +598,50 @@ fn a_forged_state_with_a_valid_checksum_is_refused_by_its_sense() {
     }
     // An input may hold any value, as after fmi2SetReal: the next step reports it.
     assert_eq!(deserialize(&fmu, &forged(variable_at(vr::LEFT_TRACK_FORCE_Y), f64::NAN)), OK);
-    // And the unforged state still restores.
-    assert_eq!(deserialize(&fmu, &bytes), OK);
+    // The refusals changed nothing: the instance steps on from its own values, all finite, and
+    // the unforged state still restores.
+    let outputs = fmu.get(&STATE);
+    assert!(outputs.iter().all(|x| x.is_finite()), "{outputs:?}");
+    assert_eq!(fmu.do_step(0.01, 0.01), OK, "{}", log.last());
+    assert!(fmu.get(&STATE).iter().all(|x| x.is_finite()));
+    let mut state: fmi2FMUstate = null_mut();
+    // SAFETY: `c` is live; `bytes` is readable; the state is freed.
+    unsafe {
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), bytes.len(), &mut state), OK);
+        assert_eq!(fmi2SetFMUstate(fmu.c, state), OK);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
+    }
+    assert_eq!(fmu.get(&STATE), outputs);
+    assert_eq!(fmu.do_step(0.01, 0.01), OK, "{}", log.last());
+}
+
+#[test]
+fn a_state_saved_before_initialization_may_hold_any_parameter() {
+    // The fixed parameters can be set to anything until ExitInitializationMode checks them, so
+    // a state saved then restores (the sense checks apply to them once initialized).
+    let log = Log::default();
+    let fmu = Wheelset::instantiate(&log);
+    // SAFETY: `c` is live.
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+    }
+    assert_eq!(fmu.set(&[vr::MASS], &[-1.0]), OK);
+    let mut state: fmi2FMUstate = null_mut();
+    let mut size = 0;
+    // SAFETY: `c` is live; the buffer has `size` bytes; the state is freed.
+    let bytes = unsafe {
+        assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
+        assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
+        let mut bytes = vec![0u8; size];
+        assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
+        bytes
+    };
+    assert_eq!(deserialize(&fmu, &bytes), OK, "{}", log.last());
+    // SAFETY: `c` is live.
+    assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, ERROR);
+    assert!(log.last().contains("mass = -1 is invalid"), "{}", log.last());
 }
 
 #[test]
@@ -621,6 +663,12 @@ fn an_output_that_overflows_is_an_error_and_the_outputs_are_kept() {
         "{}",
         log.last()
     );
+    // Still in initialization mode: a read of an output computes them again and hands out no
+    // infinity either.
+    let mut omega = 0.0;
+    // SAFETY: `c` is live; one reference, one value.
+    assert_eq!(unsafe { fmi2GetReal(fmu.c, &vr::WHEEL_ANGULAR_SPEED, 1, &mut omega) }, ERROR);
+    assert!(log.last().starts_with("fmi2GetReal: centred_rolling_radius = 5e-324 m is invalid"), "{}", log.last());
     // Corrected, it starts; every output finite.
     assert_eq!(fmu.set(&[vr::CENTRED_ROLLING_RADIUS], &[0.46]), OK);
     // SAFETY: `c` is live.
