@@ -401,9 +401,9 @@ pub unsafe fn set_string<S: Slave>(
         with_instance(c, CALL, |instance: &mut S| match (slice(vr, nvr), slice(value, nvr)) {
             (Some(vr), Some(value)) => {
                 // Copied now: the master's strings need not outlive the call. FMI 2.0 strings
-                // are UTF-8 (as the model description's XML); one that is not is refused whole rather than
-                // converted lossily, which would change a file name's bytes (the file then
-                // could not be opened, and fmi2GetString would return other bytes than set).
+                // are UTF-8 (as the model description's XML); one that is not is refused whole
+                // rather than converted lossily, which would change a file name's bytes (the
+                // file then could not be opened, and fmi2GetString would return other bytes).
                 match value.iter().map(|&text| utf8_argument(text)).collect::<Result<Vec<_>, _>>() {
                     Ok(texts) => instance.set_string(vr, &texts),
                     Err(reason) => instance.invalid_argument(CALL, &reason),

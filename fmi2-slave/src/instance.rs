@@ -60,12 +60,18 @@ pub fn time_problem(name: &str, time: f64) -> Option<String> {
 
 /// fmi2SetupExperiment's times checked: why they are refused, if they are.
 pub fn experiment_problem(start_time: f64, stop_time: Option<f64>) -> Option<String> {
-    if let Some(problem) = time_problem("startTime", start_time) {
-        return Some(problem);
-    }
-    stop_time
-        .filter(|stop| stop.is_nan() || *stop < start_time)
-        .map(|stop| format!("stopTime = {stop} is invalid: must be >= startTime = {start_time}"))
+    times_problem(("startTime", start_time), stop_time)
+}
+
+/// Why a time (`name`, value) and a stop time cannot be an instance's, if they cannot: the
+/// time as [`time_problem`] checks it, a stop time NaN or before it. fmi2SetupExperiment's
+/// check, and a restored FMU state's (its time named `time`).
+pub fn times_problem((name, time): (&str, f64), stop_time: Option<f64>) -> Option<String> {
+    time_problem(name, time).or_else(|| {
+        stop_time
+            .filter(|stop| stop.is_nan() || *stop < time)
+            .map(|stop| format!("stopTime = {stop} is invalid: must be >= {name} = {time}"))
+    })
 }
 
 /// fmi2DoStep's arguments checked against the instance's `time` and `stop_time`: the step's end,
@@ -226,11 +232,8 @@ impl<M: Model> FmuState<M> {
     /// construction): a time fmi2SetupExperiment and the steps could have reached (finite, within
     /// ±[`MAX_TIME`]), a stop time the time has not passed, and the model's own checks.
     fn check_sense(&self) -> Result<(), String> {
-        if let Some(problem) = time_problem("time", self.time) {
+        if let Some(problem) = times_problem(("time", self.time), self.stop_time) {
             return Err(problem);
-        }
-        if let Some(stop) = self.stop_time.filter(|stop| *stop < self.time) {
-            return Err(format!("stopTime = {stop} is invalid: must be >= time = {}", self.time));
         }
         self.model.check_state(self.mode)
     }

@@ -69,38 +69,40 @@ fn shown(value: &str) -> Cow<'_, str> {
     }
 }
 
-/// The profile `variable` names — a built-in one, or the file at that path (a relative one in
-/// the FMU's `resources` first, then in the working directory) — its points, and their digest.
-fn profile_points(
-    variable: &str,
-    value: &str,
-    kind: ProfileKind,
-    resources: Option<&Path>,
-) -> Result<(ProfilePoints, u32), String> {
-    let named = || format!("{variable} = \"{}\"", shown(value));
+/// `wheel_profile = "…"` or `rail_profile = "…"`: how a message names the variable and its value.
+fn named(kind: ProfileKind, value: &str) -> String {
+    format!("{}_profile = \"{}\"", kind.name(), shown(value))
+}
+
+/// The `kind` profile `value` names — a built-in one, or the file at that path (a relative one
+/// in the FMU's `resources` first, then in the working directory) — its points, and their
+/// digest.
+fn profile_points(kind: ProfileKind, value: &str, resources: Option<&Path>) -> Result<(ProfilePoints, u32), String> {
     if BUILTIN_PROFILE_NAMES.contains(&value) {
-        let points = builtin_profile(value).map_err(|e| format!("{}: {e}", named()))?;
+        let points = builtin_profile(value).map_err(|e| format!("{}: {e}", named(kind, value)))?;
         return Ok((points, crc32fast::hash(value.as_bytes())));
     }
     let Some(format) = ProfileFormat::from_file_name(value) else {
         return Err(format!(
             "{} is invalid: neither a built-in profile ({}) nor a file named .prw, .prr (SIMPACK), .whl or .ban \
              (MiniProf)",
-            named(),
+            named(kind, value),
             BUILTIN_PROFILE_NAMES.join(", ")
         ));
     };
-    if ProfileKind::from_file_name(value) != Some(kind) {
+    // (Every extension of a format names a kind.)
+    if let Some(other) = ProfileKind::from_file_name(value).filter(|named_kind| *named_kind != kind) {
         return Err(format!(
-            "{} is invalid: the extension names a {} profile; {variable} needs a {} profile (.prw or .whl for a \
+            "{} is invalid: the extension names a {} profile; {}_profile needs a {} profile (.prw or .whl for a \
              wheel, .prr or .ban for a rail)",
-            named(),
-            opposite(kind).name(),
+            named(kind, value),
+            other.name(),
+            kind.name(),
             kind.name()
         ));
     }
     if value.len() > MAX_PATH_LENGTH {
-        return Err(format!("{} is invalid: a path is at most {MAX_PATH_LENGTH} bytes long", named()));
+        return Err(format!("{} is invalid: a path is at most {MAX_PATH_LENGTH} bytes long", named(kind, value)));
     }
     let path = file_path(value, resources);
     let bytes = read_regular_file(&path, MAX_PROFILE_FILE_SIZE).map_err(|reason| {
@@ -110,32 +112,21 @@ fn profile_points(
             }
             _ => String::new(),
         };
-        format!("{}: the file cannot be read: {reason}{looked_in}", named())
+        format!("{}: the file cannot be read: {reason}{looked_in}", named(kind, value))
     })?;
     // Only the numbers matter: a comment or header in Windows-1252 or Latin-1 (MiniProf's
     // `Chars=Win`) is read with its other bytes replaced.
     let text = String::from_utf8_lossy(&bytes);
-    let points = parse_profile_as(&text, format, kind).map_err(|e| format!("{}: {e}", named()))?;
+    let points = parse_profile_as(&text, format, kind).map_err(|e| format!("{}: {e}", named(kind, value)))?;
     Ok((points, crc32fast::hash(&bytes)))
 }
 
-fn opposite(kind: ProfileKind) -> ProfileKind {
-    match kind {
-        ProfileKind::Wheel => ProfileKind::Rail,
-        ProfileKind::Rail => ProfileKind::Wheel,
-    }
-}
-
-fn smooth_profile(
-    variable: &str,
-    value: &str,
-    kind: ProfileKind,
-    resources: Option<&Path>,
-) -> Result<(SmoothProfile, u32), String> {
-    let (points, digest) = profile_points(variable, value, kind, resources)?;
+/// [`profile_points`] as a smooth profile of a wheel's or rail's extent.
+fn smooth_profile(kind: ProfileKind, value: &str, resources: Option<&Path>) -> Result<(SmoothProfile, u32), String> {
+    let (points, digest) = profile_points(kind, value, resources)?;
     let profile = SmoothProfile::new(&points)
         .and_then(|profile| profile.check_extent(kind.name()).map(|()| profile))
-        .map_err(|e| format!("{variable} = \"{}\": {e}", shown(value)))?;
+        .map_err(|e| format!("{}: {e}", named(kind, value)))?;
     Ok((profile, digest))
 }
 
@@ -166,9 +157,8 @@ impl ProfileContact {
             nominal_radius: parameters.wheel_nominal_radius,
             rail_cant: parameters.rail_cant,
         };
-        let (wheel, wheel_digest) =
-            smooth_profile("wheel_profile", &strings.wheel_profile, ProfileKind::Wheel, resources)?;
-        let (rail, rail_digest) = smooth_profile("rail_profile", &strings.rail_profile, ProfileKind::Rail, resources)?;
+        let (wheel, wheel_digest) = smooth_profile(ProfileKind::Wheel, &strings.wheel_profile, resources)?;
+        let (rail, rail_digest) = smooth_profile(ProfileKind::Rail, &strings.rail_profile, resources)?;
         let sources = format!(
             "wheel_profile = \"{}\", rail_profile = \"{}\"",
             shown(&strings.wheel_profile),

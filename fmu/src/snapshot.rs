@@ -94,19 +94,16 @@ pub fn decode(bytes: &[u8]) -> Result<Snapshot, String> {
 
 /// The checks the setters and the state machine apply to what a state holds, for a state whose
 /// bytes are intact but whose content did not come from this FMU (a forged or hand-edited one):
-/// a live mode, a time fmi2SetupExperiment would accept, a stop time that fmi2SetupExperiment would accept and that the
-/// time has not passed, finite outputs (an instance only ever keeps finite ones) and a valid
+/// a live mode, a time and a stop time fmi2SetupExperiment would accept (the time has not
+/// passed the stop time), finite outputs (an instance only ever keeps finite ones) and a valid
 /// scene state. Inputs and parameters may hold any value, as after fmi2SetReal/fmi2SetInteger:
 /// an invalid one is reported by the next evaluation, naming it.
 fn check_sense(state: &Snapshot) -> Result<(), String> {
     if state.mode == Mode::Fatal {
         return Err("mode fatal".to_owned());
     }
-    if let Some(problem) = fmi2_slave::instance::time_problem("time", state.time) {
+    if let Some(problem) = fmi2_slave::instance::times_problem(("time", state.time), state.stop_time) {
         return Err(problem);
-    }
-    if let Some(stop) = state.stop_time.filter(|stop| stop.is_nan() || *stop < state.time) {
-        return Err(format!("stopTime = {stop} is invalid: must be >= time = {}", state.time));
     }
     for variable in VARIABLES.iter().filter(|variable| variable.causality == Causality::Output) {
         if let Some(value) = state.values.real(variable.value_reference).filter(|value| !value.is_finite()) {

@@ -446,7 +446,7 @@ fn the_vertical_balance_settles_where_tread_and_flange_patches_join() {
     // patches join and the carried force jumps, so no height carries the load exactly. Found
     // here as the patch count's change (bisected to adjacent floats), then stepped through
     // ±4e-15 m around it every 2e-17 m: every step settles, within 1 % of the load (the jump's
-    // side that carries it more closely), and exactly (1e-9) outside the jump.
+    // side that carries it more closely). The worst miss is printed (`-- --nocapture`).
     let mut worst = 0.0f64;
     let mut boundaries = 0;
     for model in [Model::ShenHedrickElkins, Model::Fastsim, Model::ExactTable, Model::Polach] {

@@ -855,8 +855,9 @@ impl ContactTable {
         let row = (key + TABLE_REACH_LATERAL) / TABLE_STEP;
         let column = (roll + TABLE_ROLL_REACH) / TABLE_ROLL_STEP;
         let rows = self.minima.first().map_or(0, Vec::len);
-        // In floating point: an index sum in usize would wrap for a huge key (y_ws ≥ 2e15 m).
-        let inside = row >= reach as f64 && row.floor() + 1.0 + (reach as f64) < rows as f64;
+        // The sum in floating point: in usize it would wrap for a huge key (y_ws ≥ 2e15 m). A
+        // row ≥ 0 truncates to its floor (the cast saturates beyond usize; NaN fails the first test).
+        let inside = row >= reach as f64 && (row as usize as f64) + 1.0 + (reach as f64) < rows as f64;
         // (NaN fails `inside` and the column's range.)
         if !inside || !(0.0..self.minima.len().saturating_sub(1) as f64).contains(&column) {
             return None;

@@ -118,6 +118,11 @@ impl ContactCandidates {
                 self.touch()
             )));
         }
+        self.patches_within_reach(vertical)
+    }
+
+    /// [`Self::patches_at`] at a z_ws known to be within [`MAX_PENETRATION`] of the touch.
+    fn patches_within_reach(&self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
         Ok(self.side.mirror_patches(self.right_patches(vertical)?))
     }
 
@@ -255,9 +260,9 @@ impl ContactCandidates {
             }
         }
         // Newton's method inside the bracket, bisection where a step would leave it (joining
-        // patches make the carried force jump); until the force is met to 1e-12 or the bracket
-        // is 1e-12 of the penetration — relative, so that a load of millinewtons, a penetration
-        // of nanometres, is solved as finely as 100 kN — or can be halved no more.
+        // patches make the carried force jump); until the force is met to 1e-12, or the bracket
+        // is 1e-13 m — or 1e-8 of the penetration where that is finer, so that a load of
+        // millinewtons, a penetration of nanometres, is solved too — or can be halved no more.
         let mut z = high;
         loop {
             let (force, rate) = carried(z)?;
@@ -267,14 +272,15 @@ impl ContactCandidates {
                 high = z;
             }
             let middle = 0.5 * (low + high);
-            let resolved = high - low <= 1e-12 * (high - touch) || middle <= low || middle >= high;
+            let resolved = high - low <= (1e-8 * (high - touch)).min(1e-13) || middle <= low || middle >= high;
             if (force - vertical_force).abs() <= 1e-12 * vertical_force || resolved {
                 break;
             }
             let newton = z - (force - vertical_force) / rate;
             z = if newton > low && newton < high { newton } else { middle };
         }
-        Ok((z, self.patches_at(z)?))
+        // (The bracket lies within MAX_PENETRATION of the touch.)
+        Ok((z, self.patches_within_reach(z)?))
     }
 }
 

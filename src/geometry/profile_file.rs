@@ -35,8 +35,7 @@ pub enum ProfileFormat {
 impl ProfileFormat {
     /// The format of a file by its extension (case-insensitive), `None` for any other.
     pub fn from_file_name(name: &str) -> Option<Self> {
-        let extension = name.rsplit_once('.')?.1.to_ascii_lowercase();
-        match extension.as_str() {
+        match extension(name)?.as_str() {
             "prw" | "prr" => Some(Self::Simpack),
             "whl" | "ban" => Some(Self::MiniProf),
             _ => None,
@@ -87,8 +86,7 @@ impl ProfileKind {
     /// The kind a file's extension names (case-insensitive): `.prw`, `.whl` a wheel; `.prr`,
     /// `.ban` a rail; `None` for any other.
     pub fn from_file_name(name: &str) -> Option<Self> {
-        let extension = name.rsplit_once('.')?.1.to_ascii_lowercase();
-        match extension.as_str() {
+        match extension(name)?.as_str() {
             "prw" | "whl" => Some(Self::Wheel),
             "prr" | "ban" => Some(Self::Rail),
             _ => None,
@@ -102,14 +100,11 @@ impl ProfileKind {
             Self::Rail => "rail",
         }
     }
+}
 
-    /// SIMPACK's header `type`: 0 a rail profile, 1 a wheel profile.
-    fn simpack_type(self) -> i64 {
-        match self {
-            Self::Wheel => 1,
-            Self::Rail => 0,
-        }
-    }
+/// A file name's extension, lower case.
+fn extension(name: &str) -> Option<String> {
+    Some(name.rsplit_once('.')?.1.to_ascii_lowercase())
 }
 
 /// How far from its origin a profile point may lie \[m\]: a wheel or rail profile spans some
@@ -273,9 +268,9 @@ fn parse_simpack(text: &str, kind: Option<ProfileKind>) -> Result<ProfilePoints,
 
 /// A SIMPACK header's `type` against the kind the file is read as.
 fn check_simpack_type(value: &str, kind: Option<ProfileKind>, line: usize) -> Result<(), ProfileError> {
-    let declared = match value.parse::<i64>() {
-        Ok(0) => ProfileKind::Rail,
-        Ok(1) => ProfileKind::Wheel,
+    let (number, declared) = match value.parse::<i64>() {
+        Ok(0) => (0, ProfileKind::Rail),
+        Ok(1) => (1, ProfileKind::Wheel),
         _ => {
             return Err(ProfileError::at(
                 line,
@@ -286,12 +281,7 @@ fn check_simpack_type(value: &str, kind: Option<ProfileKind>, line: usize) -> Re
     match kind {
         Some(kind) if kind != declared => Err(ProfileError::at(
             line,
-            format!(
-                "the header's `type = {}` says a {} profile, not a {} profile",
-                declared.simpack_type(),
-                declared.name(),
-                kind.name()
-            ),
+            format!("the header's `type = {number}` says a {} profile, not a {} profile", declared.name(), kind.name()),
         )),
         _ => Ok(()),
     }

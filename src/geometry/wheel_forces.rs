@@ -355,12 +355,9 @@ impl WheelRailContact {
         let (mut below, mut above): (Option<f64>, Option<f64>) = (None, None);
         for _ in 0..VERTICAL_ROUNDS {
             let round = self.round(&candidates, force, input, vertical, &patches, state, &hints, cache, evaluation)?;
-            let Round { forces, states, carried, next } = round;
+            let Round { forces, states, next, .. } = round;
             // Settled when the rail carries F_z through these normal and creep forces.
-            if forces.is_empty() || (carried - force).abs() <= BALANCE_TOLERANCE * force {
-                return Ok((vertical, forces, states));
-            }
-            let (next, next_patches) = next;
+            let Some((next, next_patches)) = next else { return Ok((vertical, forces, states)) };
             // The secant step on the round's residual r(z) = G(z) − z through this round and the
             // last: the root of the line through them (from a plain round's two, Aitken's Δ²).
             let residual = next - vertical;
@@ -402,11 +399,9 @@ impl WheelRailContact {
             }
             let patches = candidates.patches_at(middle)?;
             let round = self.round(&candidates, force, input, middle, &patches, state, &hints, cache, evaluation)?;
+            let Some((next, _)) = round.next else { return Ok((middle, round.forces, round.states)) };
             let miss = (round.carried - force).abs();
-            if round.forces.is_empty() || miss <= BALANCE_TOLERANCE * force {
-                return Ok((middle, round.forces, round.states));
-            }
-            if round.next.0 >= middle {
+            if next >= middle {
                 low = middle;
             } else {
                 high = middle;
@@ -419,9 +414,11 @@ impl WheelRailContact {
     }
 
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep
-    /// forces, the force the rail carries through them, and the normal problem's z_ws (with its
+    /// forces, the force the rail carries through them, and, unless these settle the balance
+    /// (the rail carries F_z within [`BALANCE_TOLERANCE`]), the normal problem's z_ws (with its
     /// patches) under the shares of these creep forces, G(z_ws).
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn round(
         &self,
         candidates: &ContactCandidates,
@@ -438,7 +435,7 @@ impl WheelRailContact {
         let (forces, states) = self.patch_forces(input, &position, patches, state, hints, cache, evaluation)?;
         let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
         if forces.is_empty() || (carried - force).abs() <= BALANCE_TOLERANCE * force {
-            return Ok(Round { forces, states, carried, next: (vertical, Vec::new()) });
+            return Ok(Round { forces, states, carried, next: None });
         }
         let share = |point: &ContactPoint| {
             let (sin, cos) = point.contact_angle_sin_cos();
@@ -449,7 +446,7 @@ impl WheelRailContact {
             cos - traction * sin
         };
         let next = candidates.patches_for_force_near(force, share, Some(vertical))?;
-        Ok(Round { forces, states, carried, next })
+        Ok(Round { forces, states, carried, next: Some(next) })
     }
 
     /// Each patch's creep forces (module doc), with the state of the nearest last patch, its
@@ -512,8 +509,8 @@ struct Round {
     states: WheelState,
     /// The vertical force the rail carries through `forces` \[N\].
     carried: f64,
-    /// G(z_ws) and its patches (z_ws itself, no patches, when `forces` settle the balance).
-    next: (f64, Vec<ContactPatch>),
+    /// G(z_ws) and its patches; `None` when `forces` settle the balance.
+    next: Option<(f64, Vec<ContactPatch>)>,
 }
 
 /// The secant step on a residual r(z): the root of the line through (z₀, r₀) and (z₁, r₁), if

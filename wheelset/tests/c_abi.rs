@@ -514,18 +514,23 @@ fn a_restored_state_keeps_the_stop_time() {
 fn serialized_stepping_state(log: &Log) -> (Wheelset, Vec<u8>) {
     let fmu = Wheelset::stepping(log, &[(vr::INITIAL_LATERAL_DISPLACEMENT, 2e-3)]);
     assert_eq!(fmu.do_step(0.0, 0.01), OK);
+    let bytes = serialized(&fmu);
+    (fmu, bytes)
+}
+
+/// The instance's state now, serialized (the state itself freed).
+fn serialized(fmu: &Wheelset) -> Vec<u8> {
     let mut state: fmi2FMUstate = null_mut();
     let mut size = 0;
     // SAFETY: `c` is live; the buffer has `size` bytes; the state is freed.
-    let bytes = unsafe {
+    unsafe {
         assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
         assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
         let mut bytes = vec![0u8; size];
         assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
         assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
         bytes
-    };
-    (fmu, bytes)
+    }
 }
 
 fn deserialize(fmu: &Wheelset, bytes: &[u8]) -> fmi2Status {
@@ -627,17 +632,7 @@ fn a_state_saved_before_initialization_may_hold_any_parameter() {
         assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
     }
     assert_eq!(fmu.set(&[vr::MASS], &[-1.0]), OK);
-    let mut state: fmi2FMUstate = null_mut();
-    let mut size = 0;
-    // SAFETY: `c` is live; the buffer has `size` bytes; the state is freed.
-    let bytes = unsafe {
-        assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
-        assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
-        let mut bytes = vec![0u8; size];
-        assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
-        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
-        bytes
-    };
+    let bytes = serialized(&fmu);
     assert_eq!(deserialize(&fmu, &bytes), OK, "{}", log.last());
     // SAFETY: `c` is live.
     assert_eq!(unsafe { fmi2ExitInitializationMode(fmu.c) }, ERROR);
