@@ -115,6 +115,10 @@ mod tests {
     fn the_payload_comes_back_and_every_truncation_and_bit_flip_is_refused() {
         let bytes = FORMAT.encode(b"some payload");
         assert_eq!(FORMAT.decode(&bytes).unwrap(), b"some payload");
+        // An empty payload is a payload; cut at the GUID's length byte, the whole header's
+        // length is what is missing.
+        assert_eq!(FORMAT.decode(&FORMAT.encode(b"")).unwrap(), b"");
+        assert_eq!(FORMAT.decode(&bytes[..19]).unwrap_err(), "truncated: 19 bytes, the state needs at least 35");
         assert_eq!(bytes.len(), 19 + 8 + 8 + 12);
         assert_eq!(&bytes[..8], b"TSTstate");
         for length in 0..bytes.len() {

@@ -43,3 +43,18 @@ fn open_without_blocking(path: &Path) -> std::io::Result<File> {
 fn open_without_blocking(path: &Path) -> std::io::Result<File> {
     File::open(path)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::read_regular_file;
+
+    /// A file of exactly the limit is read whole; one byte more is refused, naming both sizes.
+    #[test]
+    fn a_file_of_the_limit_is_read_whole_and_one_byte_more_is_refused() {
+        let path = std::env::temp_dir().join(format!("wrc-files-limit-{}", std::process::id()));
+        std::fs::write(&path, b"0123456789").unwrap();
+        assert_eq!(read_regular_file(&path, 10).unwrap(), b"0123456789");
+        assert_eq!(read_regular_file(&path, 9).unwrap_err(), "it has 10 bytes; this file may have at most 9");
+        std::fs::remove_file(&path).unwrap();
+    }
+}

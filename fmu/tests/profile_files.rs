@@ -238,6 +238,16 @@ fn a_path_of_megabytes_is_not_echoed_whole() {
     let (_, message) = log.last().unwrap();
     assert!(message.len() < 1000, "{} bytes", message.len());
     assert!(message.contains("… (52428804 bytes)") && message.contains("a path is at most 4096 bytes"), "{message}");
+    // A path of 4096 bytes is a path (here one that names no file); 4097 is not.
+    for (length, reason) in [(4096, "the file cannot be read"), (4097, "a path is at most 4096 bytes")] {
+        let path = format!("/{}.prw", "x".repeat(length - 5));
+        assert_eq!(path.len(), length);
+        let log = MessageLog::default();
+        let fmu = with_profile(&log, vr::WHEEL_PROFILE, &path);
+        assert_eq!(exit_initialisation(&fmu), ERROR);
+        let (_, message) = log.last().unwrap();
+        assert!(message.contains(reason), "{length}: {message}");
+    }
 }
 
 #[test]

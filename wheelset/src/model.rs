@@ -276,6 +276,13 @@ mod tests {
 
     use super::{readable, Wheelset};
 
+    /// The slave layer reads the outputs it guards (and their dependencies) from this table:
+    /// the model description's, every variable in its order.
+    #[test]
+    fn the_variables_the_slave_layer_reads_are_the_model_descriptions() {
+        assert_eq!(Wheelset::variables(), &crate::model_description::VARIABLES[..]);
+    }
+
     fn initialized() -> Wheelset {
         let mut wheelset = Wheelset::default();
         wheelset.initialize().unwrap();

@@ -603,6 +603,18 @@ fn a_forged_state_with_a_valid_checksum_is_refused_by_its_sense() {
     }
     // An input may hold any value, as after fmi2SetReal: the next step reports it.
     assert_eq!(deserialize(&fmu, &forged(variable_at(vr::LEFT_TRACK_FORCE_Y), f64::NAN)), OK);
+    // On the derailment bound itself is still on the track (initialize allows |y| = the bound).
+    assert_eq!(deserialize(&fmu, &forged(variable_at(vr::WHEELSET_LATERAL_DISPLACEMENT), -0.01)), OK, "{}", log.last());
+    // A payload shorter than its run data (mode, time, stop time: 17 bytes), or with the run
+    // data and no values, behind a valid header: each refused with its reason.
+    assert_eq!(deserialize(&fmu, &format.encode(&payload[..16])), ERROR);
+    assert!(
+        log.last().ends_with("corrupted: a payload of 16 bytes, shorter than its 17-byte run data"),
+        "{}",
+        log.last()
+    );
+    assert_eq!(deserialize(&fmu, &format.encode(&payload[..17])), ERROR);
+    assert!(log.last().ends_with("0 bytes of values, not the 264 of this FMU's variables"), "{}", log.last());
     // The refusals changed nothing: the instance steps on from its own values, all finite, and
     // the unforged state still restores.
     let outputs = fmu.get(&STATE);
@@ -691,4 +703,17 @@ fn a_step_that_cannot_advance_the_time_is_refused() {
     }
     assert_eq!(fmu.do_step(1e12, 1e-6), ERROR);
     assert!(log.last().contains("is below the resolution of the time"), "{}", log.last());
+}
+
+#[test]
+fn loads_whose_sum_overflows_are_an_error_and_the_outputs_are_kept() {
+    // Each wheel's lateral force is finite, their sum is not: the physics refuses the state it
+    // would reach (before the slave layer's output guard, which output_guard.rs tests).
+    let log = Log::default();
+    let fmu = Wheelset::stepping(&log, &[]);
+    let before = fmu.get(&STATE);
+    assert_eq!(fmu.set(&[vr::LEFT_TRACK_FORCE_Y, vr::RIGHT_TRACK_FORCE_Y], &[f64::MAX, f64::MAX]), OK);
+    assert_eq!(fmu.do_step(0.0, 0.01), ERROR);
+    assert!(log.last().starts_with("fmi2DoStep: the state is not finite"), "{}", log.last());
+    assert_eq!(fmu.get(&STATE), before, "the outputs are kept");
 }
