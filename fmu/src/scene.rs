@@ -88,13 +88,15 @@ impl ModelCache {
         self.expected_profiles = digest;
     }
 
-    /// The contact for these parameters and the caches; the error names the parameter.
+    /// The contact for these parameters, the caches, and whether the contact was built by this
+    /// call (after [`ModelCache::parameters_changed`]); the error names the parameter.
     #[inline]
     fn plan(
         &mut self,
         parameters: &Parameters,
         strings: &Strings,
-    ) -> Result<(&Contact, &mut SceneCache, &mut WheelCache), String> {
+    ) -> Result<(&Contact, &mut SceneCache, &mut WheelCache, bool), String> {
+        let rebuilt = self.built.is_none();
         let resources = self.resources.as_deref();
         let expected = &mut self.expected_profiles;
         let (built_for, built_strings, contact) = self.built.get_or_insert_with(|| {
@@ -113,7 +115,7 @@ impl ModelCache {
         let unchanged_or_nan = (built_for == parameters || parameters != parameters) && built_strings == strings;
         debug_assert!(unchanged_or_nan, "a parameter changed without ModelCache::parameters_changed");
         match contact {
-            Ok(contact) => Ok((contact, &mut self.scene_cache, &mut self.wheel_cache)),
+            Ok(contact) => Ok((contact, &mut self.scene_cache, &mut self.wheel_cache, rebuilt)),
             Err(reason) => Err(reason.clone()),
         }
     }
@@ -337,39 +339,119 @@ fn contact_of(parameters: &Parameters, strings: &Strings, resources: Option<&Pat
     })
 }
 
-/// What an evaluation carries to the next: the scene's state (`ellipse`) or the wheel's
-/// (`profiles`); the other stays as it was.
-pub(crate) type ContactStates = (SceneState, WheelState);
-
-/// The outputs for `values` from the states of the last evaluation, the states after this one
-/// (advanced or initialised) and a warning for the master when the outputs are an unconverged
-/// exact solve's last iterate; or the reason they cannot be computed (names the variable and value).
-pub(crate) fn compute_outputs(
-    values: &Values,
+/// Evaluates the contact the parameters select at `values` from the states of the last
+/// evaluation (`scene` with `ellipse`, `wheel` with `profiles`) and, only if every output it
+/// computes is finite, writes the outputs into `values` and the state after this evaluation
+/// (advanced or initialised) into the contact's own; on error nothing is changed. `Ok` holds a
+/// warning for the master when the outputs are an unconverged exact solve's last iterate; the
+/// error names the variable and value.
+///
+/// The one-patch path is the hot path of a co-simulation step: it writes the patch's outputs in
+/// place (the wheel's stay zero) and moves no state it does not advance.
+pub(crate) fn update_outputs(
+    values: &mut Values,
     strings: &Strings,
     cache: &mut ModelCache,
-    (scene_state, wheel_state): (&SceneState, &WheelState),
+    scene_state: &mut SceneState,
+    wheel_state: &mut WheelState,
     evaluation: Evaluation,
-) -> Result<(Outputs, ContactStates, Option<String>), String> {
-    match cache.plan(&values.parameters, strings)? {
-        (Contact::Ellipse(scene), scene_cache, _) => {
+) -> Result<Option<String>, String> {
+    let (contact, scene_cache, wheel_cache, rebuilt) = cache.plan(&values.parameters, strings)?;
+    match contact {
+        Contact::Ellipse(scene) => {
             let (output, next_state) = scene
                 .evaluate(&scene_input(&values.inputs), scene_state, scene_cache, evaluation)
                 .map_err(|e| e.to_string())?;
-            let warning = unconverged_warning(&output);
-            Ok((outputs(&output, &WheelOutputs::default()), (next_state, wheel_state.clone()), warning))
+            if !patch_outputs_finite(&output) {
+                return Err(non_finite(&outputs(&output, &WheelOutputs::default())));
+            }
+            if rebuilt {
+                // The last outputs may be a wheel's, of the contact the parameters selected before.
+                values.outputs = outputs(&SceneOutput::default(), &WheelOutputs::default());
+            }
+            write_patch_outputs(&mut values.outputs, &output);
+            *scene_state = next_state;
+            Ok(unconverged_warning(&output))
         }
-        (Contact::Profiles(wheel), _, wheel_cache) => {
+        Contact::Profiles(wheel) => {
             let input = wheel.input(&values.inputs);
             let (output, next_state) = wheel
                 .contact()
                 .evaluate(&input, wheel_state, wheel_cache, evaluation)
                 .map_err(|e| wheel.describe(e))?;
             let warning = output.patches.iter().find_map(|patch| unconverged_warning(&patch.output));
-            let wheel_outputs = WheelOutputs::of(&output);
-            Ok((outputs(&SceneOutput::default(), &wheel_outputs), (scene_state.clone(), next_state), warning))
+            let outputs = outputs(&SceneOutput::default(), &WheelOutputs::of(&output));
+            finite(&outputs)?;
+            values.outputs = outputs;
+            *wheel_state = next_state;
+            Ok(warning)
         }
     }
+}
+
+/// Whether every output of one patch is finite: x·0 is ±0 for a finite x and NaN for ±Inf or
+/// NaN, so one branch-free sum tells.
+#[inline]
+fn patch_outputs_finite(scene: &SceneOutput) -> bool {
+    let SceneOutput {
+        force_longitudinal,
+        force_lateral,
+        adhesion_utilisation,
+        spin_moment,
+        current_friction_coefficient,
+        slip_velocity,
+        effective_creepage_longitudinal,
+        effective_creepage_lateral,
+        effective_spin_creepage,
+        contact_semi_axis_a,
+        contact_semi_axis_b,
+        max_pressure,
+        approach,
+        unconverged_grid: _,
+    } = *scene;
+    let reals = [
+        force_longitudinal,
+        force_lateral,
+        adhesion_utilisation,
+        spin_moment,
+        current_friction_coefficient,
+        slip_velocity,
+        effective_creepage_longitudinal,
+        effective_creepage_lateral,
+        effective_spin_creepage,
+        contact_semi_axis_a,
+        contact_semi_axis_b,
+        max_pressure,
+        approach,
+    ];
+    reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0
+}
+
+/// Every output finite, or why not: the last guard of "never NaN or Inf out", for finite
+/// inputs so large that a model's arithmetic overflows. A few compares on the hot path; the
+/// message is built only on failure.
+pub(crate) fn finite(outputs: &Outputs) -> Result<(), String> {
+    let reals = outputs.reals();
+    if reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0 {
+        Ok(())
+    } else {
+        Err(non_finite(outputs))
+    }
+}
+
+/// The message of outputs of which one is not finite.
+#[cold]
+fn non_finite(outputs: &Outputs) -> String {
+    let overflowing: Vec<String> = Outputs::NAMES
+        .iter()
+        .zip(outputs.reals())
+        .filter(|(_, x)| !x.is_finite())
+        .map(|(name, x)| format!("{name} = {x}"))
+        .collect();
+    format!(
+        "{} for these values: an input or parameter is too large for the model's floating-point range",
+        overflowing.join(", ")
+    )
 }
 
 /// The master's warning when `output` is an exact solve that stopped at its limits.
@@ -403,13 +485,13 @@ pub(crate) fn directional_derivative(
     direction: &Inputs,
 ) -> Result<Outputs, String> {
     match cache.plan(&values.parameters, strings)? {
-        (Contact::Ellipse(scene), _, _) => {
+        (Contact::Ellipse(scene), ..) => {
             let rates = scene
                 .directional_derivative(&scene_input(&values.inputs), &scene_input(direction))
                 .map_err(|e: SceneError| e.to_string())?;
             Ok(outputs(&rates, &WheelOutputs::default()))
         }
-        (Contact::Profiles(_), _, _) => Err(format!(
+        (Contact::Profiles(_), ..) => Err(format!(
             "directional derivatives are not available with contact_geometry = {} (profiles)",
             ContactGeometry::Profiles as i32
         )),
@@ -461,20 +543,20 @@ pub fn scene_input(inputs: &Inputs) -> SceneInput {
 /// zero), every zero written as +0 (`x + 0.0` changes nothing else; masters print −0 as `-0`).
 pub fn outputs(scene: &SceneOutput, wheel: &WheelOutputs) -> Outputs {
     let [patch1, patch2] = &wheel.patches;
-    Outputs {
-        force_longitudinal: scene.force_longitudinal + 0.0,
-        force_lateral: scene.force_lateral + 0.0,
-        adhesion_utilisation: scene.adhesion_utilisation + 0.0,
-        spin_moment: scene.spin_moment + 0.0,
-        current_friction_coefficient: scene.current_friction_coefficient + 0.0,
-        slip_velocity: scene.slip_velocity + 0.0,
-        effective_creepage_longitudinal: scene.effective_creepage_longitudinal + 0.0,
-        effective_creepage_lateral: scene.effective_creepage_lateral + 0.0,
-        effective_spin_creepage: scene.effective_spin_creepage + 0.0,
-        contact_semi_axis_a: scene.contact_semi_axis_a + 0.0,
-        contact_semi_axis_b: scene.contact_semi_axis_b + 0.0,
-        max_pressure: scene.max_pressure + 0.0,
-        approach: scene.approach + 0.0,
+    let mut outputs = Outputs {
+        force_longitudinal: 0.0,
+        force_lateral: 0.0,
+        adhesion_utilisation: 0.0,
+        spin_moment: 0.0,
+        current_friction_coefficient: 0.0,
+        slip_velocity: 0.0,
+        effective_creepage_longitudinal: 0.0,
+        effective_creepage_lateral: 0.0,
+        effective_spin_creepage: 0.0,
+        contact_semi_axis_a: 0.0,
+        contact_semi_axis_b: 0.0,
+        max_pressure: 0.0,
+        approach: 0.0,
         track_force_x: wheel.track_force[0] + 0.0,
         track_force_y: wheel.track_force[1] + 0.0,
         track_force_z: wheel.track_force[2] + 0.0,
@@ -505,7 +587,28 @@ pub fn outputs(scene: &SceneOutput, wheel: &WheelOutputs) -> Outputs {
         patch2_spin_creepage: patch2.spin_creepage + 0.0,
         patch2_semi_axis_a: patch2.semi_axis_a + 0.0,
         patch2_semi_axis_b: patch2.semi_axis_b + 0.0,
-    }
+    };
+    write_patch_outputs(&mut outputs, scene);
+    outputs
+}
+
+/// Writes one patch's outputs (the scene's) into `outputs`, every zero as +0; the wheel's
+/// outputs are left as they are.
+#[inline]
+fn write_patch_outputs(outputs: &mut Outputs, scene: &SceneOutput) {
+    outputs.force_longitudinal = scene.force_longitudinal + 0.0;
+    outputs.force_lateral = scene.force_lateral + 0.0;
+    outputs.adhesion_utilisation = scene.adhesion_utilisation + 0.0;
+    outputs.spin_moment = scene.spin_moment + 0.0;
+    outputs.current_friction_coefficient = scene.current_friction_coefficient + 0.0;
+    outputs.slip_velocity = scene.slip_velocity + 0.0;
+    outputs.effective_creepage_longitudinal = scene.effective_creepage_longitudinal + 0.0;
+    outputs.effective_creepage_lateral = scene.effective_creepage_lateral + 0.0;
+    outputs.effective_spin_creepage = scene.effective_spin_creepage + 0.0;
+    outputs.contact_semi_axis_a = scene.contact_semi_axis_a + 0.0;
+    outputs.contact_semi_axis_b = scene.contact_semi_axis_b + 0.0;
+    outputs.max_pressure = scene.max_pressure + 0.0;
+    outputs.approach = scene.approach + 0.0;
 }
 
 #[cfg(test)]
@@ -591,7 +694,7 @@ mod tests {
         evaluate_relaxed(values, &mut test_cache(), &mut [0.0; 2], Evaluation::Initialise)
     }
 
-    /// [`compute_outputs`] from a state of these relaxed forces (and no model memory), which
+    /// [`update_outputs`] from a state of these relaxed forces (and no model memory), which
     /// advance on success.
     fn evaluate_relaxed(
         values: &Values,
@@ -599,13 +702,12 @@ mod tests {
         relaxed_forces: &mut [f64; 2],
         evaluation: Evaluation,
     ) -> Result<Outputs, String> {
-        let state = SceneState::with_relaxed_forces(*relaxed_forces);
-        compute_outputs(values, &Strings::default(), cache, (&state, &WheelState::default()), evaluation).map(
-            |(outputs, (next, _), _)| {
-                *relaxed_forces = next.relaxed_forces;
-                outputs
-            },
-        )
+        let mut state = SceneState::with_relaxed_forces(*relaxed_forces);
+        let mut values = *values;
+        let strings = Strings::default();
+        update_outputs(&mut values, &strings, cache, &mut state, &mut WheelState::default(), evaluation)?;
+        *relaxed_forces = state.relaxed_forces;
+        Ok(values.outputs)
     }
 
     fn outputs(values: &Values) -> Outputs {

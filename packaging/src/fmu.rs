@@ -528,6 +528,55 @@ pub fn write_fmu(unit: &Unit, binaries: &[PlatformBinary], fmu_path: &Path) -> R
     Ok(())
 }
 
+/// The debug file of `unit`'s `platform` binary that [`package`] writes beside the FMU
+/// (`<out_dir>/<modelIdentifier>.<platform>.debug`): the release binary's line tables, which a
+/// profiler or debugger reads through the binary's `.gnu_debuglink`.
+pub fn debug_file(unit: &Unit, platform: Platform, out_dir: &Path) -> PathBuf {
+    out_dir.join(format!("{}.{}.debug", unit.model_identifier, platform.folder()))
+}
+
+/// The platform's `objcopy`: binutils' own for ELF, mingw-w64's for PE (binutils on Linux
+/// may not read PE).
+fn objcopy(platform: Platform) -> Option<&'static str> {
+    let candidates: &[&'static str] = match platform {
+        Platform::Linux64 => &["objcopy"],
+        Platform::Win64 => &["x86_64-w64-mingw32-objcopy", "objcopy"],
+    };
+    candidates.iter().copied().find(|program| runs(program))
+}
+
+/// Splits a release binary (built with line tables and its symbol table, `[profile.release]`)
+/// into the binary the FMU carries — its function names kept, so a profile of a master names
+/// them; no debug sections — and the [`debug_file`] beside the FMU, linked from the binary by
+/// `.gnu_debuglink`. Returns the binary to package. Without an `objcopy` the binary is packaged
+/// whole (a few MB larger), with a note.
+fn split_debug_info(library: &Path, platform: Platform, unit: &Unit, out_dir: &Path) -> Result<PathBuf, String> {
+    let Some(objcopy) = objcopy(platform) else {
+        eprintln!(
+            "cargo fmu: no objcopy for {} (binutils): its binary is packaged with its debug sections",
+            platform.folder()
+        );
+        return Ok(library.to_path_buf());
+    };
+    let debug = debug_file(unit, platform, out_dir);
+    let stripped = out_dir.join("stripped").join(platform.folder()).join(library.file_name().unwrap_or_default());
+    for folder in [out_dir, stripped.parent().unwrap_or(out_dir)] {
+        std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    }
+    let run = |arguments: Vec<std::ffi::OsString>| -> Result<(), String> {
+        let status = Command::new(objcopy).args(&arguments).status();
+        match status {
+            Ok(status) if status.success() => Ok(()),
+            outcome => Err(format!("{objcopy} {arguments:?} failed: {outcome:?}")),
+        }
+    };
+    run(vec!["--only-keep-debug".into(), library.into(), debug.clone().into()])?;
+    let mut link = std::ffi::OsString::from("--add-gnu-debuglink=");
+    link.push(&debug);
+    run(vec!["--strip-debug".into(), link, library.into(), stripped.clone().into()])?;
+    Ok(stripped)
+}
+
 /// Builds and checks `unit`'s libraries that `reach` asks for and writes
 /// `<out_dir>/<modelIdentifier>.fmu`.
 pub fn package(unit: &Unit, profile: Profile, reach: Reach, out_dir: &Path) -> Result<Packaged, String> {
@@ -548,7 +597,11 @@ pub fn package(unit: &Unit, profile: Profile, reach: Reach, out_dir: &Path) -> R
             },
         };
         match built {
-            Ok((library, linkage)) => {
+            Ok((built_library, linkage)) => {
+                let library = match profile {
+                    Profile::Release => split_debug_info(&built_library, platform, unit, out_dir)?,
+                    Profile::Dev => built_library,
+                };
                 let bytes = std::fs::read(&library).map_err(|e| format!("{}: {e}", library.display()))?;
                 let summary = check_library(platform, &linkage, &bytes)
                     .map_err(|problem| format!("{} ({}): {problem}", platform.folder(), library.display()))?;

@@ -421,12 +421,16 @@ impl Scene {
         let s_c =
             Polach::resulting_creepage(creepages.longitudinal, creepages.lateral, creepages.spin, ellipse.semi_axis_a);
         let slip_velocity = s_c * creepages.speed;
+        // The scene's own model unless the traction law adapts it: borrowed, since a model can be
+        // large (the exact theory's grid) and this is the hot path of a step.
+        let adapted;
         let (model, friction) = match self.traction_law {
-            TractionLaw::Coulomb => (self.model, input.friction_coefficient),
-            TractionLaw::Polach2005(law) => (
-                self.model.under_polach2005(law, creepages.speed)?.ok_or(SceneError::TractionLawNeedsPolach)?,
-                law.friction(input.friction_coefficient, slip_velocity),
-            ),
+            TractionLaw::Coulomb => (&self.model, input.friction_coefficient),
+            TractionLaw::Polach2005(law) => {
+                adapted =
+                    self.model.under_polach2005(law, creepages.speed)?.ok_or(SceneError::TractionLawNeedsPolach)?;
+                (&adapted, law.friction(input.friction_coefficient, slip_velocity))
+            }
         };
         let step = model
             .creep_forces_in_sequence(&contact, &state.model, &mut cache.model)

@@ -2,12 +2,11 @@
 //! core's ([`wheel_rail_contact::scene::Scene::directional_derivative`], through
 //! [`crate::scene::directional_derivative`]).
 
-use super::step::finite;
 use super::Instance;
 use crate::logging::Status;
 use crate::mode::Call;
 use crate::model_description::{self, variable, Causality, Kind, Values, Variability};
-use crate::scene::directional_derivative;
+use crate::scene::{directional_derivative, finite};
 
 impl Instance {
     /// fmi2GetDirectionalDerivative: `unknown_rates` = J·`known_rates`, J = ∂(outputs)/∂(inputs)

@@ -1,27 +1,23 @@
 //! fmi2DoStep and the evaluation of the outputs: the core's scene over the step, kept only if
-//! every output is finite.
+//! every output is finite ([`crate::scene::update_outputs`]).
 
 use super::Instance;
 use crate::logging::Status;
 use crate::mode::Call;
-use crate::model_description::Outputs;
-use crate::scene::compute_outputs;
+use crate::scene::update_outputs;
 use wheel_rail_contact::scene::Evaluation;
 
 impl Instance {
     /// Brings the outputs up to date: `Ok(Status::Ok)`, or `Ok(Status::Warning)` after logging
     /// why the outputs are to be used with care (an exact solve that stopped at its limits).
+    /// The outputs and the contact's state change only if every output is finite.
     #[inline]
     pub(super) fn update_outputs(&mut self, call: Call, evaluation: Evaluation) -> Result<Status, Status> {
-        // The scene's next state is kept only if the outputs are good.
-        let states = (&self.run.scene, &self.run.wheel);
-        let outputs = compute_outputs(&self.run.values, &self.run.strings, &mut self.model, states, evaluation)
-            .and_then(|(outputs, states, warning)| finite(&outputs).map(|_| (outputs, states, warning)));
-        match outputs {
-            Ok((outputs, (scene, wheel), warning)) => {
-                self.run.values.outputs = outputs;
-                self.run.scene = scene;
-                self.run.wheel = wheel;
+        let run = &mut self.run;
+        let updated =
+            update_outputs(&mut run.values, &run.strings, &mut self.model, &mut run.scene, &mut run.wheel, evaluation);
+        match updated {
+            Ok(warning) => {
                 self.run.profiles = self.model.profile_digest();
                 Ok(match warning {
                     Some(warning) => {
@@ -64,25 +60,4 @@ impl Instance {
             Err(status) => status,
         }
     }
-}
-
-/// Every output finite, or why not: the last guard of "never NaN or Inf out", for finite
-/// inputs so large that a model's arithmetic overflows. A few compares on the hot path; the
-/// message is built only on failure.
-pub(super) fn finite(outputs: &Outputs) -> Result<(), String> {
-    let reals = outputs.reals();
-    // x·0 is ±0 for a finite x and NaN for ±Inf or NaN: one branch-free sum tells.
-    if reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0 {
-        return Ok(());
-    }
-    let overflowing: Vec<String> = Outputs::NAMES
-        .iter()
-        .zip(reals)
-        .filter(|(_, x)| !x.is_finite())
-        .map(|(name, x)| format!("{name} = {x}"))
-        .collect();
-    Err(format!(
-        "{} for these values: an input or parameter is too large for the model's floating-point range",
-        overflowing.join(", ")
-    ))
 }

@@ -51,11 +51,10 @@ impl ValueType {
 }
 
 impl Instance {
-    /// Whether `value_reference` can be written as `value_type` now: one byte of the generated
-    /// access table.
+    /// Whether a variable of these [`ACCESS`](crate::model_description::ACCESS) bits can be
+    /// written as `value_type` now.
     #[inline]
-    fn settable(&self, value_reference: u32, value_type: ValueType) -> bool {
-        let bits = access_of(value_reference);
+    fn settable(&self, bits: u8, value_type: ValueType) -> bool {
         bits & value_type.access_bit() != 0
             && (bits & access::WRITABLE != 0 || (bits & access::FIXED != 0 && self.run.mode != Mode::StepComplete))
     }
@@ -87,15 +86,21 @@ impl Instance {
     }
 
     /// Checks every reference first, so that a call sets either all its values or none; when
-    /// one is a parameter, the scene built from the parameters is forgotten.
+    /// one is a parameter, the scene built from the parameters is forgotten. One pass over one
+    /// byte of the generated access table per reference.
     #[inline]
     fn prepare_set(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
         self.require(call)?;
-        if let Some(&value_reference) = value_references.iter().find(|&&r| !self.settable(r, value_type)) {
-            let reason = self.not_settable(value_reference, value_type);
-            return Err(self.log.fail(call, &reason));
+        let mut written = 0;
+        for &value_reference in value_references {
+            let bits = access_of(value_reference);
+            if !self.settable(bits, value_type) {
+                let reason = self.not_settable(value_reference, value_type);
+                return Err(self.log.fail(call, &reason));
+            }
+            written |= bits;
         }
-        if value_references.iter().any(|&r| access_of(r) & access::PARAMETER != 0) {
+        if written & access::PARAMETER != 0 {
             self.model.parameters_changed();
         }
         Ok(())
