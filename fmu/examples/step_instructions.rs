@@ -1,9 +1,9 @@
 //! The instruction budget's workloads (counted under callgrind by `scripts/instruction-budget`):
 //! STEPS co-simulation steps of one workload through the C ABI, as a master calls it.
 //!
-//! - `patch_polach`: one patch, model `polach`: 7 fmi2SetReal values (creepages, spin, load,
-//!   ellipse, friction) + fmi2DoStep + 3 fmi2GetReal values, as `../shared/bench/step-vs-c` times
-//!   it;
+//! - `patch_polach`, `patch_exact_table`: one patch, model `polach` or `exact_table`: 7
+//!   fmi2SetReal values (creepages, spin, load, ellipse, friction) + fmi2DoStep + 3 fmi2GetReal
+//!   values, as `../shared/bench/step-vs-c` times it;
 //! - `wheel_polach`, `wheel_exact_table`: a wheel on its rail from the built-in profiles
 //!   (S1002 on UIC60 1:40), model `polach` or `exact_table`: the wheelset's lateral displacement
 //!   and yaw angle set + fmi2DoStep + the force on the track (3 values) read; the displacement
@@ -22,9 +22,12 @@ use wheel_rail_contact_fmu::model_description::{ContactGeometry, Model};
 /// The step size \[s\].
 const STEP: f64 = 1e-4;
 
-/// Steps one patch: the same inputs as `step-vs-c`, the longitudinal creepage moving a little.
-fn patch_polach(steps: usize) -> f64 {
-    let fmu = Fmu::stepping("instruction budget, one patch", 0.0);
+/// Steps one patch with `model`: the same inputs as `step-vs-c`, the longitudinal creepage moving
+/// a little.
+fn patch(model: Model, steps: usize) -> f64 {
+    let fmu = Fmu::instantiate("instruction budget, one patch", None);
+    assert_eq!(fmu.set_integer(&[vr::CREEP_FORCE_MODEL], &[model as i32]), OK);
+    fmu.initialise(0.0);
     let mut outputs = [0.0; 3];
     let mut sink = 0.0;
     for k in 0..steps {
@@ -69,11 +72,12 @@ fn wheel(model: Model, steps: usize) -> f64 {
 fn main() {
     let mut arguments = std::env::args().skip(1);
     let (Some(workload), Some(steps)) = (arguments.next(), arguments.next().and_then(|n| n.parse().ok())) else {
-        eprintln!("usage: step_instructions patch_polach|wheel_polach|wheel_exact_table STEPS");
+        eprintln!("usage: step_instructions patch_polach|patch_exact_table|wheel_polach|wheel_exact_table STEPS");
         std::process::exit(2);
     };
     let sink = match workload.as_str() {
-        "patch_polach" => patch_polach(steps),
+        "patch_polach" => patch(Model::Polach, steps),
+        "patch_exact_table" => patch(Model::ExactTable, steps),
         "wheel_polach" => wheel(Model::Polach, steps),
         "wheel_exact_table" => wheel(Model::ExactTable, steps),
         other => {
