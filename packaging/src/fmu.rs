@@ -582,6 +582,14 @@ fn split_debug_info(library: &Path, platform: Platform, unit: &Unit, out_dir: &P
 pub fn package(unit: &Unit, profile: Profile, reach: Reach, out_dir: &Path) -> Result<Packaged, String> {
     let (mut binaries, mut skipped) = (Vec::new(), Vec::new());
     for platform in Platform::ALL {
+        if reach == Reach::EveryToolchainPresent || Platform::this_machine() == Some(platform) {
+            // cargo's own progress follows (its messages are passed through).
+            eprintln!(
+                "cargo fmu: building {} for {} ({profile:?} profile) …",
+                unit.model_identifier,
+                platform.folder()
+            );
+        }
         let built = match reach {
             Reach::ThisMachine if Platform::this_machine() == Some(platform) => {
                 Ok((build_shared_library(unit, profile)?, Linkage::ThisMachinesGlibc))

@@ -43,6 +43,7 @@ fn run_package() -> Result<(), String> {
 }
 
 fn run_scene() -> Result<(), String> {
+    eprintln!("cargo fmu: running the default scene through {} …", fmu_path().display());
     let (rows, files) = default_scene::run(&fmu_path(), &out_dir())?;
     println!("Default scene through {} (start values, swept creepage ξ):", fmu_path().display());
     print!("{}", default_scene::table(&rows));

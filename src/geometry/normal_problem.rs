@@ -254,8 +254,12 @@ impl ContactCandidates {
             high = touch + 2.0 * (high - touch);
             // (NaN, without any candidate, stops here too.)
             if !(..=MAX_PENETRATION).contains(&(high - touch)) {
+                // Each patch carries its vertical share of its normal force; on a steep flange
+                // the creep forces' share can cancel it (Nadal's limit): the wheel climbs.
                 return Err(ProfileError::whole(format!(
-                    "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
+                    "flange climb (derailment): vertical_force = {vertical_force} N is not carried within \
+                     {MAX_PENETRATION} m of penetration: at this position the creep forces lift the wheel at least \
+                     as much as the normal forces carry it (Nadal's limit), or the wheel is off the rail head"
                 )));
             }
         }

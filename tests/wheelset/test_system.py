@@ -184,7 +184,7 @@ def test_a_wheel_whose_creep_forces_lift_it_ends_the_run_naming_its_inputs(ssp):
                                       "wheelset.initial_lateral_displacement": 4e-3}, stop_time=1.0)
     failure = error.value
     assert failure.component in ("left_wheel", "right_wheel") and 0.1 < failure.time < 1.0
-    assert "vertical_force = 54546.05 N is not carried" in failure.message
+    assert "flange climb (derailment): vertical_force = 54546.05 N is not carried" in failure.message
     assert "wheelset_lateral_displacement = 0.007" in failure.message
 
 
