@@ -389,8 +389,14 @@ pub(crate) fn update_outputs(
     }
 }
 
-/// Whether every output of one patch is finite: x·0 is ±0 for a finite x and NaN for ±Inf or
-/// NaN, so one branch-free sum tells.
+/// Whether every value is finite: x·0 is ±0 for a finite x and NaN for ±Inf or NaN, so one
+/// branch-free sum tells.
+#[inline]
+fn all_finite(reals: &[f64]) -> bool {
+    reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0
+}
+
+/// Whether every output of one patch is finite.
 #[inline]
 fn patch_outputs_finite(scene: &SceneOutput) -> bool {
     let SceneOutput {
@@ -409,7 +415,7 @@ fn patch_outputs_finite(scene: &SceneOutput) -> bool {
         approach,
         unconverged_grid: _,
     } = *scene;
-    let reals = [
+    all_finite(&[
         force_longitudinal,
         force_lateral,
         adhesion_utilisation,
@@ -423,16 +429,14 @@ fn patch_outputs_finite(scene: &SceneOutput) -> bool {
         contact_semi_axis_b,
         max_pressure,
         approach,
-    ];
-    reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0
+    ])
 }
 
 /// Every output finite, or why not: the last guard of "never NaN or Inf out", for finite
 /// inputs so large that a model's arithmetic overflows. A few compares on the hot path; the
 /// message is built only on failure.
 pub(crate) fn finite(outputs: &Outputs) -> Result<(), String> {
-    let reals = outputs.reals();
-    if reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0 {
+    if all_finite(&outputs.reals()) {
         Ok(())
     } else {
         Err(non_finite(outputs))

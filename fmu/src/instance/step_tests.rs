@@ -180,3 +180,31 @@ fn an_exact_solve_that_does_not_converge_is_a_warning_naming_the_grid() {
         "{force_x}, {force_y}"
     );
 }
+
+/// The last guard of the outputs: finite inputs whose product overflows (the slip velocity
+/// s_C·|V| with ξ = 1e200 and V = 1e200 m/s) are an error naming the output and its value; the
+/// outputs and the time stay those of the last good step, and the instance carries on once the
+/// inputs are back in range.
+#[test]
+fn an_output_beyond_the_floating_point_range_is_an_error_and_nothing_changes() {
+    let (mut instance, log) = stepping();
+    assert_eq!(instance.do_step(0.0, 1e-3), Status::Ok);
+    let before = *instance.values();
+    let slip_velocity = get(&mut instance, vr::SLIP_VELOCITY);
+    assert!(slip_velocity.is_finite());
+    let references = [vr::CREEPAGE_LONGITUDINAL, vr::ROLLING_SPEED];
+    assert_eq!(instance.set_real(&references, &[1e200, 1e200]), Status::Ok);
+    assert_eq!(instance.do_step(1e-3, 1e-3), Status::Error);
+    assert_eq!(
+        last_message(&log),
+        "fmi2DoStep: slip_velocity = inf for these values: an input or parameter is too large for the model's \
+         floating-point range"
+    );
+    assert_eq!(instance.values().outputs, before.outputs);
+    assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(1e-3));
+    // Each patch output is guarded, not only the slip velocity: F_x = −μQ at ξ = 1e200 is finite.
+    assert_eq!(instance.set_real(&references, &[1e200, 20.0]), Status::Ok);
+    assert_eq!(instance.do_step(1e-3, 1e-3), Status::Ok);
+    let (force, limit) = (get(&mut instance, vr::FORCE_LONGITUDINAL), 0.3 * 100e3);
+    assert!((force + limit).abs() <= 1e-9 * limit, "full sliding: F_x = {force} against -μQ = {}", -limit);
+}
