@@ -324,6 +324,7 @@ impl fmi2_slave::Slave for Instance {
     fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self> {
         Instance::instantiate(arguments, sink)
     }
+    #[inline]
     fn guarded(&mut self, call: Call, body: impl FnOnce(&mut Self) -> Status) -> Status {
         Instance::guarded(self, call, body)
     }
@@ -351,6 +352,7 @@ impl fmi2_slave::Slave for Instance {
     fn reset(&mut self) -> Status {
         Instance::reset(self)
     }
+    #[inline]
     fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
         Instance::get_real(self, value_references, values)
     }
@@ -363,6 +365,7 @@ impl fmi2_slave::Slave for Instance {
     fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status> {
         Instance::get_string(self, value_references)
     }
+    #[inline]
     fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
         Instance::set_real(self, value_references, values)
     }
@@ -402,6 +405,7 @@ impl fmi2_slave::Slave for Instance {
     ) -> Status {
         Instance::get_directional_derivative(self, unknowns, knowns, known_rates, unknown_rates)
     }
+    #[inline]
     fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
         Instance::do_step(self, current_communication_point, communication_step_size)
     }
