@@ -116,3 +116,23 @@ fn every_non_zero_derivative_is_a_declared_dependency() {
         assert!(non_zero > 30, "{model:?}: only {non_zero} non-zero derivatives");
     }
 }
+
+/// A rate so large that J·v overflows (the slip velocity's rate s_C'·V·10³⁰⁸; the forces' in dual
+/// arithmetic, ∞ − ∞) is an error naming the outputs, not an infinite or NaN derivative.
+#[test]
+fn a_derivative_beyond_the_floating_point_range_is_an_error_naming_the_output() {
+    let (mut instance, log) = at_a_general_point();
+    let mut derivative = [f64::NAN; 3];
+    let status = instance.get_directional_derivative(&OUTPUTS, &[vr::CREEPAGE_LONGITUDINAL], &[1e308], &mut derivative);
+    assert_eq!(status, Status::Error);
+    let message = last_message(&log);
+    assert!(message.starts_with("fmi2GetDirectionalDerivative: force_longitudinal = "), "{message}");
+    assert!(message.contains("slip_velocity = inf"), "{message}");
+    assert!(message.ends_with("too large for the model's floating-point range"), "{message}");
+    // A rate in range still works.
+    assert_eq!(
+        instance.get_directional_derivative(&OUTPUTS, &[vr::CREEPAGE_LONGITUDINAL], &[1.0], &mut derivative),
+        Status::Ok
+    );
+    assert!(derivative.iter().all(|d| d.is_finite()));
+}
