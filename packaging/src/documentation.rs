@@ -1,15 +1,17 @@
 //! `documentation/index.html` of the FMU. The variable table is generated from the adapter's
-//! own table (itself generated from `modelDescription.xml`), so it cannot drift; the plot is
-//! computed with the core library at the default scene.
+//! own table (itself generated from `modelDescription.xml`, laid out by [`crate::page`], which the
+//! wheelset's page shares), so it cannot drift; the plot is computed with the core library at the
+//! default scene.
 
 use std::fmt::Write as _;
 
 use wheel_rail_contact::{ContactInput, CreepForceModel, ModelChoice, Polach};
-use wheel_rail_contact_fmu::model_description::{Causality, Kind, Values, Variable, UNITS, VARIABLES};
+use wheel_rail_contact_fmu::model_description::{Kind, Values, UNITS, VARIABLES};
 use wheel_rail_contact_fmu::options;
 use wheel_rail_contact_fmu::scene::contact_input;
 
-use crate::plot::{escape, line_plot, Series};
+use crate::page::{dependencies_list, platform_items, variables_table, BinaryNote, STYLE};
+use crate::plot::{line_plot, Series};
 use crate::profile_figure;
 
 /// The core's input at the FMU's start values (the default scene).
@@ -41,73 +43,6 @@ fn default_curves() -> Vec<Series> {
         curve("F_x, pure longitudinal creepage ξ", |i, s| i.creepage_longitudinal = s, |f| f.force_longitudinal),
         curve("F_y, pure lateral creepage η", |i, s| i.creepage_lateral = s, |f| f.force_lateral),
     ]
-}
-
-fn display_unit_text(variable: &Variable) -> String {
-    let Some(unit) = variable.unit else { return String::new() };
-    match variable.display_unit {
-        Some(display) => {
-            let factor =
-                UNITS.iter().find(|(u, _)| *u == unit).and_then(|(_, d)| d.iter().find(|(n, _)| *n == display));
-            let factor = factor.map_or(1.0, |(_, f)| *f);
-            format!("{unit} (shown in {display}: 1 {unit} = {factor} {display})")
-        }
-        None => unit.to_owned(),
-    }
-}
-
-fn variables_table() -> String {
-    let mut html = String::from(
-        "<table>\n<tr><th>name</th><th>value reference</th><th>causality</th><th>variability</th>\
-         <th>unit</th><th>start</th><th>meaning</th></tr>\n",
-    );
-    for variable in &VARIABLES {
-        let start = match variable.kind {
-            Kind::Real { start } => start.map(|s| format!("{s}")).unwrap_or_else(|| "(computed)".into()),
-            Kind::Integer { start } => start.map(|s| s.to_string()).unwrap_or_else(|| "(computed)".into()),
-            Kind::Enumeration { items, start, .. } => {
-                let name = items.iter().find(|(_, value, _)| *value == start).map_or("?", |(name, _, _)| name);
-                format!("{start} ({name})")
-            }
-            Kind::String { start } => format!("\"{}\"", escape(start)),
-        };
-        let mut meaning = escape(variable.description);
-        if let Kind::Enumeration { declared_type, items, .. } = variable.kind {
-            write!(meaning, "<br>Enumeration {declared_type}:").unwrap();
-            for (name, value, description) in items {
-                write!(meaning, "<br>{value} = <code>{name}</code>: {}", escape(description)).unwrap();
-            }
-        }
-        writeln!(
-            html,
-            "<tr><td><code>{}</code></td><td>{}</td><td>{:?}</td><td>{:?}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            variable.name,
-            variable.value_reference,
-            variable.causality,
-            variable.variability,
-            escape(&display_unit_text(variable)),
-            start,
-            meaning
-        )
-        .unwrap();
-    }
-    html.push_str("</table>\n");
-    html
-}
-
-fn dependencies_text() -> String {
-    let mut html = String::from("<ul>\n");
-    for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
-        let names: Vec<String> = output
-            .dependencies
-            .iter()
-            .filter_map(|r| VARIABLES.iter().find(|v| v.value_reference == *r))
-            .map(|v| format!("<code>{}</code>", v.name))
-            .collect();
-        writeln!(html, "<li><code>{}</code> depends on {}</li>", output.name, names.join(", ")).unwrap();
-    }
-    html.push_str("</ul>\n");
-    html
 }
 
 /// The table of [`options::option_uses`] (declared once, in the adapter and the rungs) as HTML.
@@ -295,65 +230,15 @@ from tread to flange (the right wheel at 5 mm). The fmpy test <code>tests/fmpy/t
 every option and model and checks the lists are exactly those. InitialUnknowns list the same inputs and every
 parameter that can change the output at initialization.</p>"#;
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.45}\
-table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:0.25em 0.5em;vertical-align:top}\
-pre{background:#f5f5f5;padding:0.5em}";
-
-/// The whole page.
-/// One binary of the FMU, as its documentation describes it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BinaryNote {
-    /// linux64, needing glibc ≥ `glibc` (read off the binary), built against the baseline or not.
-    Linux64 {
-        glibc: (u32, u32),
-        baseline_applied: bool,
-    },
-    Win64,
-}
-
-/// The Platforms section's items: what each binary in this FMU needs, read off the binaries
-/// (a linux64 binary built without cargo-zigbuild needs the building machine's glibc, and says so).
-fn platform_items(binaries: &[BinaryNote]) -> String {
-    let mut items: Vec<String> = binaries
-        .iter()
-        .map(|binary| match *binary {
-            BinaryNote::Linux64 { glibc: (major, minor), baseline_applied } => {
-                let how = if baseline_applied {
-                    "built against that glibc with cargo-zigbuild"
-                } else {
-                    "built with plain cargo, so it needs the glibc of the machine that packaged it (`cargo fmu` \
-                     builds against glibc 2.28 with cargo-zigbuild, which it installs from PyPI into .venv \
-                     when Python's venv is available)"
-                };
-                format!(
-                    "<li><b>linux64</b> (x86-64): needs glibc ≥ {major}.{minor} (the newest glibc symbol version it \
-                     uses; {how}); besides glibc it needs only libm, libpthread and libdl. glibc 2.28 is Debian 10, \
-                     Ubuntu 18.10, RHEL/Rocky 8; 2.31 Ubuntu 20.04, 2.34 RHEL/Rocky 9, 2.35 Ubuntu 22.04, 2.36 \
-                     Debian 12.</li>"
-                )
-            }
-            BinaryNote::Win64 => "<li><b>win64</b> (x86-64, Windows 10 or later): built with mingw-w64, the C runtime \
-                 and libgcc linked statically, so it needs only DLLs that Windows ships. Tested under wine: the same \
-                 results as linux64 bit for bit, but for Kalker's exact theory, within 1e-15 of the force (the C math \
-                 libraries round ln and hypot differently in the last bit). An FMU state serialized on one platform \
-                 restores on the other.</li>"
-                .to_owned(),
-        })
-        .collect();
-    if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Win64)) {
-        items.push(
-            "<li>No win64 binary in this build (its toolchain was missing where it was packaged).</li>".to_owned(),
-        );
-    }
-    if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Linux64 { .. })) {
-        items.push("<li>No linux64 binary in this build.</li>".to_owned());
-    }
-    items.join("\n")
-}
+/// How the contact unit's win64 binary is tested (`scripts/test-platforms`), for the Platforms section.
+const WIN64_TESTED: &str =
+    "Tested under wine: the same results as linux64 bit for bit, but for Kalker's exact theory, \
+     within 1e-15 of the force (the C math libraries round ln and hypot differently in the last bit). An FMU state \
+     serialized on one platform restores on the other.";
 
 /// The FMU's `documentation/index.html`, describing `binaries`.
 pub fn index_html(binaries: &[BinaryNote]) -> String {
-    let platforms = platform_items(binaries);
+    let platforms = platform_items(binaries, WIN64_TESTED);
     let plot = line_plot(
         "Default scene: creep force against creepage (Polach, Kalker stiffness)",
         "creepage [%]",
@@ -468,12 +353,12 @@ be freed. Instances are independent; there is no global state.</li>
 </ul>
 </body></html>
 "#,
-        table = variables_table(),
+        table = variables_table(&VARIABLES, UNITS),
         options = OPTIONS_HTML
             .replace("{model_list}", &model_list_html())
             .replace("{option_table}", &option_table_html())
             .replace("{profile_figures}", &profile_figure::DISPLACEMENTS.map(profile_figure::figure).concat()),
-        dependencies = dependencies_text(),
+        dependencies = dependencies_list(&VARIABLES),
         q = scene.normal_force / 1e3,
         a = scene.semi_axis_a * 1e3,
         b = scene.semi_axis_b * 1e3,

@@ -16,7 +16,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use crate::documentation::BinaryNote;
+use crate::page::BinaryNote;
 use object::read::elf::{ElfFile64, FileHeader as _};
 use object::Object as _;
 use wheel_rail_contact_fmu::model_description::{MODEL_DESCRIPTION_XML, MODEL_IDENTIFIER};
@@ -60,7 +60,7 @@ pub const WHEELSET: Unit = Unit {
     library_stem: "wheelset",
     model_identifier: crate::wheelset_interface::MODEL_IDENTIFIER,
     model_description_xml: crate::wheelset_interface::MODEL_DESCRIPTION_XML,
-    documentation: None,
+    documentation: Some(crate::wheelset_documentation::index_html),
     resources: &[],
 };
 
