@@ -36,7 +36,7 @@ pub struct Klingel {
     /// Klingel's wavelength λ = 2π √(r0 s / tan γ_e) \[m\].
     pub wavelength: f64,
     /// The kinematic motion ÿ = −V² Δr(y) / (2 s r0), y(0) = [`KLINGEL_START`], ẏ(0) = 0:
-    /// (t \[s\], y \[m\]) every [`KLINGEL_TIME_STEP`].
+    /// (t \[s\], y \[m\]) every `KLINGEL_TIME_STEP`.
     pub kinematic: Vec<(f64, f64)>,
 }
 
