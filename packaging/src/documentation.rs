@@ -10,7 +10,7 @@ use wheel_rail_contact_fmu::model_description::{Kind, Values, UNITS, VARIABLES};
 use wheel_rail_contact_fmu::options;
 use wheel_rail_contact_fmu::scene::contact_input;
 
-use crate::page::{dependencies_list, platform_items, variables_table, BinaryNote, STYLE};
+use crate::page::{dependencies_list, platforms_section, variables_table, BinaryNote, STYLE};
 use crate::plot::{line_plot, Series};
 use crate::profile_figure;
 
@@ -238,7 +238,7 @@ const WIN64_TESTED: &str =
 
 /// The FMU's `documentation/index.html`, describing `binaries`.
 pub fn index_html(binaries: &[BinaryNote]) -> String {
-    let platforms = platform_items(binaries, WIN64_TESTED);
+    let platforms = platforms_section(binaries, WIN64_TESTED);
     let plot = line_plot(
         "Default scene: creep force against creepage (Polach, Kalker stiffness)",
         "creepage [%]",
@@ -314,11 +314,7 @@ s_max).</p>
 
 {options}
 
-<h2>Platforms</h2>
-<ul>
 {platforms}
-<li>No darwin64 binary yet.</li>
-</ul>
 
 <h2>Behaviour</h2>
 <ul>

@@ -101,10 +101,10 @@ pub enum BinaryNote {
     Win64,
 }
 
-/// The Platforms section's items: what each binary in this FMU needs, read off the binaries
-/// (a linux64 binary built without cargo-zigbuild needs the building machine's glibc, and says
-/// so); `win64_tested` is the FMU's own sentence on how its win64 binary was tested.
-pub fn platform_items(binaries: &[BinaryNote], win64_tested: &str) -> String {
+/// The Platforms section: what each binary in this FMU needs, read off the binaries (a linux64
+/// binary built without cargo-zigbuild needs the building machine's glibc, and says so);
+/// `win64_tested` is the FMU's own sentence on how its win64 binary was tested.
+pub fn platforms_section(binaries: &[BinaryNote], win64_tested: &str) -> String {
     let mut items: Vec<String> = binaries
         .iter()
         .map(|binary| match *binary {
@@ -137,5 +137,5 @@ pub fn platform_items(binaries: &[BinaryNote], win64_tested: &str) -> String {
     if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Linux64 { .. })) {
         items.push("<li>No linux64 binary in this build.</li>".to_owned());
     }
-    items.join("\n")
+    format!("<h2>Platforms</h2>\n<ul>\n{}\n<li>No darwin64 binary yet.</li>\n</ul>", items.join("\n"))
 }

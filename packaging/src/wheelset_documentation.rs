@@ -8,7 +8,7 @@
 
 use wheel_rail_contact::geometry::{RollingRadiusDifference, TrackDimensions, WheelOnRail, WheelSide};
 
-use crate::page::{dependencies_list, platform_items, variables_table, BinaryNote, STYLE};
+use crate::page::{dependencies_list, platforms_section, variables_table, BinaryNote, STYLE};
 use crate::plot::{line_plot, Series};
 use crate::wheelset_interface::{UNITS, VARIABLES};
 
@@ -243,11 +243,7 @@ core library's geometry — S1002 on UIC60 1:40 on the Manchester benchmark's tr
 {time_step} ms. It is not a run of this FMU: the coupled run of the same scene, with the contact units' creep forces
 and the wheelset's inertia, is compared with Klingel's wavelength in docs/wheelset.md.</i></p>
 
-<h2>Platforms</h2>
-<ul>
 {platforms}
-<li>No darwin64 binary yet.</li>
-</ul>
 
 <h2>Behaviour</h2>
 <ul>
@@ -273,7 +269,7 @@ asynchronous steps.</li>
         s = TrackDimensions::MANCHESTER_BENCHMARK.flange_back_distance / 2.0
             - TrackDimensions::MANCHESTER_BENCHMARK.flange_back_position,
         time_step = KLINGEL_TIME_STEP * 1e3,
-        platforms = platform_items(binaries, WIN64_TESTED),
+        platforms = platforms_section(binaries, WIN64_TESTED),
     )
 }
 

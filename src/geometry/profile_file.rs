@@ -35,12 +35,23 @@ pub enum ProfileFormat {
 impl ProfileFormat {
     /// The format of a file by its extension (case-insensitive), `None` for any other.
     pub fn from_file_name(name: &str) -> Option<Self> {
-        match extension(name)?.as_str() {
-            "prw" | "prr" => Some(Self::Simpack),
-            "whl" | "ban" => Some(Self::MiniProf),
-            _ => None,
-        }
+        classified(name).map(|(format, _)| format)
     }
+}
+
+/// Each profile file extension's format and the body it describes: the one table both
+/// [`ProfileFormat::from_file_name`] and [`ProfileKind::from_file_name`] read.
+const EXTENSIONS: [(&str, ProfileFormat, ProfileKind); 4] = [
+    ("prw", ProfileFormat::Simpack, ProfileKind::Wheel),
+    ("prr", ProfileFormat::Simpack, ProfileKind::Rail),
+    ("whl", ProfileFormat::MiniProf, ProfileKind::Wheel),
+    ("ban", ProfileFormat::MiniProf, ProfileKind::Rail),
+];
+
+/// The format and kind of a file by its extension (case-insensitive), `None` for any other.
+fn classified(name: &str) -> Option<(ProfileFormat, ProfileKind)> {
+    let extension = extension(name)?;
+    EXTENSIONS.iter().find(|(known, ..)| *known == extension).map(|&(_, format, kind)| (format, kind))
 }
 
 /// Why a profile cannot be read: the line (1-based, when one is to blame) and the reason.
@@ -86,11 +97,7 @@ impl ProfileKind {
     /// The kind a file's extension names (case-insensitive): `.prw`, `.whl` a wheel; `.prr`,
     /// `.ban` a rail; `None` for any other.
     pub fn from_file_name(name: &str) -> Option<Self> {
-        match extension(name)?.as_str() {
-            "prw" | "whl" => Some(Self::Wheel),
-            "prr" | "ban" => Some(Self::Rail),
-            _ => None,
-        }
+        classified(name).map(|(_, kind)| kind)
     }
 
     /// "wheel" or "rail".

@@ -488,26 +488,18 @@ fn the_generic_slaves_inquiries_and_checks() {
 fn a_restored_state_keeps_the_stop_time() {
     let log = Log::default();
     let fmu = Wheelset::instantiate(&log);
-    // SAFETY: `c` is live; the state is this instance's until freed.
+    // SAFETY: `c` is live.
     unsafe {
         assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 1, 0.01), OK);
         assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
         assert_eq!(fmi2ExitInitializationMode(fmu.c), OK);
-        assert_eq!(fmu.do_step(0.0, 0.005), OK);
-        let (mut state, mut size) = (null_mut(), 0);
-        assert_eq!(fmi2GetFMUstate(fmu.c, &mut state), OK);
-        assert_eq!(fmi2SerializedFMUstateSize(fmu.c, state, &mut size), OK);
-        let mut bytes = vec![0u8; size];
-        assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
-        let mut restored: fmi2FMUstate = null_mut();
-        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut restored), OK);
-        assert_eq!(fmi2SetFMUstate(fmu.c, restored), OK);
-        assert_eq!(fmu.do_step(0.005, 0.01), ERROR);
-        assert_eq!(log.last(), "fmi2DoStep: the step would end at 0.015, after stopTime = 0.01");
-        assert_eq!(fmu.do_step(0.005, 0.005), OK);
-        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
-        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut restored), OK);
     }
+    assert_eq!(fmu.do_step(0.0, 0.005), OK);
+    let bytes = serialized(&fmu);
+    assert_eq!(restore(&fmu, &bytes), OK);
+    assert_eq!(fmu.do_step(0.005, 0.01), ERROR);
+    assert_eq!(log.last(), "fmi2DoStep: the step would end at 0.015, after stopTime = 0.01");
+    assert_eq!(fmu.do_step(0.005, 0.005), OK);
 }
 
 /// A serialized state of a wheelset at y = 2 mm after a step, and the instance.
@@ -530,6 +522,18 @@ fn serialized(fmu: &Wheelset) -> Vec<u8> {
         assert_eq!(fmi2SerializeFMUstate(fmu.c, state, bytes.as_mut_ptr().cast(), size), OK);
         assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
         bytes
+    }
+}
+
+/// `bytes` deserialized and set as the instance's state (the state then freed).
+fn restore(fmu: &Wheelset, bytes: &[u8]) -> fmi2Status {
+    let mut state: fmi2FMUstate = null_mut();
+    // SAFETY: `c` is live; `bytes` is readable; the state is freed.
+    unsafe {
+        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), bytes.len(), &mut state), OK);
+        let status = fmi2SetFMUstate(fmu.c, state);
+        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
+        status
     }
 }
 
@@ -621,13 +625,7 @@ fn a_forged_state_with_a_valid_checksum_is_refused_by_its_sense() {
     assert!(outputs.iter().all(|x| x.is_finite()), "{outputs:?}");
     assert_eq!(fmu.do_step(0.01, 0.01), OK, "{}", log.last());
     assert!(fmu.get(&STATE).iter().all(|x| x.is_finite()));
-    let mut state: fmi2FMUstate = null_mut();
-    // SAFETY: `c` is live; `bytes` is readable; the state is freed.
-    unsafe {
-        assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), bytes.len(), &mut state), OK);
-        assert_eq!(fmi2SetFMUstate(fmu.c, state), OK);
-        assert_eq!(fmi2FreeFMUstate(fmu.c, &mut state), OK);
-    }
+    assert_eq!(restore(&fmu, &bytes), OK);
     assert_eq!(fmu.get(&STATE), outputs);
     assert_eq!(fmu.do_step(0.01, 0.01), OK, "{}", log.last());
 }
