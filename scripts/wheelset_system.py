@@ -153,7 +153,7 @@ def growth_rate(results, window=HUNTING_WINDOW):
     for result in results:
         times, peaks = extrema(result["time"], result[DISPLACEMENT])
         inside = (peaks >= window[0]) & (peaks <= window[1])
-        inside[0] = False
+        inside[:1] = False  # a run without extrema has none to skip
         if np.count_nonzero(inside) >= 3:
             slopes.append(np.polyfit(times[inside], np.log(peaks[inside]), 1)[0])
     return float(np.mean(slopes)) if slopes else None

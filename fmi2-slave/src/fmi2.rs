@@ -1,6 +1,6 @@
 //! The FMI 2.0 C types the exports use, as declared in the standard's `fmi2TypesPlatform.h` and
 //! `fmi2FunctionTypes.h` (names as bindgen spells them). Written here rather than generated, so
-//! that building the FMU needs nothing but cargo (bindgen needs libclang); `tests/fmi2_headers.rs`
+//! that building the FMU needs nothing but cargo (bindgen needs libclang); `fmu/tests/c_abi/fmi2_headers.rs`
 //! checks every export's signature and the callback struct's layout against the headers
 //! themselves (fmi-sys, a test-only dependency).
 #![allow(non_camel_case_types, non_upper_case_globals, non_snake_case)]

@@ -1246,7 +1246,7 @@ mod tests {
         }
         // Which candidates of a wheel on profiles are loaded, and so the patch count and each
         // patch's place, changes with every input of the vertical balance, but only where a
-        // patch appears or two join (`fmu/tests/profiles.rs`): no 1 % change here moves them.
+        // patch appears or two join (`fmu/tests/c_abi/profiles.rs`): no 1 % change here moves them.
         // For these outputs a declared input need not change them here.
         let place_of_patches = |name: &str| {
             name == "contact_patch_count"

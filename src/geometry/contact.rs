@@ -36,7 +36,7 @@
 //! Two candidates whose interpenetration regions join are one patch (the deeper one kept).
 //! Where two such minima swap which is deeper, the patch's point jumps between them: for S1002
 //! on UIC60 at y_ws ≈ 0.22 mm on the tread and ≈ 6.62 mm from the flange root to the flange
-//! (`tests/geometry_benchmark.rs`); CONTACT, which solves the non-Hertzian patch, moves its
+//! (`tests/library/geometry_benchmark.rs`); CONTACT, which solves the non-Hertzian patch, moves its
 //! contact reference between the same places between its cases. Elsewhere the points move
 //! continuously with y_ws, and the load passes between separate patches continuously.
 //!
@@ -60,7 +60,7 @@
 //! (1 − c²) cos γ/r − c² κ_wheel)/2 (the twist term is dropped: the ellipse stays aligned with
 //! x). Hertz because it is what multibody codes use online and needs one evaluation per patch;
 //! on its patches give, with the exact theory, creep forces within 0.041 μN of CONTACT's
-//! non-Hertzian solution (`tests/geometry_wheel_forces.rs`), inside the 0.12 μN of CONTACT's
+//! non-Hertzian solution (`tests/library/geometry_wheel_forces.rs`), inside the 0.12 μN of CONTACT's
 //! own fast methods. Normal force from the normal penetration δ_n by Hertz's
 //! Q ∝ δ_n^{3/2} (the same ellipse solution at 1 N gives the constant).
 //!
@@ -489,7 +489,7 @@ impl WheelOnRail {
     }
 
     /// [`Self::candidates`] by the full scan alone, never from the contact table: the reference
-    /// the table's searches are measured against (`tests/geometry_benchmark.rs`).
+    /// the table's searches are measured against (`tests/library/geometry_benchmark.rs`).
     pub fn candidates_by_full_scan(&self, position: &WheelsetPosition) -> Result<ContactCandidates, ProfileError> {
         check_position(position)?;
         let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };

@@ -11,7 +11,7 @@
 //! A smoothing spline for measured, noisy profiles (CONTACT's `smooth_profile.m`) is not here
 //! yet.
 //!
-//! Accuracy (tests/geometry_profiles.rs): on points of a 300 mm circle every 0.5 mm the slope is
+//! Accuracy (tests/library/geometry_profiles.rs): on points of a 300 mm circle every 0.5 mm the slope is
 //! within 1e-7 rad and κ within 1e-4 of 1/R more than 20 points inside the ends (the natural
 //! ends' zero curvature fades over about five points); on the shipped UIC60 the 13 mm, 80 mm and
 //! 300 mm radii of EN 13674-1 come out within 1 %, except within about one point spacing of the

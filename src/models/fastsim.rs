@@ -37,7 +37,7 @@
 //! pressure sampled at the element centres without rescaling, each row starting with a full
 //! step at its first interior element and the spin slip taken at x + δx/6 (CONTACT's default
 //! `facphi`). It reproduces CONTACT's published FASTSIM values on CONTACT's grids; ours
-//! converges faster to the same limit (tests/ladder_contact_case.rs).
+//! converges faster to the same limit (tests/library/ladder_contact_case.rs).
 //!
 //! Work is done in units of a, b and μQ/(ab), so the tractions stay O(1) whatever the inputs;
 //! the hot loop marches along each strip carrying the traction and allocates nothing.
@@ -487,7 +487,7 @@ const CONTACT_LENGTH_UNIT: f64 = 1e-3;
 
 /// CONTACT's blend weight w = min(1, f_crp/3) (`simpflex`), spin in 1/mm as CONTACT has it.
 /// With the weight in mm our converged results meet CONTACT's published ones (see
-/// tests/ladder_contact_case.rs); with φ in 1/m, or with φ·√(ab), an emulation of CONTACT's own
+/// tests/library/ladder_contact_case.rs); with φ in 1/m, or with φ·√(ab), an emulation of CONTACT's own
 /// scheme misses its published parabolic-bound results by 2–3 %.
 /// `g_area_per_load` = G ab/(μQ), so that ξ* = 1/(g C11), η* = 1/(g C22), φ* = 1/(g c C23),
 /// and f_crp = g |(ξ, η, φ)| / |(1/C11, 1/C22, 1/(c C23))|.

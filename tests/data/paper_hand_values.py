@@ -1,4 +1,4 @@
-# Hand values for tests/paper_hand_values.rs from the papers equations (Polach eqs. 20-25 with
+# Hand values for tests/library/paper_hand_values.rs from the papers equations (Polach eqs. 20-25 with
 # ERRATA E2-E4, E7; Shen-Hedrick-Elkins cubic), independent of the crate. Run: python3 tests/data/paper_hand_values.py
 from math import *
 # Contact: a = 8 mm, b = 4 mm (a/b = 2: table row b/a = 0.5), Q = 82 kN, mu = 0.3, G = 82 GPa, nu = 0.25

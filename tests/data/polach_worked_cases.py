@@ -8,7 +8,7 @@ interpolated from data/kalker_coefficients.csv as CONTACT's linrol does (linear 
 CSV header's rule in nu) and, for g < 0.1, blended as documented in src/kalker_coefficients.rs.
 
 Run:  python3 tests/data/polach_worked_cases.py > tests/data/polach_worked_cases.csv
-The Rust test tests/polach_worked_cases.rs reads the CSV and matches it to 1e-12.
+The Rust test tests/library/polach_worked_cases.rs reads the CSV and matches it to 1e-12.
 """
 import csv
 import math

@@ -16,7 +16,7 @@ from test_slave import instantiated
 DATA = pathlib.Path(__file__).resolve().parents[1] / "data"
 PROFILES, RIGHT, LEFT, PRESCRIBED_FORCE = 2, 1, 0, 1
 MU, LOAD = 0.3, 10e3
-# The cases the core's geometry benchmark leaves out (tests/geometry_benchmark.rs,
+# The cases the core's geometry benchmark leaves out (tests/library/geometry_benchmark.rs,
 # FLAT_GAP_CASES), for the same reasons: case 1 (both wheels: y_ws = 0, where the S1002/UIC60
 # gap is flat within microns over 10 mm, so the minimum-gap point and CONTACT's reference differ
 # by 1.4 mm), the right wheel's case 2 (two nearby minima of the gap: 2.5 mm apart on the rail,

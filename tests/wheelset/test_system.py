@@ -204,3 +204,15 @@ def test_the_run_command_writes_the_csv_and_plots(tmp_path, monkeypatch):
     assert header[0] == "time" and ws.DISPLACEMENT in header and "left_wheel.track_force_y" in header
     assert (tmp_path / "short.png").stat().st_size > 0 and (tmp_path / "short.svg").stat().st_size > 0
     assert ws.main(["--set", "left_wheel.vertical_force=0", "--stop-time", "0.01", "--name", "bad"]) == 1
+
+
+def test_growth_rate_of_runs_without_enough_extrema_is_none():
+    """A run that never turns (a drift) or turns once has no growth rate to fit: None, not an
+    IndexError; with three extrema after the first the slope of ln |y| is the decay rate."""
+    time = np.linspace(0.0, 1.0, 1001)
+    drift = {"time": time, ws.DISPLACEMENT: 1e-3 * time}
+    assert ws.growth_rate([drift]) is None
+    assert ws.growth_rate([]) is None
+    sigma = -0.7
+    decaying = {"time": time, ws.DISPLACEMENT: 2e-3 * np.exp(sigma * time) * np.cos(2 * np.pi * 5 * time)}
+    assert ws.growth_rate([decaying], window=(1e-4, 1e-2)) == pytest.approx(sigma, rel=0.02)

@@ -40,7 +40,7 @@ impl ExactTheory {
     /// The coefficients of the solution in full adhesion on this grid, for the ellipse of
     /// semi-axis ratio `a_over_b` and Poisson's ratio `poisson_ratio`: two solves (ξ = η, and
     /// φ alone) at creepages of 1e-9 of saturation, so nothing slips. With a fine grid, the
-    /// exact theory's own coefficients, to compare with Kalker's table (tests/exact_theory.rs,
+    /// exact theory's own coefficients, to compare with Kalker's table (tests/library/exact_theory.rs,
     /// `cargo run --release -p lab --bin kalker_table_check`).
     pub fn linear_coefficients(&self, a_over_b: f64, poisson_ratio: f64) -> Result<LinearCoefficients, InvalidInput> {
         let (shear_modulus, normal_force, friction_coefficient, c) = (8e10, 1e5, 0.3, 5e-3);

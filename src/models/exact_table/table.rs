@@ -14,7 +14,7 @@
 //! Each τ node has its own units, its largest |F| and |M_z| over the table divided by 32767:
 //! near t = 0 the forces are O(s), and one unit for all nodes (1/32767 μQ) made the first τ
 //! node's spin-driven F_y (≈ 2e-5 μQ at a/b = 0.1) wrong by up to 80 %, and the linear limit by
-//! 1.4 % (tests/exact_table.rs). Above the knee the force unit is 1/32767 μQ (3e-5 μQ, against
+//! 1.4 % (tests/library/exact_table.rs). Above the knee the force unit is 1/32767 μQ (3e-5 μQ, against
 //! the 0.003 μQ median the table is held to). M_z is rounded to the nearest count; a force is
 //! stored as the counts nearest to it whose length is its length rounded to the nearest count
 //! (`quantize_force`), inside the Coulomb disc.
@@ -369,7 +369,7 @@ impl Table {
     /// force unit is the same in both. Quantizing a table's own values again can move a force by
     /// a count (a stored length is its length rounded up, a quantized one is rounded to the
     /// nearest), which on the full-sliding plateau broke the resultant's monotone rise along a
-    /// ray (tests/ladder_invariants.rs); where a τ node's unit grew, its counts are the new one's.
+    /// ray (tests/library/ladder_invariants.rs); where a τ node's unit grew, its counts are the new one's.
     pub(crate) fn keeping_force_counts_of(self, earlier: &Table) -> Result<Self, TableError> {
         if earlier.axes.counts[1..] != self.axes.counts[1..] || earlier.nodes.len() > self.nodes.len() {
             return Err(TableError(format!(
@@ -452,7 +452,7 @@ impl Table {
 /// rounding a length is monotone where rounding two components is not: along a ray without spin
 /// the exact theory's |F| rises monotonically to μQ, and components rounded one by one made the
 /// lengths of neighbouring nodes on the full-sliding plateau go down and up by a count
-/// (tests/ladder_invariants.rs). The chosen counts are within 2 counts of (x, y): half a count
+/// (tests/library/ladder_invariants.rs). The chosen counts are within 2 counts of (x, y): half a count
 /// for the rounded length, one for the lattice of counts in a ring one count wide, half a count
 /// across.
 fn quantize_force(x: f64, y: f64) -> [i16; 2] {

@@ -167,7 +167,7 @@ fn a_relative_profile_path_is_read_from_the_fmus_resources() {
     let root = std::env::temp_dir().join(format!("wrc unzipped {}", std::process::id()));
     let resources = root.join("resources");
     std::fs::create_dir_all(resources.join("profiles")).unwrap();
-    std::fs::write(resources.join("profiles/wheel.prw"), include_str!("../../data/profiles/MBench_S1002_v3.prw"))
+    std::fs::write(resources.join("profiles/wheel.prw"), include_str!("../../../data/profiles/MBench_S1002_v3.prw"))
         .unwrap();
     // Beside the table every FMU's resources hold, which fmi2Instantiate checks.
     std::fs::copy(concat!(env!("CARGO_MANIFEST_DIR"), "/../data/exact_table.bin"), resources.join("exact_table.bin"))

@@ -11,7 +11,7 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use wheel_rail_contact::models::exact::{ExactSolution, WARM_ALONE_PRODUCTS};
 use wheel_rail_contact::{ContactInput, ExactTheory, KalkerCoefficients};
 
-mod common;
+use crate::common;
 
 /// The FMU's default grid for `model = exact`.
 fn model() -> ExactTheory {

@@ -1,6 +1,6 @@
 //! Polach's 2005 extension (ERRATA E8): falling friction and reduced stiffness.
 
-mod common;
+use crate::common;
 
 use common::{contact_case, relative_difference};
 use std::f64::consts::E;

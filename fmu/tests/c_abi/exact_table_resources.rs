@@ -89,7 +89,7 @@ fn a_missing_corrupted_truncated_or_foreign_table_fails_the_instantiation_naming
     let shipped = std::fs::read(SHIPPED).unwrap();
     let mut flipped = shipped.clone();
     flipped[shipped.len() / 2] ^= 0x10;
-    let foreign = include_bytes!("../../data/profiles/MBench_S1002_v3.prw");
+    let foreign = include_bytes!("../../../data/profiles/MBench_S1002_v3.prw");
     let cases: [(&str, Option<&[u8]>, &str); 5] = [
         ("missing", None, "cannot read the exact_table model's table"),
         ("flipped", Some(&flipped), "checksum mismatch"),

@@ -1,6 +1,6 @@
 //! Sign, oddness and saturation invariants for every model of the ladder, and the extremes grid.
 
-mod common;
+use crate::common;
 
 use common::{all_models, saturating_models, typical_contact};
 use wheel_rail_contact::{ContactInput, CreepForceModel, ModelChoice};

@@ -93,7 +93,7 @@ fn every_row_of_table_e3_matches_the_exact_theory() {
 }
 
 /// C33 on finer grids: 2·C(80 × 40) − C(40 × 40). About a minute in release; run with
-/// `cargo test --release --test kalker_table_exact -- --ignored`.
+/// `cargo test --release --test library kalker_table_exact -- --ignored`.
 #[test]
 #[ignore = "about a minute: finer-grid C33 check"]
 fn full_table_c33_on_finer_grids() {

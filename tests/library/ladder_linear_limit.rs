@@ -1,7 +1,7 @@
 //! Every model's small-creepage limit is Kalker's linear theory; FASTSIM's discretisation error
 //! shrinks at second order in the strip count; C33 follows Kalker's table and asymptote.
 
-mod common;
+use crate::common;
 
 use common::{fastsim, typical_contact};
 use std::f64::consts::PI;

@@ -1,7 +1,7 @@
 //! For vanishing creepage Polach's forces equal Kalker's linear theory (eqs. 26–32, E3, E4):
 //! F_x = −G·ab·C11·ξ, F_y = −G·ab·C22·η − G·(ab)^{3/2}·C23·φ.
 
-mod common;
+use crate::common;
 
 use common::{contact, relative_difference};
 use wheel_rail_contact::{CreepForceModel, KalkerCoefficients, Polach};

@@ -29,7 +29,7 @@ struct Reference {
 }
 
 fn references(side: &str) -> Vec<Reference> {
-    include_str!("data/mbench_a22_contact_ref_out.csv")
+    include_str!("../data/mbench_a22_contact_ref_out.csv")
         .lines()
         .filter(|l| l.starts_with(&format!("{side},")))
         .map(|l| {
@@ -53,7 +53,7 @@ fn references(side: &str) -> Vec<Reference> {
 
 /// Ω of each case: CONTACT's VPITCH, negated (`tests/data/manchester_a22_inputs.csv`).
 fn angular_speed(side: &str, case: u32) -> f64 {
-    include_str!("data/manchester_a22_inputs.csv")
+    include_str!("../data/manchester_a22_inputs.csv")
         .lines()
         .find(|l| l.starts_with(&format!("{side},{case},")))
         .map(|l| -l.rsplit(',').next().unwrap().parse::<f64>().unwrap())
@@ -83,7 +83,7 @@ fn a22_input(side: &str, reference: &Reference) -> WheelInput {
 }
 
 /// Cases whose contact point differs from CONTACT's by more than 1 mm because the gap is flat or
-/// has two minima (`tests/geometry_benchmark.rs`, FLAT_GAP_CASES): their Hertz patch is not
+/// has two minima (`tests/library/geometry_benchmark.rs`, FLAT_GAP_CASES): their Hertz patch is not
 /// CONTACT's patch, so neither are its creepages and forces.
 const FLAT_GAP: [(&str, u32); 4] = [("right", 1), ("right", 2), ("right", 11), ("left", 1)];
 
@@ -189,7 +189,7 @@ fn the_exact_theory_on_hertz_patches_matches_contact_on_a22() {
     // The target is CONTACT's own fast methods' 0.12 μN in the creep forces; measured:
     // 0.041 μN, the normal forces within 0.07 %, the totals within 0.041 μF_z, z_ws within
     // 1.5 µm (the table the
-    // same, FASTSIM 0.045 μN and 0.049 μF_z: `cargo test --release --test geometry_wheel_forces
+    // same, FASTSIM 0.045 μN and 0.049 μF_z: `cargo test --release --test library geometry_wheel_forces
     // -- --nocapture`).
     let (creep, normal, total, height) = worst_differences(ModelChoice::Exact(ExactTheory::default()));
     assert!(creep < 0.05 && normal < 0.002 && total < 0.06 && height < 0.005e-3, "{creep} {normal} {total} {height}");
@@ -295,7 +295,7 @@ fn forces_move_continuously_through_the_tread_to_flange_transition() {
     // changes by more than 0.02 μF_z over a 20 µm step, the step is halved 12 times (to 5 nm);
     // a continuous force's change shrinks with it, a jump's does not. One jump, where the
     // contact point moves between the gap's two minima at y ≈ 6.62 mm
-    // (tests/geometry_benchmark.rs): the load moves from the flange root to the flange, and the
+    // (tests/library/geometry_benchmark.rs): the load moves from the flange root to the flange, and the
     // lateral total with it, by 1.9 F_z. (Where it lies depends on the load: at 50 kN the two
     // interpenetrations join, and the patch moves to the deeper one, at y ≈ 5.03 mm.)
     let contact = wheel(WheelSide::Right, ModelChoice::Polach(Polach::default()));

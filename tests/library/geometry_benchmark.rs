@@ -26,7 +26,7 @@ fn side_pair(side: WheelSide) -> WheelOnRail {
 
 /// (case, y_ws, yaw, roll, F_z) of one wheel (`prefix` "right," or "left,") [m, rad, N].
 fn side_inputs(prefix: &str) -> Vec<(u32, f64, f64, f64, f64)> {
-    include_str!("data/manchester_a22_inputs.csv")
+    include_str!("../data/manchester_a22_inputs.csv")
         .lines()
         .filter(|l| l.starts_with(prefix))
         .map(|l| {
@@ -38,7 +38,7 @@ fn side_inputs(prefix: &str) -> Vec<(u32, f64, f64, f64, f64)> {
 
 /// (case, z_ws, track y, rail y, contact angle, wheel y, wheel z) of one wheel [m, rad].
 fn side_reference(prefix: &str) -> Vec<(u32, f64, f64, f64, f64, f64, f64)> {
-    include_str!("data/mbench_a22_contact_ref_out.csv")
+    include_str!("../data/mbench_a22_contact_ref_out.csv")
         .lines()
         .filter(|l| l.starts_with(prefix))
         .map(|l| {
@@ -52,7 +52,7 @@ fn side_reference(prefix: &str) -> Vec<(u32, f64, f64, f64, f64, f64, f64)> {
 /// its interpenetration area) and our minimum-gap point differ by more than 1 mm: case 1
 /// (y_ws = 0: 1.4 mm, the S1002/UIC60 gap is within microns over 10 mm), case 2 (2.5 mm) and
 /// case 11 (the tread-to-flange jump: a second, light tread patch of 0.6 kN besides the flange
-/// root's). Measured by `cargo test --test geometry_benchmark -- --nocapture`.
+/// root's). Measured by `cargo test --test library geometry_benchmark -- --nocapture`.
 const FLAT_GAP_CASES: [u32; 3] = [1, 2, 11];
 
 /// Checks one side's cases against CONTACT's, all but `excluded`; returns how many.
@@ -67,7 +67,7 @@ const FLAT_GAP_CASES: [u32; 3] = [1, 2, 11];
 /// tread, 0.1 mm on the flange, the size of the elastic approach, which our undeformed-gap
 /// minimum does not share with CONTACT's reference point. The wheelset height z_ws within
 /// 0.03 mm on the tread: this test's normal problem carries the load by the normal forces
-/// alone (`cosine`); with the creep forces' share (`tests/geometry_wheel_forces.rs`) it is
+/// alone (`cosine`); with the creep forces' share (`tests/library/geometry_wheel_forces.rs`) it is
 /// within 1.5 µm everywhere.
 fn check_against_contact(side: WheelSide, prefix: &str, excluded: &[u32]) -> usize {
     let pair = side_pair(side);

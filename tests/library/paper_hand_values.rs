@@ -8,7 +8,7 @@
 //! interpolation), Q = 82 kN, f = μ = 0.3, G = 82 GPa, ν = 0.25 (a table column, so the
 //! interpolation in ν is exact): C11 = 5.10, C22 = 4.90, C23 = 2.62 as printed by Kalker.
 
-mod common;
+use crate::common;
 
 use common::{published, relative_difference};
 use wheel_rail_contact::{ContactInput, CreepForceModel, MeasuredCurve, Polach, ShenHedrickElkins, StiffnessSource};

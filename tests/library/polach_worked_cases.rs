@@ -1,14 +1,14 @@
 //! Polach's method against cases computed independently from the paper's literal formulas by
 //! tests/data/polach_worked_cases.py (Python, plain floats, eq. (20) as printed).
 
-mod common;
+use crate::common;
 
 use common::relative_difference;
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 
 #[test]
 fn matches_the_independent_worked_cases() {
-    let text = include_str!("data/polach_worked_cases.csv");
+    let text = include_str!("../data/polach_worked_cases.csv");
     let mut cases = 0;
     for line in text.lines().skip(1) {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();

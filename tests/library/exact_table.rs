@@ -2,7 +2,7 @@
 //! edges, the problem's symmetries, the Coulomb bound, Kalker's linear limit, derivatives, and
 //! the refusal of corrupted tables.
 
-mod common;
+use crate::common;
 
 use common::{contact, moved, NO_RATES};
 use wheel_rail_contact::models::exact_table::{Table, TableAxes};

@@ -24,7 +24,7 @@
 //! own 220 × 220 results thus carry 0.6 % (parabolic) and 0.4 % (elliptic) discretisation error
 //! in F_y, 1.6 % in the elliptic M_z; its 44 × 44 parabolic F_y carries 4.4 %.
 
-mod common;
+use crate::common;
 
 use common::fastsim;
 use common::published::{FASTSIM_CASE, FASTSIM_CASE_CONTACT_FASTSIM};

@@ -1,6 +1,6 @@
 //! Stiffness from a measured creep curve (Polach eqs. 33–36, ERRATA E7).
 
-mod common;
+use crate::common;
 
 use common::{contact_case, relative_difference};
 use std::f64::consts::{FRAC_1_PI, PI};

@@ -1,6 +1,6 @@
 //! Exact directional derivatives (forward-mode dual numbers) against finite differences.
 
-mod common;
+use crate::common;
 
 use common::{all_models, contact, contact_case, fastsim, moved, relative_difference, NO_RATES};
 use wheel_rail_contact::{

@@ -1,6 +1,6 @@
 //! Invariants of Polach's method: saturation, monotonicity, symmetry, continuity, bounds.
 
-mod common;
+use crate::common;
 
 use common::published::{TRACTCURV_CONTACT, TRACTCURV_EXACT};
 use common::{contact, contact_case, relative_difference};

@@ -1,7 +1,7 @@
 //! The shape cache changes nothing but the cost: results are bit-identical to the plain
 //! evaluation whether the cache hits (same a/b and ν) or misses.
 
-mod common;
+use crate::common;
 
 use common::contact;
 use wheel_rail_contact::{ContactInput, CreepForceModel, LargeCreepage, Polach, Polach2005, ShapeCache};

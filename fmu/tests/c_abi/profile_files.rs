@@ -19,8 +19,8 @@ use wheel_rail_contact_fmu::ffi::{
 use wheel_rail_contact_fmu::fmi2::fmi2Status;
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, ContactGeometry};
 
-const WHEEL_FILE: &str = include_str!("../../data/profiles/MBench_S1002_v3.prw");
-const RAIL_BAN: &[u8] = include_bytes!("../../data/profiles/MBench_UIC60_v3.ban");
+const WHEEL_FILE: &str = include_str!("../../../data/profiles/MBench_S1002_v3.prw");
+const RAIL_BAN: &[u8] = include_bytes!("../../../data/profiles/MBench_UIC60_v3.ban");
 
 /// A directory of this test's own (removed at the end of each test that makes one).
 fn scratch(name: &str) -> PathBuf {
@@ -391,7 +391,7 @@ fn mutated_real_profile_files_never_crash_hang_or_grow_the_host() {
     let mut rng = StdRng::seed_from_u64(0x05ee_d0ff_11e5);
     let sources: [(&[u8], &str, u32); 3] = [
         (WHEEL_FILE.as_bytes(), "wheel.prw", vr::WHEEL_PROFILE),
-        (include_bytes!("../../data/profiles/MBench_UIC60_v3.prr"), "rail.prr", vr::RAIL_PROFILE),
+        (include_bytes!("../../../data/profiles/MBench_UIC60_v3.prr"), "rail.prr", vr::RAIL_PROFILE),
         (RAIL_BAN, "rail.ban", vr::RAIL_PROFILE),
     ];
     let before = peak_memory();

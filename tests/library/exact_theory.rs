@@ -177,7 +177,7 @@ fn reproduces_contacts_published_spin_case() {
 /// −0.0008, +0.0001 at ξ = 0.04, 0.12, 0.2, 0.28, 1 %.
 #[test]
 fn reproduces_contacts_eurosprinter_creep_curve() {
-    let data = include_str!("data/contact_tractcurv_eurosprinter.csv");
+    let data = include_str!("../data/contact_tractcurv_eurosprinter.csv");
     let curve: Vec<(f64, f64)> = data
         .lines()
         .filter(|line| !line.starts_with('#') && !line.starts_with("creepage"))

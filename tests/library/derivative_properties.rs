@@ -29,7 +29,7 @@
 //! least μQ, μQc and 1: the models compute them as fractions of μQ, so they are rounded on
 //! μQ's scale where they are smaller (full slip at a large spin, F_y ≈ 1e-8 μQ).
 
-mod common;
+use crate::common;
 
 use common::fastsim;
 use proptest::prelude::*;
@@ -381,7 +381,7 @@ fn exact_table_derivatives_agree_with_differences_everywhere() {
 /// check's step (1e-4 of the saturation creepage) of 0 but not 0 puts one inside the
 /// differences and not inside FASTSIM's own (e.g. ξ = 1.4e-6 against a step of 3.9e-6: J 10.6
 /// in |F|/μQ, central 6.4, one-sided 14.7 and 3.5): such points are left out, as in
-/// tests/derivatives.rs; zero creepages themselves are checked.
+/// tests/library/derivatives.rs; zero creepages themselves are checked.
 #[test]
 fn fastsim_derivatives_agree_with_differences_everywhere() {
     for bound in [TractionBound::Parabolic, TractionBound::Elliptic] {

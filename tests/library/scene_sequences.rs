@@ -4,7 +4,7 @@
 //! force within the friction limit μQ of that step's μ and Q (Kalker's linear theory, which has
 //! none, excepted); a run restored from a saved state repeats the uninterrupted run bit for bit.
 
-mod common;
+use crate::common;
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};

@@ -1,14 +1,14 @@
 //! Polach's method at the extremes: every valid input gives finite forces within the Coulomb
 //! limit, and invalid inputs give a typed error naming the variable.
 
-mod common;
+use crate::common;
 
 use common::contact_case;
 use proptest::prelude::*;
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};
 
 /// Every input below is valid, so the result must exist, be finite and respect |F| ≤ μQ
-/// (see tests/polach_invariants.rs for why spin does not break that bound).
+/// (see tests/library/polach_invariants.rs for why spin does not break that bound).
 fn assert_finite_and_bounded(input: &ContactInput) {
     let f = Polach::default().creep_forces(input).unwrap_or_else(|e| panic!("{e} for {input:?}"));
     let limit = input.friction_limit();

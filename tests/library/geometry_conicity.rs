@@ -18,7 +18,7 @@ type WheelContact = (f64, f64);
 /// CONTACT's samples: (y_ws, right wheel, left wheel) [m], every 0.1 mm from −10 to 10 mm; one
 /// patch per wheel and case in this file.
 fn contact_samples() -> Vec<(f64, WheelContact, WheelContact)> {
-    let rows: Vec<(String, f64, f64, f64)> = include_str!("data/conicity_contact.csv")
+    let rows: Vec<(String, f64, f64, f64)> = include_str!("../data/conicity_contact.csv")
         .lines()
         .filter(|l| l.starts_with("right,") || l.starts_with("left,"))
         .map(|l| {
@@ -36,7 +36,7 @@ fn contact_samples() -> Vec<(f64, WheelContact, WheelContact)> {
 
 /// CONTACT-derived (A, tan γ_e) [m, 1].
 fn contact_conicity() -> Vec<(f64, f64)> {
-    include_str!("data/conicity_contact_tan_gamma.csv")
+    include_str!("../data/conicity_contact_tan_gamma.csv")
         .lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("amplitude"))
         .map(|l| {
@@ -54,7 +54,7 @@ fn ours() -> RollingRadiusDifference {
 ///
 /// Tolerances. Ours is the rigid first-touch point (the lowest undeformed gap), CONTACT's the
 /// contact reference of a 500 N patch (elastic approach 2 µm on the tread): the geometry tests
-/// (`tests/geometry_benchmark.rs`) place contact points within 0.4 mm of CONTACT's on the tread
+/// (`tests/library/geometry_benchmark.rs`) place contact points within 0.4 mm of CONTACT's on the tread
 /// (slope ≤ 0.1 there: ≤ 0.04 mm of radius) and 0.004 mm on the flange. Measured here: ≤ 0.0061 mm
 /// on the tread (|y| ≤ 5 mm), ≤ 0.035 mm in flange contact (5.1–10 mm, where both wheels' radii
 /// differ by 0.01–0.03 mm: CONTACT's reference lies inside the 1.5 kN flange patch), and

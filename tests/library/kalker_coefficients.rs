@@ -1,7 +1,7 @@
 //! Kalker's coefficients: the table reproduced at its nodes, Kalker's ν interpolation rule,
 //! the thin-ellipse asymptotes, and continuity over a/b = 1e-3 … 1e3.
 
-mod common;
+use crate::common;
 
 use common::relative_difference;
 use std::f64::consts::PI;
@@ -10,7 +10,7 @@ use wheel_rail_contact::KalkerCoefficients;
 /// The rows of data/kalker_coefficients.csv, parsed here independently of build.rs:
 /// (a/b, [[C11; 3], [C22; 3], [C23; 3]] at ν = 0, 0.25, 0.5).
 fn table() -> Vec<(f64, [[f64; 3]; 3])> {
-    include_str!("../data/kalker_coefficients.csv")
+    include_str!("../../data/kalker_coefficients.csv")
         .lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("branch"))
         .map(|line| {

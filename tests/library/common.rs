@@ -1,5 +1,4 @@
 //! Shared fixtures for the integration tests.
-#![allow(dead_code)] // each test crate uses its own subset
 
 use wheel_rail_contact::scene::SceneOutput;
 use wheel_rail_contact::{ContactInput, Fastsim, Flexibility, ModelChoice, TractionBound};

@@ -107,7 +107,7 @@ fn a_circles_spline_has_the_circles_slope_and_curvature() {
 fn the_miniprof_rail_is_the_simpack_rail_mirrored() {
     // CONTACT ships UIC60 in both formats; the MiniProf file is written with y mirrored.
     let simpack = smooth("MBench_UIC60");
-    let miniprof_text = include_str!("../data/profiles/MBench_UIC60_v3.ban");
+    let miniprof_text = include_str!("../../data/profiles/MBench_UIC60_v3.ban");
     let miniprof = parse_profile(miniprof_text, ProfileFormat::MiniProf).unwrap();
     // 495 points declared (`XYPoints`), 19 of them commented out with `"`.
     assert_eq!(miniprof.lateral.len(), 476);
