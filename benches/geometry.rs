@@ -8,11 +8,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use wheel_rail_contact::geometry::{
-    ContactPoint, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelRailContact, WheelSide, WheelState,
-    WheelsetPosition, WheelsetVelocity,
-};
+use wheel_rail_contact::geometry::{ContactPoint, WheelOnRail, WheelSide, WheelsetPosition};
 use wheel_rail_contact::scene::{Evaluation, Scene};
+use wheel_rail_contact::wheel::{
+    VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity,
+};
 use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable, ModelChoice, Polach};
 
 /// A patch's vertical share per newton of normal force without tangential forces: cos δ.

@@ -3,7 +3,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use wheel_rail_contact::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use wheel_rail_contact::scene::kinematics::{WheelKinematics, DEFAULT_REGULARISATION_SPEED};
 use wheel_rail_contact::scene::relaxation::RelaxationLengths;
 use wheel_rail_contact::{ContactInput, CreepForceModel, Polach};

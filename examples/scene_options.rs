@@ -3,7 +3,7 @@
 //! falling friction, and creep relaxation over a braking transient.
 //! `cargo run --release --example scene_options`
 
-use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use wheel_rail_contact::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use wheel_rail_contact::scene::kinematics::WheelKinematics;
 use wheel_rail_contact::scene::{
     CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneInput, SceneState, TractionLaw,

@@ -5,7 +5,7 @@ use std::fmt;
 /// An input value outside the domain of the models: names the variable, its value and the rule.
 ///
 /// ```
-/// use wheel_rail_contact::scene::hertz::RelativeCurvature;
+/// use wheel_rail_contact::hertz::RelativeCurvature;
 ///
 /// let error = RelativeCurvature::from_radii(0.46, f64::INFINITY, -0.3).unwrap_err();
 /// assert_eq!((error.variable, error.value), ("rail_profile_radius", -0.3));

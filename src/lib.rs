@@ -8,11 +8,13 @@
 //! trades speed for accuracy — [`KalkerLinear`], [`ShenHedrickElkins`], [`Polach`], [`Fastsim`]
 //! at any grid, [`ExactTheory`] — each in its own file under [`models`], all implementing
 //! [`CreepForceModel`] (forces and exact or finite-difference directional derivatives);
-//! [`ModelChoice`] selects one at run time. [`scene`] holds what a scene may add — Hertz contact,
-//! creepages from kinematics through standstill, creep relaxation — and [`scene::Scene`], the
-//! whole pipeline with one evaluation, which the FMU (the `wheel-rail-contact-fmu` crate, the FMI
-//! 2.0 adapter that holds all `unsafe` code) calls too. This crate forbids `unsafe` code and has
-//! no FFI.
+//! [`ModelChoice`] selects one at run time. [`scene`] holds what a scene may add — the contact
+//! ellipse by Hertz ([`hertz`]), creepages from kinematics through standstill, creep relaxation —
+//! and [`scene::Scene`], the whole pipeline with one evaluation, which the FMU (the
+//! `wheel-rail-contact-fmu` crate, the FMI 2.0 adapter that holds all `unsafe` code) calls too.
+//! [`geometry`] finds a wheel's contact patches on its rail from their profiles, and [`wheel`]
+//! evaluates a scene per patch and sums the forces on the wheel. This crate forbids `unsafe` code
+//! and has no FFI.
 //!
 //! **Sign convention** (Kalker, CONTACT): forces act on the wheel and oppose the creepages; in
 //! the linear range F_x = −G·ab·C11·ξ and F_y = −G·ab·C22·η − G·(ab)^{3/2}·C23·φ.
@@ -37,12 +39,14 @@ mod contact_input;
 mod creep_force_model;
 mod creep_forces;
 pub mod geometry;
+pub mod hertz;
 mod invalid_input;
 mod kalker_coefficients;
 pub mod models;
 mod numerics;
 pub mod reference_cases;
 pub mod scene;
+pub mod wheel;
 
 pub use contact_input::ContactInput;
 pub use creep_force_model::{central_difference, CreepForceModel};

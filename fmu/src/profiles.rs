@@ -21,11 +21,13 @@ use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
 use std::path::Path;
 use wheel_rail_contact::geometry::{
-    builtin_profile, parse_profile_as, PatchForces, ProfileFormat, ProfileKind, ProfilePoints, SmoothProfile,
-    TrackDimensions, VerticalContact, WheelContactError, WheelInput, WheelOnRail, WheelOutput, WheelRailContact,
-    WheelSide, WheelsetPosition, WheelsetVelocity, BUILTIN_PROFILE_NAMES,
+    builtin_profile, parse_profile_as, ProfileFormat, ProfileKind, ProfilePoints, SmoothProfile, TrackDimensions,
+    WheelOnRail, WheelSide, WheelsetPosition, BUILTIN_PROFILE_NAMES,
 };
 use wheel_rail_contact::scene::Scene;
+use wheel_rail_contact::wheel::{
+    PatchForces, VerticalContact, WheelContactError, WheelInput, WheelOutput, WheelRailContact, WheelsetVelocity,
+};
 
 /// How many patches have their own outputs (`patch1_*`, `patch2_*`).
 pub const REPORTED_PATCHES: usize = 2;

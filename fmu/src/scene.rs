@@ -3,7 +3,7 @@
 //! typed scene (model choice and options, validated once when a parameter changes, errors naming
 //! the FMU's variables and values), the inputs into a `SceneInput`, and the core's outputs into
 //! the outputs. The evaluation itself is the core's ([`Scene::evaluate`],
-//! [`WheelRailContact::evaluate`](wheel_rail_contact::geometry::WheelRailContact::evaluate)).
+//! [`WheelRailContact::evaluate`](wheel_rail_contact::wheel::WheelRailContact::evaluate)).
 //!
 //! The parameters and inputs are destructured without `..` (unused fields bound to `_`
 //! explicitly) and the outputs built by one struct literal without `..` ([`outputs`]), so a
@@ -17,12 +17,12 @@ use super::model_description::{
     TractionLaw as TractionLawChoice, Values,
 };
 use super::profiles::{ProfileContact, ProfileDigest, WheelOutputs};
-use wheel_rail_contact::geometry::{WheelCache, WheelState};
 use wheel_rail_contact::models::exact::{MAX_ITERATIONS, MAX_PRODUCTS};
 use wheel_rail_contact::scene::{
     CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneOutput,
     SceneState, TractionLaw,
 };
+use wheel_rail_contact::wheel::{WheelCache, WheelState};
 use wheel_rail_contact::{
     ContactInput, ExactTable, ExactTheory, Fastsim, Flexibility, InvalidInput, MeasuredCurve, ModelChoice, Polach,
     Polach2005, StiffnessSource, TractionBound,
@@ -623,7 +623,7 @@ mod tests {
     use crate::model_description::{
         value_reference as vr, Causality, TractionLaw, VerticalContact as VerticalChoice, VARIABLES,
     };
-    use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+    use wheel_rail_contact::hertz::{contact_modulus, HertzContact, RelativeCurvature};
     use wheel_rail_contact::scene::kinematics::WheelKinematics;
     use wheel_rail_contact::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
     use wheel_rail_contact::scene::relaxation::RelaxationLengths;

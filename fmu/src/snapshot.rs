@@ -20,8 +20,8 @@ use serde::{Deserialize, Serialize};
 use crate::mode::Mode;
 use crate::model_description::{Causality, Strings, Values, GUID, STATE_LAYOUT_TAG, VARIABLES};
 use crate::profiles::ProfileDigest;
-use wheel_rail_contact::geometry::WheelState;
 use wheel_rail_contact::scene::SceneState;
+use wheel_rail_contact::wheel::WheelState;
 
 /// First bytes of every serialized state of this FMU.
 pub const MAGIC: [u8; 8] = *b"WRCstate";

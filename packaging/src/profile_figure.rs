@@ -4,11 +4,11 @@
 //! the height that carries 10 kN, each loaded patch drawn as its width 2b along the contact
 //! plane (a box, to be seen). Computed with the core, as the FMU computes it.
 
-use wheel_rail_contact::geometry::{
-    builtin_profile, ProfilePoints, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelOutput,
-    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
-};
+use wheel_rail_contact::geometry::{builtin_profile, ProfilePoints, WheelOnRail, WheelSide, WheelsetPosition};
 use wheel_rail_contact::scene::{Evaluation, Scene};
+use wheel_rail_contact::wheel::{
+    VerticalContact, WheelCache, WheelInput, WheelOutput, WheelRailContact, WheelState, WheelsetVelocity,
+};
 use wheel_rail_contact::{ModelChoice, Polach};
 
 use crate::plot::{line_plot, Series};

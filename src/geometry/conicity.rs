@@ -33,7 +33,8 @@
 //! Fourier coefficient of Δr(A sin φ), tan γ_h(A) = 2/(π A) ∫_0^{π/2} Δr_odd(A sin φ) sin φ dφ
 //! (2); (1) and (2) agree for a cone and differ where Δr is nonlinear.
 
-use super::contact::{ContactPoint, WheelOnRail, WheelsetPosition};
+use super::contact::{WheelOnRail, WheelsetPosition};
+use super::patch::ContactPoint;
 use super::profile_file::ProfileError;
 use std::f64::consts::FRAC_PI_2;
 use std::fmt;

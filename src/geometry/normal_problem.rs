@@ -12,12 +12,12 @@
 //!
 //! [`WheelOnRail::candidates`]: super::contact::WheelOnRail::candidates
 
-use super::contact::{ContactPatch, ContactPoint, WheelSide};
+use super::patch::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
 use std::cell::{Cell, OnceCell};
 
-use super::hertz_table::unit_solution;
-use crate::scene::hertz::{HertzContact, RelativeCurvature};
+use crate::hertz::table::unit_solution;
+use crate::hertz::{HertzContact, RelativeCurvature};
 
 /// The deepest the wheel may be pushed into the rail \[m\], at a prescribed position or to
 /// carry a prescribed force: real contacts penetrate by micrometres to a tenth of a millimetre.
@@ -39,7 +39,7 @@ impl Candidate {
     }
 
     /// Hertz: δ ∝ Q^{2/3}, a, b, p₀ ∝ Q^{1/3}; the solution under 1 N (from the table of
-    /// `hertz_table.rs`) scales to any load.
+    /// `crate::hertz::table`) scales to any load.
     fn unit(&self) -> Result<&HertzContact, ProfileError> {
         self.unit
             .get_or_init(|| {
@@ -173,7 +173,7 @@ impl ContactCandidates {
 
     /// Prescribed vertical force on the wheel \[N\]: the wheelset's vertical position at which
     /// the patches carry it, Σ Q_i·s_i = F_z with `vertical_share` s_i the vertical force a patch
-    /// carries per newton of normal force (cos δ alone; [`super::wheel_forces`] adds its
+    /// carries per newton of normal force (cos δ alone; [`crate::wheel`] adds its
     /// tangential force's share; > 0), found by bisection; returns it with the patches. F_z ≤ 0
     /// is lift-off: no patch, the position where the wheel just touches.
     pub fn patches_for_force(
@@ -187,7 +187,7 @@ impl ContactCandidates {
     /// [`Self::patches_for_force`], its search started at `guess` (z_ws) if given: the rounds of
     /// the vertical balance change z_ws by little, and Newton's method from the last one
     /// converges in two or three steps instead of bracketing from the touch.
-    pub(super) fn patches_for_force_near(
+    pub(crate) fn patches_for_force_near(
         &self,
         vertical_force: f64,
         vertical_share: impl Fn(&ContactPoint) -> f64,

@@ -1,7 +1,7 @@
 //! One type for "whichever rung of the ladder the user picked": enum dispatch, so a caller (the
 //! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
 
-use crate::models::exact::{GridSize, WarmStart};
+use crate::models::exact::{ExactTheory, GridSize, WarmStart};
 use crate::models::ModelChoice;
 use crate::{
     ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, Polach, Polach2005, Rung, ShapeCache,
@@ -200,6 +200,24 @@ impl ModelChoice {
             _ => None,
         })
     }
+
+    /// The rung that evaluates a contact patch whose semi-axes are in the ratio `a_over_b`: this
+    /// one, except that `exact_table` beyond its table's a/b range (the shipped one's
+    /// [0.1, 10^1.5] holds a flange's long Hertz ellipse, a/b = 16–22 on A-2.2) hands the patch to
+    /// the theory the table interpolates, the exact theory on CONTACT's grid (slower, as accurate).
+    ///
+    /// ```
+    /// use wheel_rail_contact::{ExactTable, ExactTheory, ModelChoice};
+    /// let table = ModelChoice::ExactTable(ExactTable::new().unwrap());
+    /// assert_eq!(table.for_ellipse(20.0), table); // a flange's patch, within the table
+    /// assert_eq!(table.for_ellipse(40.0), ModelChoice::Exact(ExactTheory::default()));
+    /// ```
+    pub fn for_ellipse(self, a_over_b: f64) -> Self {
+        match self {
+            Self::ExactTable(table) if !table.table().covers_a_over_b(a_over_b) => Self::Exact(ExactTheory::default()),
+            model => model,
+        }
+    }
 }
 
 #[cfg(test)]
@@ -227,5 +245,24 @@ mod tests {
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), ModelChoice::RUNGS.len());
+    }
+
+    #[test]
+    fn a_patch_beyond_the_tables_a_over_b_goes_to_the_exact_theory() {
+        let table = ModelChoice::ExactTable(crate::ExactTable::new().unwrap());
+        // A flange's (a/b = 20), one near the table's end (31 < 10^1.5), beyond it (40), and wide
+        // ones (1/9 within, 1/20 below the table's 0.1).
+        for (a_over_b, beyond) in [(20.0, false), (31.0, false), (40.0, true), (1.0 / 9.0, false), (0.05, true)] {
+            let model = table.for_ellipse(a_over_b);
+            assert_eq!(matches!(model, ModelChoice::Exact(_)), beyond, "a/b = {a_over_b}");
+            if beyond {
+                assert_eq!(model, ModelChoice::Exact(ExactTheory::default()), "CONTACT's grid");
+            } else {
+                assert_eq!(model, table);
+            }
+        }
+        // Other rungs are kept whatever the shape.
+        let polach = ModelChoice::Polach(Polach::default());
+        assert_eq!(polach.for_ellipse(40.0), polach);
     }
 }

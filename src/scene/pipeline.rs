@@ -85,10 +85,10 @@ use std::fmt;
 
 use num_dual::Dual64;
 
-use super::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use super::kinematics::WheelKinematics;
 use super::relaxation::{renewal_speed, RelaxationLengths};
 use crate::contact_input::hertz_max_pressure;
+use crate::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use crate::models::exact::GridSize;
 use crate::models::polach::resulting_creepage_at;
 use crate::{

@@ -6,10 +6,12 @@
 //! code's own output.
 
 use wheel_rail_contact::geometry::{
-    builtin_profile, ContactPoint, ProfilePoints, SmoothProfile, VerticalContact, WheelCache, WheelInput, WheelOnRail,
-    WheelRailContact, WheelSide, WheelState, WheelsetPosition, WheelsetVelocity,
+    builtin_profile, ContactPoint, ProfilePoints, SmoothProfile, WheelOnRail, WheelSide, WheelsetPosition,
 };
 use wheel_rail_contact::scene::{Evaluation, Scene};
+use wheel_rail_contact::wheel::{
+    VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity,
+};
 use wheel_rail_contact::{ModelChoice, Polach};
 
 fn pair(side: WheelSide) -> WheelOnRail {

@@ -4,12 +4,12 @@
 //! CONTACT rev. 2707's `examples/mbench_a22_{right,left}.ref_out` by the script beside it):
 //! creepages, normal and creep forces per patch, totals on the wheel; invariants.
 
-use wheel_rail_contact::geometry::{
-    PatchState, VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelOutput, WheelRailContact, WheelSide,
-    WheelState, WheelsetPosition, WheelsetVelocity,
-};
+use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
 use wheel_rail_contact::models::fastsim::{Flexibility, TractionBound};
 use wheel_rail_contact::scene::{Evaluation, Relaxation, Scene, SceneState};
+use wheel_rail_contact::wheel::{
+    PatchState, VerticalContact, WheelCache, WheelInput, WheelOutput, WheelRailContact, WheelState, WheelsetVelocity,
+};
 use wheel_rail_contact::{ExactTable, ExactTheory, Fastsim, ModelChoice, Polach};
 
 /// CONTACT's values of one wheel and case (its units and signs: mm, rail minus wheel, on the rail).

@@ -4,7 +4,7 @@
 //!
 //! # Model
 //!
-//! Axes and signs are the contact unit's (`src/geometry/wheel_forces.rs`, the FMU's README):
+//! Axes and signs are the contact unit's (`src/wheel.rs`, the FMU's README):
 //! track x forward, y to the right, z down; ψ about z (positive turns the heading towards +y).
 //! The wheelset (mass m, yaw inertia I, spin inertia I_s about its axle) is held by a primary
 //! suspension at two axleboxes, ±b₁ from its centre, each with a longitudinal (k_x, c_x) and a

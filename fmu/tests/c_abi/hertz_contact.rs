@@ -6,7 +6,7 @@
 //! stated a/b.
 
 use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
-use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+use wheel_rail_contact::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch};
 
 #[test]

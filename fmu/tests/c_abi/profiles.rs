@@ -6,11 +6,11 @@
 use std::ffi::CString;
 
 use fmu_test_master::{Fmu, MessageLog, ERROR, OK};
-use wheel_rail_contact::geometry::{
-    VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition,
-    WheelsetVelocity,
-};
+use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
 use wheel_rail_contact::scene::{CreepageSource, Evaluation, Scene};
+use wheel_rail_contact::wheel::{
+    VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity,
+};
 use wheel_rail_contact::{ModelChoice, Polach};
 use wheel_rail_contact_fmu::ffi::{
     fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2SetString, fmi2SetupExperiment,

@@ -24,10 +24,10 @@ use lab::wheelset_parameters::{document, number, text};
 use wheel_rail_contact::geometry::{
     builtin_profile, RollingRadiusDifference, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition,
 };
-use wheel_rail_contact::geometry::{
+use wheel_rail_contact::scene::{Evaluation, Scene};
+use wheel_rail_contact::wheel::{
     VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity,
 };
-use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::{KalkerCoefficients, KalkerLinear, ModelChoice};
 
 /// The rolling speed of the at-rest evaluations \[m/s\] (any speed well above the

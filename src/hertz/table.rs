@@ -4,7 +4,7 @@
 //! two patches); the table's read costs two logarithms and three exponentials.
 //!
 //! Why a table over one variable suffices: Hertz's solution under the load Q, the relative
-//! curvatures A, B = r·A and the contact modulus E* is (`crate::scene::hertz`)
+//! curvatures A, B = r·A and the contact modulus E* is ([`crate::hertz`])
 //!
 //! ```text
 //! a = a₁(r)·(Q/(E* A))^{1/3},   b = k(r)·a,   δ = d(r)·a²·A,   p₀ = 3Q/(2π a b),
@@ -19,8 +19,8 @@
 
 use std::sync::OnceLock;
 
+use super::{HertzContact, RelativeCurvature};
 use crate::contact_input::hertz_max_pressure;
-use crate::scene::hertz::{HertzContact, RelativeCurvature};
 use crate::InvalidInput;
 
 /// The table's step in u = ln(B/A).
@@ -79,14 +79,14 @@ impl ShapeTable {
 
 /// Builds the table if no placement has yet (`WheelOnRail::new` calls this: a millisecond then,
 /// not in a wheel's first step).
-pub(super) fn prepare() {
+pub(crate) fn prepare() {
     ShapeTable::get();
 }
 
 /// Hertz's solution under 1 N for `curvature` and the contact modulus E* \[Pa\]: from the table
 /// (module doc), or [`HertzContact::solve`] where [`from_table`] has none (its error, then, is the
 /// solver's).
-pub(super) fn unit_solution(curvature: &RelativeCurvature, contact_modulus: f64) -> Result<HertzContact, InvalidInput> {
+pub(crate) fn unit_solution(curvature: &RelativeCurvature, contact_modulus: f64) -> Result<HertzContact, InvalidInput> {
     from_table(curvature, contact_modulus).map_or_else(|| HertzContact::solve(1.0, curvature, contact_modulus), Ok)
 }
 

@@ -2,6 +2,44 @@
 //! patch's creepages from the wheelset's motion, its creep forces by any rung of the ladder (one
 //! [`Scene`] evaluation per patch), and their sum on the wheel in track coordinates.
 //!
+//! A wheel with its profiles, the Manchester benchmark's case A-2.2 no. 3 (right wheel: the
+//! wheelset 1 mm to the right, yawed 2.4 mrad, 10 kN on the wheel, V = 2 m/s, μ = 0.3), against
+//! CONTACT's published full solution (rail y −18.54 mm, contact angle −0.0696 rad, N = 9827 N,
+//! creep forces on the wheel 814 N and 2832 N, `tests/data/mbench_a22_contact_ref_out.csv`):
+//!
+//! ```
+//! use wheel_rail_contact::geometry::{builtin_profile, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition};
+//! use wheel_rail_contact::wheel::{VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity};
+//! use wheel_rail_contact::scene::{Evaluation, Scene};
+//! use wheel_rail_contact::{ModelChoice, Polach};
+//!
+//! let profile = |name| SmoothProfile::new(&builtin_profile(name).unwrap()).unwrap();
+//! let (wheel, rail) = (profile("MBench_S1002"), profile("MBench_UIC60"));
+//! let placed = WheelOnRail::new(wheel, rail, TrackDimensions::MANCHESTER_BENCHMARK, WheelSide::Right, 82e9, 0.28);
+//! let contact = WheelRailContact::new(placed.unwrap(), Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28));
+//! let input = WheelInput {
+//!     position: WheelsetPosition { lateral: 1e-3, vertical: 0.0, roll: -5.049e-5, yaw: 2.4e-3 },
+//!     velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3465752, ..WheelsetVelocity::default() },
+//!     vertical: VerticalContact::PrescribedForce(10e3),
+//!     friction_coefficient: 0.3,
+//! };
+//! let (output, _next_state) =
+//!     contact.evaluate(&input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise).unwrap();
+//! let patch = &output.patches[0];
+//! assert_eq!(output.patches.len(), 1);
+//! let point = patch.patch.point;
+//! // Our Hertz point against the centre of CONTACT's non-elliptic patch: within 0.35 mm.
+//! assert!((point.rail_lateral + 18.54e-3).abs() < 0.35e-3, "rail y {}", point.rail_lateral);
+//! assert!((point.contact_angle + 0.0696).abs() < 0.002, "contact angle {}", point.contact_angle);
+//! assert!((patch.patch.normal_force / 9827.0 - 1.0).abs() < 0.005, "N {}", patch.patch.normal_force);
+//! // Polach on the tread: within 0.06 μN of CONTACT's exact theory on the real patch.
+//! let within = |ours: f64, theirs: f64| (ours - theirs).abs() < 0.06 * 0.3 * 9827.0;
+//! let (f_x, f_y) = (patch.output.force_longitudinal, patch.output.force_lateral);
+//! assert!(within(f_x, 814.3) && within(f_y, 2832.0), "F_x {f_x}, F_y {f_y}");
+//! // The wheel carries the prescribed 10 kN (z downward: the rail pushes up, −z).
+//! assert!((output.track_force[2] + 10e3).abs() < 1e-6);
+//! ```
+//!
 //! Frames (CONTACT's module 1): track x along the track in the rolling direction, y lateral to
 //! the right, z down. A patch at contact angle δ has its own axes x (the track's), s = (0, cos δ,
 //! sin δ) along the surfaces and n = (0, −sin δ, cos δ) into the rail. The wheelset's centre c
@@ -33,15 +71,12 @@
 
 use std::fmt;
 
-use super::contact::{ContactPatch, ContactPoint, WheelOnRail, WheelsetPosition};
-use super::normal_problem::ContactCandidates;
-use super::profile_file::ProfileError;
-use crate::scene::hertz::HertzContact;
+use crate::geometry::{ContactCandidates, ContactPatch, ContactPoint, ProfileError, WheelOnRail, WheelsetPosition};
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
     CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
 };
-use crate::{ExactTheory, InvalidInput, ModelChoice};
+use crate::InvalidInput;
 
 /// How many rounds of normal problem and creep forces settle the vertical balance at most.
 pub const VERTICAL_ROUNDS: usize = 12;
@@ -203,10 +238,8 @@ impl From<InvalidInput> for WheelContactError {
 /// [`crate::geometry`] for a case against CONTACT):
 ///
 /// ```
-/// use wheel_rail_contact::geometry::{
-///     VerticalContact, WheelCache, WheelInput, WheelOnRail, WheelRailContact, WheelSide, WheelState, WheelsetPosition,
-///     WheelsetVelocity,
-/// };
+/// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+/// use wheel_rail_contact::wheel::{VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity};
 /// use wheel_rail_contact::scene::{Evaluation, Relaxation, Scene};
 /// use wheel_rail_contact::{ModelChoice, Polach};
 ///
@@ -483,23 +516,11 @@ impl WheelRailContact {
 }
 
 impl WheelRailContact {
-    /// The scene for one patch ([`scene_for_ellipse`]).
+    /// The scene for one patch: the chosen rung, or the one the ladder hands a patch of this
+    /// shape to ([`crate::ModelChoice::for_ellipse`]).
     fn patch_scene(&self, patch: &ContactPatch) -> Scene {
-        scene_for_ellipse(self.scene, &patch.ellipse)
-    }
-}
-
-/// The scene for a patch of this ellipse: `scene`, but beyond the a/b range of exact_table's
-/// table (the shipped one's [0.1, 10^1.5] holds a flange's long Hertz ellipse, a/b = 16–22 on
-/// A-2.2) the exact theory on CONTACT's grid, the theory the table interpolates, solves it
-/// instead (slower, as accurate).
-fn scene_for_ellipse(scene: Scene, ellipse: &HertzContact) -> Scene {
-    let ratio = ellipse.semi_axis_a / ellipse.semi_axis_b;
-    match scene.model {
-        ModelChoice::ExactTable(model) if !model.table().covers_a_over_b(ratio) => {
-            Scene { model: ModelChoice::Exact(ExactTheory::default()), ..scene }
-        }
-        _ => scene,
+        let a_over_b = patch.ellipse.semi_axis_a / patch.ellipse.semi_axis_b;
+        Scene { model: self.scene.model.for_ellipse(a_over_b), ..self.scene }
     }
 }
 
@@ -600,27 +621,7 @@ fn check_velocity(velocity: &WheelsetVelocity) -> Result<(), InvalidInput> {
 
 #[cfg(test)]
 mod tests {
-    use super::{scene_for_ellipse, secant_root, HertzContact};
-    use crate::scene::Scene;
-    use crate::{ExactTable, ModelChoice, Polach};
-
-    #[test]
-    fn a_patch_beyond_the_tables_a_over_b_goes_to_the_exact_theory() {
-        let table = Scene::of_model(ModelChoice::ExactTable(ExactTable::new().unwrap()), 82e9, 0.28);
-        let ellipse =
-            |a: f64, b: f64| HertzContact { semi_axis_a: a, semi_axis_b: b, max_pressure: 1e9, approach: 1e-5 };
-        // A flange's (a/b = 20), one near the table's end (31), beyond it (40), and wide ones.
-        for (a, b, beyond) in
-            [(20e-3, 1e-3, false), (31e-3, 1e-3, false), (40e-3, 1e-3, true), (1e-3, 9e-3, false), (1e-3, 20e-3, true)]
-        {
-            let scene = scene_for_ellipse(table, &ellipse(a, b));
-            assert_eq!(matches!(scene.model, ModelChoice::Exact(_)), beyond, "a/b = {}", a / b);
-            assert_eq!(Scene { model: table.model, ..scene }, table, "only the model changes");
-        }
-        // Other rungs are kept whatever the shape.
-        let polach = Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28);
-        assert_eq!(scene_for_ellipse(polach, &ellipse(40e-3, 1e-3)), polach);
-    }
+    use super::secant_root;
 
     #[test]
     fn the_secant_step_finds_a_linear_residuals_root_and_refuses_far_or_flat_lines() {

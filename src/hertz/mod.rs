@@ -33,6 +33,8 @@
 //! this module gives a = 6.304 mm in the rolling direction and b = 12.61 mm, as CONTACT prints;
 //! with the curvatures swapped the semi-axes swap.
 
+pub(crate) mod table;
+
 use std::f64::consts::PI;
 
 use crate::contact_input::hertz_max_pressure;
@@ -232,7 +234,7 @@ pub fn contact_modulus(shear_modulus: f64, poisson_ratio: f64) -> Result<f64, In
 /// *Contact Mechanics*, eqs. 4.22–4.23): a³ = 3QR/(4E*), δ = a²/R, p₀ = 3Q/(2πa²):
 ///
 /// ```
-/// use wheel_rail_contact::scene::hertz::{contact_modulus, HertzContact, RelativeCurvature};
+/// use wheel_rail_contact::hertz::{contact_modulus, HertzContact, RelativeCurvature};
 ///
 /// // E* = G/(1 − ν) for two bodies of one steel.
 /// let modulus = contact_modulus(82e9, 0.28).unwrap();
