@@ -262,6 +262,31 @@ mod tests {
         }
     }
 
+    /// Every input and parameter that only some choices or options use says so, naming each of
+    /// them (its "used when"): an option added to a row cannot leave a variable's description
+    /// silent on it. What every scene uses needs no condition; an option's own selector is not
+    /// used "when" itself; an option with a wildcard (`polach2005_*`) may be named by one of its
+    /// items.
+    #[test]
+    fn every_variable_names_the_options_that_use_it() {
+        let rows = option_uses();
+        let (every, options): (Vec<_>, Vec<_>) = rows.iter().partition(|row| EVERY_SCENE.contains(row));
+        let used_by_every =
+            |name: &str| every.iter().any(|row| row.inputs.contains(&name) || row.parameters.contains(&name));
+        let mut silent = Vec::new();
+        for row in options {
+            let selector = row.option.split(" = ").next().unwrap_or_default();
+            let named = row.option.trim_end_matches('*');
+            for name in row.inputs.iter().chain(row.parameters).filter(|&&n| n != selector && !used_by_every(n)) {
+                let description = variable(name).description;
+                if !description.contains(named) {
+                    silent.push(format!("{name} does not name `{}`: \"{description}\"", row.option));
+                }
+            }
+        }
+        assert!(silent.is_empty(), "descriptions in modelDescription.xml:\n{}", silent.join("\n"));
+    }
+
     /// Every parameter and input appears in some row: nothing the FMU has is left undocumented.
     #[test]
     fn every_input_and_parameter_is_listed() {
