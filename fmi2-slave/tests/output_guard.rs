@@ -12,7 +12,7 @@ use std::ptr::null;
 use std::sync::Mutex;
 
 use fmi2_slave::fmi2::*;
-use fmi2_slave::instance::Model;
+use fmi2_slave::instance::{decode_run, encode_run, keep_if_finite, Evaluation, FmuState, Model};
 use fmi2_slave::mode::Mode;
 use fmi2_slave::variables::{Causality, Kind, Variability, Variable};
 
@@ -65,13 +65,32 @@ fn index(value_reference: u32) -> Option<usize> {
     VARIABLES.iter().position(|v| v.value_reference == value_reference)
 }
 
-/// No checks of its own: every non-finite output below reaches the slave layer's guard.
-impl Model for Ratio {
+/// The gain that makes a step panic: a bug inside an export, to see it become fmi2Fatal.
+const PANICKING_GAIN: f64 = 13.0;
+
+/// The model: no checks of its own, so every non-finite output below reaches the slave layer's
+/// guard ([`keep_if_finite`]).
+struct RatioModel;
+
+impl Model for RatioModel {
+    type State = Ratio;
+
     const GUID: &'static str = GUID;
     const MODEL_IDENTIFIER: &'static str = "ratio";
     const LOG_CATEGORIES: &'static [&'static str] = &[];
     const STATE_LAYOUT_TAG: u64 = 1;
     const STATE_MAGIC: [u8; 8] = *b"RATstate";
+    const STATE_FORMAT_VERSION: u16 = 1;
+
+    fn instantiate(_resource_location: Option<&str>) -> Result<(Self, Option<String>), String> {
+        Ok((RatioModel, None))
+    }
+
+    fn reset(&mut self) {}
+
+    fn start() -> Ratio {
+        Ratio::default()
+    }
 
     fn variable(value_reference: u32) -> Option<&'static Variable> {
         index(value_reference).map(|i| &VARIABLES[i])
@@ -81,41 +100,47 @@ impl Model for Ratio {
         &VARIABLES
     }
 
-    fn real(&self, value_reference: u32) -> Option<f64> {
-        index(value_reference).map(|i| self.0[i])
+    fn real(state: &Ratio, value_reference: u32) -> Option<f64> {
+        index(value_reference).map(|i| state.0[i])
     }
 
-    fn real_mut(&mut self, value_reference: u32) -> Option<&mut f64> {
-        index(value_reference).map(|i| &mut self.0[i])
+    fn real_mut(state: &mut Ratio, value_reference: u32) -> Option<&mut f64> {
+        index(value_reference).map(|i| &mut state.0[i])
     }
 
-    fn initialize(&mut self) -> Result<(), String> {
-        self.0[3] = self.0[0] / self.0[1];
-        self.0[4] = 0.0;
-        Ok(())
+    fn evaluate(&mut self, state: &mut Ratio, evaluation: Evaluation) -> Result<Option<String>, String> {
+        keep_if_finite::<Self>(state, |ratio| {
+            ratio.0[3] = ratio.0[0] / ratio.0[1];
+            match evaluation {
+                Evaluation::Initialise => ratio.0[4] = 0.0,
+                Evaluation::Step { size, .. } => {
+                    assert!(ratio.0[2] != PANICKING_GAIN, "forced by a test");
+                    ratio.0[4] += ratio.0[2] * size;
+                }
+            }
+            Ok(())
+        })?;
+        Ok(None)
     }
 
-    fn step(&mut self, _time: f64, step: f64) -> Result<(), String> {
-        self.0[3] = self.0[0] / self.0[1];
-        self.0[4] += self.0[2] * step;
-        Ok(())
+    fn encode(state: &FmuState<Ratio>) -> Vec<u8> {
+        let bytes: Vec<u8> = state.model.0.iter().flat_map(|x| x.to_le_bytes()).collect();
+        encode_run(state, &bytes)
     }
 
-    fn to_bytes(&self) -> Vec<u8> {
-        self.0.iter().flat_map(|x| x.to_le_bytes()).collect()
+    fn decode(payload: &[u8]) -> Result<FmuState<Ratio>, String> {
+        let run = decode_run(payload)?;
+        let values: Vec<f64> = run.model.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
+        let model = values.try_into().map(Ratio).map_err(|_| format!("{} bytes of values", run.model.len()))?;
+        Ok(FmuState { mode: run.mode, time: run.time, stop_time: run.stop_time, model })
     }
 
-    fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
-        let values: Vec<f64> = bytes.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
-        values.try_into().map(Ratio).map_err(|_| format!("{} bytes of values", bytes.len()))
-    }
-
-    fn check_state(&self, _mode: Mode) -> Result<(), String> {
+    fn check_state(_state: &Ratio, _mode: Mode) -> Result<(), String> {
         Ok(())
     }
 }
 
-fmi2_slave::export_fmi2!(fmi2_slave::instance::Instance<crate::Ratio>);
+fmi2_slave::export_fmi2!(fmi2_slave::instance::Instance<crate::RatioModel>);
 
 const OK: fmi2Status = fmi2Status_fmi2OK;
 const ERROR: fmi2Status = fmi2Status_fmi2Error;
@@ -278,4 +303,24 @@ fn a_non_finite_output_after_a_step_is_an_error_and_the_previous_values_stay() {
     assert_eq!(fmu.do_step(1.0, 0.5), OK, "{}", log.last());
     assert_eq!(fmu.get(&OUTPUTS), (OK, vec![1.0, 1.5e308]));
     assert_eq!(fmu.last_successful_time(), 1.5);
+}
+
+/// A panic inside an export (a bug; here forced by the model's step) is caught at the C
+/// boundary: fmi2Fatal, a fatal message through the master's logger, and the instance refuses
+/// every further call but can be freed.
+#[test]
+fn a_panic_in_an_export_becomes_fmi2_fatal_and_only_freeing_remains() {
+    let log = Log::default();
+    let fmu = Fmu::initializing(&log);
+    fmu.set(GAIN, PANICKING_GAIN);
+    assert_eq!(fmu.exit_initialization(), OK, "{}", log.last());
+    assert_eq!(fmu.do_step(0.0, 1.0), fmi2Status_fmi2Fatal);
+    let message = log.last();
+    assert!(message.starts_with("fmi2DoStep: internal error (forced by a test"), "{message}");
+    assert!(message.ends_with("); this instance can only be freed"), "{message}");
+    assert_eq!(fmu.do_step(0.0, 1.0), ERROR);
+    assert_eq!(log.last(), "fmi2DoStep: illegal call in state fatal");
+    // SAFETY: `c` is live.
+    assert_eq!(unsafe { fmi2Reset(fmu.c) }, ERROR);
+    assert_eq!(log.last(), "fmi2Reset: illegal call in state fatal");
 }

@@ -473,7 +473,7 @@ fn the_generic_slaves_inquiries_and_checks() {
         assert_eq!(fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr().cast(), size, &mut restored), OK);
         assert_eq!(fmi2FreeFMUstate(fmu.c, &mut restored), OK);
         // A mode byte no state holds, behind a valid header and checksum.
-        let format = fmi2_slave::instance::FmuState::<wheelset::model::Wheelset>::format();
+        let format = fmi2_slave::instance::Instance::<wheelset::model::WheelsetModel>::state_format();
         let mut payload = format.decode(&bytes).unwrap().to_vec();
         payload[0] = 200;
         let bytes = format.encode(&payload);
@@ -576,7 +576,7 @@ fn a_forged_state_with_a_valid_checksum_is_refused_by_its_sense() {
     // sense checks stand between them and the instance.
     let log = Log::default();
     let (fmu, bytes) = serialized_stepping_state(&log);
-    let format = fmi2_slave::instance::FmuState::<wheelset::model::Wheelset>::format();
+    let format = fmi2_slave::instance::Instance::<wheelset::model::WheelsetModel>::state_format();
     let payload = format.decode(&bytes).unwrap().to_vec();
     // Payload: mode (1 byte), time (8), stop time (8), then every variable in VARIABLES' order.
     let variable_at = |reference: u32| {
