@@ -6,12 +6,13 @@ use crate::logging::Status;
 use crate::mode::Mode::{InitializationMode, Instantiated, StepComplete, Terminated};
 use crate::mode::{Call, Mode, Modes, LIVE, NEVER, READABLE, STEPPED, WRITABLE};
 use crate::model_description::{value_reference as vr, Inputs, GUID};
+use crate::snapshot::{ContactState, Snapshot};
 
 #[test]
 fn instantiate_copies_name_and_resources_and_checks_the_guid() {
     let (instance, _) = new_instance();
     assert_eq!((instance.name(), instance.resource_location()), ("wheel 1", Some("file:///tmp/resources/")));
-    assert_eq!(instance.state(), Instantiated);
+    assert_eq!(instance.mode(), Instantiated);
     for (guid, co_simulation, name, expected) in [
         ("{wrong}", true, "wheel", "fmi2Instantiate: fmuGUID {wrong} does not match"),
         (GUID, false, "wheel", "fmi2Instantiate: this FMU supports Co-Simulation only"),
@@ -34,7 +35,7 @@ fn impossible_measured_curve_is_an_error_at_exit_initialization() {
     instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.25]);
     assert_eq!(instance.exit_initialization_mode(), Status::Error);
     assert!(last_message(&log).starts_with("fmi2ExitInitializationMode: measured_peak_adhesion = 0.25 is invalid"));
-    assert_eq!(instance.state(), InitializationMode, "the master may correct the value");
+    assert_eq!(instance.mode(), InitializationMode, "the master may correct the value");
     instance.set_real(&[vr::MEASURED_PEAK_ADHESION], &[0.34]);
     assert_eq!(instance.exit_initialization_mode(), Status::Ok);
 }
@@ -60,11 +61,11 @@ fn illegal_calls_are_refused_in_every_state() {
         ),
         ("fmi2Reset", Instance::reset, LIVE),
         ("fmi2GetFMUstate", |i| i.get_fmu_state().err().unwrap_or(Status::Ok), LIVE),
-        ("fmi2SetFMUstate", |i| i.set_fmu_state(&FmuState(Snapshot::instantiated())), LIVE),
+        ("fmi2SetFMUstate", |i| i.set_fmu_state(&Snapshot::instantiated(ContactState::start())), LIVE),
         ("fmi2FreeFMUstate", Instance::free_fmu_state, LIVE),
         (
             "fmi2SerializedFMUstateSize",
-            |i| i.serialized_fmu_state_size(&FmuState(Snapshot::instantiated())).err().unwrap_or(Status::Ok),
+            |i| i.serialized_fmu_state_size(&Snapshot::instantiated(ContactState::start())).err().unwrap_or(Status::Ok),
             LIVE,
         ),
         ("fmi2DeSerializeFMUstate", |i| i.deserialize_fmu_state(&[]).err().unwrap_or(Status::Ok), LIVE),
@@ -74,16 +75,18 @@ fn illegal_calls_are_refused_in_every_state() {
             READABLE,
         ),
     ];
-    let states: [(Mode, fn() -> Instance); 4] = [
-        (Instantiated, || new_instance().0),
-        (InitializationMode, || {
-            let mut i = new_instance().0;
+    /// An instance in the state, logging to the log given.
+    type Make = fn(&Log) -> Instance;
+    let states: [(Mode, Make); 4] = [
+        (Instantiated, instance_logging_to),
+        (InitializationMode, |log| {
+            let mut i = instance_logging_to(log);
             i.enter_initialization_mode();
             i
         }),
-        (StepComplete, || stepping().0),
-        (Terminated, || {
-            let mut i = stepping().0;
+        (StepComplete, stepping_logging_to),
+        (Terminated, |log| {
+            let mut i = stepping_logging_to(log);
             i.terminate();
             i
         }),
@@ -91,8 +94,8 @@ fn illegal_calls_are_refused_in_every_state() {
     for (state, make) in states {
         for (name, call, allowed) in &calls {
             let log = Log::default();
-            let mut instance = make();
-            instance.log = crate::logging::Logger::new(false, Box::new(Recorder(log.clone())));
+            let mut instance = make(&log);
+            log.borrow_mut().clear();
             let status = call(&mut instance);
             let message = last_message(&log);
             if allowed.contains(state) {
@@ -100,7 +103,7 @@ fn illegal_calls_are_refused_in_every_state() {
             } else {
                 assert_eq!(status, Status::Error, "{name} in {state:?}");
                 assert_eq!(message, format!("{name}: illegal call in state {}", state.name()));
-                assert_eq!(instance.state(), state);
+                assert_eq!(instance.mode(), state);
             }
         }
     }
@@ -112,9 +115,9 @@ fn reset_returns_to_the_start_values() {
     instance.set_real(&[vr::NORMAL_FORCE, vr::SHEAR_MODULUS], &[50e3, 80e9]);
     instance.do_step(0.0, 1.0);
     assert_eq!(instance.reset(), Status::Ok);
-    assert_eq!(instance.state(), Instantiated);
-    assert_eq!(instance.values().inputs, Inputs::default());
-    assert_eq!(instance.values().parameters.shear_modulus, 82e9);
+    assert_eq!(instance.mode(), Instantiated);
+    assert_eq!(instance.model_state().values.inputs, Inputs::default());
+    assert_eq!(instance.model_state().values.parameters.shear_modulus, 82e9);
     // A new run starts from the new start time.
     instance.setup_experiment(3.0, None);
     instance.enter_initialization_mode();
@@ -187,7 +190,7 @@ fn a_panic_becomes_fatal_and_only_freeing_remains() {
     let (mut instance, log) = stepping();
     let status = instance.guarded(Call::DoStep, |_| panic!("a bug"));
     assert_eq!(status, Status::Fatal);
-    assert_eq!(instance.state(), Mode::Fatal);
+    assert_eq!(instance.mode(), Mode::Fatal);
     let (status, category, message) = log.borrow().last().cloned().unwrap();
     assert_eq!((status, category.as_str()), (Status::Fatal, "logStatusFatal"));
     assert_eq!(message, "fmi2DoStep: internal error (a bug); this instance can only be freed");

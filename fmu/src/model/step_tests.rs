@@ -53,7 +53,7 @@ fn do_step_checks_time_and_step_size() {
 #[test]
 fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
     let (mut instance, log) = stepping();
-    let before = *instance.values();
+    let before = instance.model_state().values;
     for (value_reference, value, expected) in [
         (vr::CREEPAGE_LATERAL, f64::NAN, "fmi2DoStep: creepage_lateral = NaN is invalid: must be finite"),
         (vr::NORMAL_FORCE, f64::INFINITY, "fmi2DoStep: normal_force = inf is invalid: must be finite"),
@@ -65,12 +65,12 @@ fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
         assert_eq!(instance.set_real(&[value_reference], &[value]), Status::Ok);
         assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
         assert_eq!(last_message(&log), expected);
-        assert_eq!(instance.values().outputs, before.outputs, "outputs keep their last valid values");
+        assert_eq!(instance.model_state().values.outputs, before.outputs, "outputs keep their last valid values");
         let start = before.real(value_reference).unwrap();
         instance.set_real(&[value_reference], &[start]);
     }
     assert_eq!(instance.do_step(0.0, 0.1), Status::Ok, "usable again once the values are good");
-    assert_eq!(*instance.values(), before);
+    assert_eq!(instance.model_state().values, before);
 }
 
 #[test]
@@ -88,7 +88,7 @@ fn an_overflowing_coulomb_limit_is_an_error_and_keeps_the_last_valid_values() {
     // Found by the fuzz harness: finite μ and Q whose product overflows. The core rejects it
     // by name; the finite-outputs check behind it stays as a backstop.
     let (mut instance, log) = stepping();
-    let before = instance.values().outputs;
+    let before = instance.model_state().values.outputs;
     instance.set_real(&[vr::FRICTION_COEFFICIENT], &[f64::MAX]);
     assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
     assert_eq!(
@@ -96,7 +96,7 @@ fn an_overflowing_coulomb_limit_is_an_error_and_keeps_the_last_valid_values() {
         "fmi2DoStep: friction_coefficient = 1.7976931348623157e308 is invalid: times normal_force \
          (the Coulomb limit μQ) must be finite"
     );
-    assert_eq!(instance.values().outputs, before);
+    assert_eq!(instance.model_state().values.outputs, before);
 }
 
 /// A tunable parameter written between steps applies from the next step on (the scene built
@@ -189,7 +189,7 @@ fn an_exact_solve_that_does_not_converge_is_a_warning_naming_the_grid() {
 fn an_output_beyond_the_floating_point_range_is_an_error_and_nothing_changes() {
     let (mut instance, log) = stepping();
     assert_eq!(instance.do_step(0.0, 1e-3), Status::Ok);
-    let before = *instance.values();
+    let before = instance.model_state().values;
     let slip_velocity = get(&mut instance, vr::SLIP_VELOCITY);
     assert!(slip_velocity.is_finite());
     let references = [vr::CREEPAGE_LONGITUDINAL, vr::ROLLING_SPEED];
@@ -200,7 +200,7 @@ fn an_output_beyond_the_floating_point_range_is_an_error_and_nothing_changes() {
         "fmi2DoStep: slip_velocity = inf for these values: an input or parameter is too large for the model's \
          floating-point range"
     );
-    assert_eq!(instance.values().outputs, before.outputs);
+    assert_eq!(instance.model_state().values.outputs, before.outputs);
     assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(1e-3));
     // Each patch output is guarded, not only the slip velocity: F_x = −μQ at ξ = 1e200 is finite.
     assert_eq!(instance.set_real(&references, &[1e200, 20.0]), Status::Ok);
