@@ -970,3 +970,6 @@ impl<M: Model> Slave for Instance<M> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,4 +1,6 @@
-//! Unit tests of fmi2DoStep and the outputs.
+//! Unit tests of fmi2DoStep and the contact's outputs: its evaluation, its errors naming the
+//! variable, its warning, its cache rebuilt for a tunable parameter. The step's time checks are
+//! the slave layer's, tested in `fmi2-slave/src/instance/tests.rs`.
 
 use super::test_support::*;
 use super::*;
@@ -26,28 +28,6 @@ fn outputs_follow_the_inputs_set_before_each_step() {
     for (t, h) in [(0.75, 1e-3), (0.751, 0.249), (1.0, 1.0)] {
         assert_eq!(instance.do_step(t, h), Status::Ok, "t = {t}, h = {h}");
     }
-}
-
-#[test]
-fn do_step_checks_time_and_step_size() {
-    let (mut instance, log) = new_instance();
-    instance.setup_experiment(0.0, Some(1.0));
-    instance.enter_initialization_mode();
-    instance.exit_initialization_mode();
-    for (t, h, expected) in [
-        (0.0, 0.0, "fmi2DoStep: communicationStepSize = 0 is invalid: must be finite and > 0"),
-        (0.0, -1e-3, "fmi2DoStep: communicationStepSize = -0.001 is invalid: must be finite and > 0"),
-        (0.0, f64::NAN, "fmi2DoStep: communicationStepSize = NaN is invalid: must be finite and > 0"),
-        (0.1, 1e-3, "fmi2DoStep: currentCommunicationPoint = 0.1 is not the instance's time 0"),
-        (f64::NAN, 1e-3, "fmi2DoStep: currentCommunicationPoint = NaN is not the instance's time 0"),
-        (0.0, 1.5, "fmi2DoStep: the step would end at 1.5, after stopTime = 1"),
-    ] {
-        assert_eq!(instance.do_step(t, h), Status::Error);
-        assert_eq!(last_message(&log), expected);
-    }
-    // A master's own rounding of t + h is accepted.
-    assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
-    assert_eq!(instance.do_step(0.1 + 1e-15, 0.2), Status::Ok);
 }
 
 #[test]

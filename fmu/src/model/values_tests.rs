@@ -1,26 +1,10 @@
-//! Unit tests of fmi2Get/Set.
+//! Unit tests of fmi2Get/Set with the contact's variables (an Enumeration read as an Integer and
+//! refused as a Real); the generic rules are tested in `fmi2-slave/src/instance/tests.rs`.
 
 use super::test_support::*;
 use super::*;
 use crate::logging::Status;
 use crate::model_description::value_reference as vr;
-
-/// An output cannot be set in any state: not after instantiation, not in initialization mode
-/// (where fixed parameters can), not in step mode.
-#[test]
-fn an_output_is_refused_in_every_state() {
-    let (mut instance, log) = new_instance();
-    let refuse = |instance: &mut Instance, log: &Log| {
-        assert_eq!(instance.set_real(&[vr::FORCE_LATERAL], &[1.0]), Status::Error);
-        assert_eq!(last_message(log), "fmi2SetReal: force_lateral is an output and cannot be set");
-    };
-    refuse(&mut instance, &log);
-    assert_eq!(instance.setup_experiment(0.0, None), Status::Ok);
-    assert_eq!(instance.enter_initialization_mode(), Status::Ok);
-    refuse(&mut instance, &log);
-    assert_eq!(instance.exit_initialization_mode(), Status::Ok);
-    refuse(&mut instance, &log);
-}
 
 #[test]
 fn set_and_get_check_their_references_and_set_all_or_nothing() {
