@@ -6,8 +6,9 @@
 //! - [`fmi2`]: the FMI 2.0 C types;
 //! - [`ffi`]: the 34 `fmi2*` functions as generic Rust (pointer checks, C strings and slices,
 //!   panic catching, FMU-state boxing) over a [`Slave`], and [`export_fmi2!`], which expands to
-//!   the `#[no_mangle] extern "C"` exports of one cdylib for its slave type. The only file with
-//!   `unsafe`;
+//!   the `#[no_mangle] extern "C"` exports of one cdylib for its slave type; for in-process
+//!   masters (tests), a logger callback from a Rust function and, behind the `message-log`
+//!   feature, the one recording logger (`ffi::message_log`). The only file with `unsafe`;
 //! - [`mode`]: the Co-Simulation state machine: modes and the call table saying which modes
 //!   allow each call;
 //! - [`instance`]: the generic instance (lifecycle, Get/Set of Real, Integer, Enumeration and
