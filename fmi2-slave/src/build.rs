@@ -653,15 +653,8 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
         source,
         "\n/// Per value reference, what Get/Set need to know, as [`access`] bits (0: no such variable).\n\
          pub const ACCESS: [u8; {}] = {access:?};\n\
-         /// The bits of [`ACCESS`].\n\
-         pub mod access {{\n    \
-         /// A Real variable.\n    pub const REAL: u8 = 1;\n    \
-         /// An Integer or Enumeration variable.\n    pub const INTEGER: u8 = 2;\n    \
-         /// A parameter.\n    pub const PARAMETER: u8 = 4;\n    \
-         /// Writable in every mode that allows Set (inputs, tunable parameters).\n    pub const WRITABLE: u8 = 8;\n    \
-         /// Writable only before initialisation ends (fixed parameters).\n    pub const FIXED: u8 = 16;\n    \
-         /// An output.\n    pub const OUTPUT: u8 = 32;\n    \
-         /// A String variable.\n    pub const STRING: u8 = 64;\n}}\n\
+         /// The bits of [`ACCESS`] (the slave layer's, so that its generic instance reads them too).\n\
+         pub use fmi2_slave::variables::access;\n\
          /// The [`ACCESS`] bits of a value reference (0 if there is none).\n\
          #[inline]\npub fn access_of(value_reference: u32) -> u8 {{\n    \
          usize::try_from(value_reference).ok().and_then(|i| ACCESS.get(i)).copied().unwrap_or(0)\n}}",

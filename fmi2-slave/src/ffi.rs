@@ -797,3 +797,89 @@ macro_rules! export_fmi2 {
         )*
     };
 }
+
+/// A logger callback of the master's, from a Rust function. Stable Rust cannot define a
+/// C-variadic function, so `logger` takes the one argument that `"%s"` announces (the only
+/// format this layer passes, [`Slave`]'s messages being preformatted) as a named parameter: on
+/// the platforms the FMUs are built for (x86-64 System V, AArch64 Linux) a variadic pointer
+/// argument is passed exactly like a named one, which is also how fmpy's ctypes logger receives
+/// it. For in-process masters (the workspace's tests and benchmarks).
+pub type NamedLogger =
+    extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
+
+/// `logger` as the `fmi2CallbackLogger` of `fmi2CallbackFunctions` (see [`NamedLogger`]).
+pub fn variadic_logger(logger: NamedLogger) -> fmi2CallbackLogger {
+    type Variadic = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+    // SAFETY: the calling conventions agree for the one variadic argument, see `NamedLogger`.
+    Some(unsafe { std::mem::transmute::<NamedLogger, Variadic>(logger) })
+}
+
+/// The one recording logger of the workspace's in-process masters (the FMUs' C-ABI tests, the
+/// contact FMU's test master): every message an FMU logs, checked as a master relies on it.
+#[cfg(feature = "message-log")]
+pub mod message_log {
+    use std::ffi::CStr;
+    use std::sync::Mutex;
+
+    use super::{variadic_logger, NamedLogger};
+    use crate::fmi2::*;
+
+    /// Every message an FMU logged through [`MessageLog::callbacks`], as (status, category,
+    /// text). Shared between threads: an instance may run on another thread than its master's.
+    #[derive(Debug, Default)]
+    pub struct MessageLog(pub Mutex<Vec<(fmi2Status, String, String)>>);
+
+    impl MessageLog {
+        /// Callbacks whose logger records into this log, which must outlive every instance
+        /// given them (it is their component environment).
+        pub fn callbacks(&self) -> fmi2CallbackFunctions {
+            fmi2CallbackFunctions {
+                logger: variadic_logger(record as NamedLogger),
+                allocateMemory: None,
+                freeMemory: None,
+                stepFinished: None,
+                componentEnvironment: (self as *const MessageLog).cast_mut().cast(),
+            }
+        }
+
+        /// The texts, in the order logged.
+        pub fn texts(&self) -> Vec<String> {
+            self.0.lock().unwrap().iter().map(|(_, _, text)| text.clone()).collect()
+        }
+
+        /// The last message's status and text.
+        pub fn last(&self) -> Option<(fmi2Status, String)> {
+            self.0.lock().unwrap().last().map(|(status, _, text)| (*status, text.clone()))
+        }
+
+        /// The last message's text ("" if there is none).
+        pub fn last_text(&self) -> String {
+            self.last().map(|(_, text)| text).unwrap_or_default()
+        }
+    }
+
+    /// The logger of [`MessageLog`]: the format is `"%s"` and every string a valid,
+    /// NUL-terminated UTF-8 text, or the test fails here (an abort: a panic cannot leave an
+    /// `extern "C"` function).
+    extern "C" fn record(
+        environment: fmi2ComponentEnvironment,
+        instance_name: fmi2String,
+        status: fmi2Status,
+        category: fmi2String,
+        format: fmi2String,
+        text: fmi2String,
+    ) {
+        assert!(!environment.is_null(), "a MessageLog's logger without its log");
+        // SAFETY: the environment is the `MessageLog` whose callbacks the instance was given,
+        // and it outlives the instance; the FMU passes NUL-terminated strings.
+        unsafe {
+            assert!(status <= fmi2Status_fmi2Fatal, "status {status}");
+            assert_eq!(CStr::from_ptr(format), c"%s");
+            let [_, category, text] = [instance_name, category, text].map(|s| {
+                assert!(!s.is_null());
+                CStr::from_ptr(s).to_str().expect("UTF-8 message").to_owned()
+            });
+            (*environment.cast::<MessageLog>()).0.lock().unwrap().push((status, category, text));
+        }
+    }
+}

@@ -1,22 +1,26 @@
-//! A generic FMU instance for models whose variables are all Reals: the Co-Simulation state
-//! machine ([`crate::mode`]), logging, status inquiries, Get/Set checked against the model's
-//! variable table, the communication-step checks and FMU states, around a [`Model`] that only
-//! holds its values and computes. [`Instance`] implements [`Slave`], so a cdylib needs nothing
-//! but `export_fmi2!(fmi2_slave::instance::Instance<MyModel>)`.
+//! The generic FMU instance: the Co-Simulation state machine ([`crate::mode`]), logging, status
+//! inquiries, Get/Set of Real, Integer, Enumeration and String variables checked against the
+//! model's access table, the communication-step checks, FMU states in the versioned state
+//! format ([`crate::state_format`]) and directional derivatives, around a [`Model`] that holds
+//! its values and computes. [`Instance`] implements [`Slave`], so a cdylib needs nothing but
+//! `export_fmi2!(fmi2_slave::instance::Instance<MyModel>)`. Both FMUs of the workspace are
+//! models on it: the contact FMU (`fmu/src/model.rs`) and the wheelset (`wheelset/src/model.rs`).
 //!
-//! Rules (FMI 2.0.4, section 4.2.4), shared with the contact FMU's own instance
-//! (`fmu/src/instance`) through the functions here that check arguments and word messages
-//! ([`instantiate_problem`], [`experiment_problem`], [`step_end`], [`panic_message`],
-//! [`discard_message`], [`unknown_categories_message`]): a call outside the states that allow it returns `Error` and logs
-//! `fmi2XXX: illegal call in state YYY`, the state unchanged; an invalid value is reported where
-//! the model computes (ExitInitializationMode, DoStep, GetReal of an output in initialization
-//! mode) as `Error` naming the variable and value, and the instance keeps its state so that the
-//! master can correct it; a panic inside a call becomes `Fatal`, after which the instance accepts
-//! nothing but fmi2FreeInstance.
+//! Rules (FMI 2.0.4, section 4.2.4), with the functions here that check arguments and word
+//! messages ([`instantiate_problem`], [`experiment_problem`], [`step_end`], [`panic_message`],
+//! [`discard_message`], [`unknown_categories_message`]):
+//! - a call outside the states that allow it returns `Error` and logs
+//!   `fmi2XXX: illegal call in state YYY`, the state unchanged;
+//! - an invalid value is reported where the model computes (ExitInitializationMode, DoStep, a
+//!   Get of an output in initialization mode) as `Error` naming the variable and value, and the
+//!   instance keeps its state so that the master can correct it (it never enters the standard's
+//!   `error` state); an evaluation may instead warn (`Warning`, logged) and keep its outputs;
+//! - a panic inside a call becomes `Fatal`, after which the instance accepts nothing but
+//!   fmi2FreeInstance.
 //!
-//! The contact FMU keeps its own instance for now (it has Integer, Enumeration and String
-//! variables, warnings from the exact solve, directional derivatives): moving it onto this one
-//! is the next step of the slave layer.
+//! The hot path (fmi2SetReal/DoStep/GetReal) does no allocation, no string comparison and no
+//! search: one byte of the model's dense access table per value reference, a bit test for the
+//! state, and a log filter decided once per fmi2SetDebugLogging; the model evaluates in place.
 
 use std::borrow::Cow;
 use std::ffi::CString;
@@ -25,7 +29,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use crate::logging::{LogFilter, LogSink, Logger, Status};
 use crate::mode::{Call, Mode, Modes, LIVE};
 use crate::state_format::StateFormat;
-use crate::variables::{Causality, Kind, Variability, Variable};
+use serde::{Deserialize, Serialize};
+
+use crate::variables::{access, Causality, Kind, Variable};
 use crate::{InstantiateArguments, Slave, StatusKind, Unsupported};
 
 /// Two communication points closer than this (relative to max(1, |t|)) are the same: masters
@@ -136,8 +142,24 @@ pub fn unknown_categories_message(categories: &[&str], known: &[&str]) -> Option
         .then(|| format!("{}: unknown log categories {unknown:?} ignored; known: {known:?}", Call::SetDebugLogging))
 }
 
-/// A model with Real variables only, as the generated interface and its physics give it.
-pub trait Model: Clone + Default {
+/// What [`Model::evaluate`] is asked to compute.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Evaluation {
+    /// The outputs at the start, from the parameters and inputs (ExitInitializationMode; a read
+    /// of an output in initialization mode).
+    Initialise,
+    /// Over one communication step from `time` of `size` > 0, the inputs held.
+    Step { time: f64, size: f64 },
+}
+
+/// A model as the generated interface and its physics give it: its variables' values (what an
+/// FMU state saves, [`Model::State`]) and, in the model itself, whatever the instance keeps that
+/// is not state (a cache derived from the parameters, the resources directory).
+pub trait Model: Sized {
+    /// What an FMU state saves beyond the mode, time and stop time: every variable's value and
+    /// the state the model carries from step to step.
+    type State: Clone + PartialEq + std::fmt::Debug;
+
     /// The GUID that fmi2Instantiate requires.
     const GUID: &'static str;
     const MODEL_IDENTIFIER: &'static str;
@@ -147,181 +169,407 @@ pub trait Model: Clone + Default {
     const STATE_LAYOUT_TAG: u64;
     /// The first bytes of this FMU's serialized states ([`crate::state_format`]).
     const STATE_MAGIC: [u8; 8];
+    /// The version of this FMU's payload ([`Model::encode`]) in its serialized states.
+    const STATE_FORMAT_VERSION: u16;
+    /// `providesDirectionalDerivative`: whether [`Model::directional_derivative`] is implemented;
+    /// if not, fmi2GetDirectionalDerivative is refused as unsupported.
+    const PROVIDES_DIRECTIONAL_DERIVATIVE: bool = false;
+
+    /// The model of a new instance given the master's resource location (a `file:` URI, or
+    /// `None` for NULL), and a note for the call trace; or why the FMU cannot be instantiated
+    /// (a resource it needs is missing, naming it).
+    fn instantiate(resource_location: Option<&str>) -> Result<(Self, Option<String>), String>;
+    /// fmi2Reset: back to the model of a new instance (the resources stay).
+    fn reset(&mut self);
+    /// The start values.
+    fn start() -> Self::State;
 
     /// The variable with this value reference.
     fn variable(value_reference: u32) -> Option<&'static Variable>;
     /// Every variable, in the model description's order.
     fn variables() -> &'static [Variable];
-    fn real(&self, value_reference: u32) -> Option<f64>;
-    fn real_mut(&mut self, value_reference: u32) -> Option<&mut f64>;
-    /// Computes the outputs at the start (ExitInitializationMode; a read of an output in
-    /// initialization mode) from the parameters and inputs, or says why not, naming the
-    /// variable and its value; on error nothing is changed.
-    fn initialize(&mut self) -> Result<(), String>;
-    /// Advances from `time` over `step` > 0 with the inputs held, or says why not (naming the
-    /// variable, the time and the value); on error nothing is changed.
-    fn step(&mut self, time: f64, step: f64) -> Result<(), String>;
-    /// The model's values (and any state beyond them) as bytes, for fmi2SerializeFMUstate.
-    fn to_bytes(&self) -> Vec<u8>;
-    /// The inverse of [`Model::to_bytes`], checking every byte.
-    fn from_bytes(bytes: &[u8]) -> Result<Self, String>;
-    /// Whether a deserialized model can be this FMU's in `mode` (its sense, after the bytes'
+    /// The [`access`] bits of a value reference (0 if there is none). Generated models answer
+    /// from their dense table (`access_of`), which is what the hot path reads.
+    #[inline]
+    fn access(value_reference: u32) -> u8 {
+        Self::variable(value_reference).map_or(0, access::of)
+    }
+
+    fn real(state: &Self::State, value_reference: u32) -> Option<f64>;
+    fn real_mut(state: &mut Self::State, value_reference: u32) -> Option<&mut f64>;
+    /// An Integer or Enumeration value (none without such variables).
+    fn integer(_state: &Self::State, _value_reference: u32) -> Option<i32> {
+        None
+    }
+    fn integer_mut(_state: &mut Self::State, _value_reference: u32) -> Option<&mut i32> {
+        None
+    }
+    /// A String value (none without such variables).
+    fn string(_state: &Self::State, _value_reference: u32) -> Option<&str> {
+        None
+    }
+    fn string_mut(_state: &mut Self::State, _value_reference: u32) -> Option<&mut String> {
+        None
+    }
+
+    /// Computes the outputs (and advances the model's state, for a step) in `state`: `Ok` with a
+    /// warning for the master if the outputs are to be used with care (an iteration that
+    /// stopped at its limits), or why not, naming the variable and its value; on error nothing
+    /// is changed. [`keep_if_finite`] gives that for a model that computes on a copy.
+    fn evaluate(&mut self, state: &mut Self::State, evaluation: Evaluation) -> Result<Option<String>, String>;
+    /// A parameter was written (fmi2Set*): what the model derived from the parameters is stale.
+    fn parameters_changed(&mut self) {}
+    /// fmi2SetFMUstate is about to replace `current` by `restored`.
+    fn restoring(&mut self, _current: &Self::State, _restored: &Self::State) {}
+    /// fmi2GetDirectionalDerivative (only called with [`Model::PROVIDES_DIRECTIONAL_DERIVATIVE`]):
+    /// `unknown_rates` = J·`known_rates` at `state`, or why not (an argument or a value, named).
+    fn directional_derivative(
+        &mut self,
+        _state: &Self::State,
+        _unknowns: &[u32],
+        _knowns: &[u32],
+        _known_rates: &[f64],
+        _unknown_rates: &mut [f64],
+    ) -> Result<(), String> {
+        Err("not supported".to_owned())
+    }
+
+    /// The payload of a serialized FMU state (the slave layer's header goes around it,
+    /// [`Instance::encode_state`]); deterministic, so that its length is the serialized size.
+    fn encode(state: &FmuState<Self::State>) -> Vec<u8>;
+    /// The inverse of [`Model::encode`], checking every byte.
+    fn decode(payload: &[u8]) -> Result<FmuState<Self::State>, String>;
+    /// Whether a deserialized state can be this FMU's in `mode` (its sense, after the bytes'
     /// integrity and the mode, time and stop time are checked): what the state holds (finite
-    /// outputs, the model's bounds) and, once initialized, the parameters as initialize checked
-    /// them. Inputs, and parameters before initialization, may hold any value, as after
-    /// fmi2SetReal: the next computation reports an invalid one. The reason names the variable
-    /// and its value.
-    fn check_state(&self, mode: Mode) -> Result<(), String>;
+    /// outputs, the model's bounds) and, where the model requires it, the parameters. Inputs,
+    /// and parameters the next computation checks, may hold any value, as after fmi2SetReal.
+    /// The reason names the variable and its value.
+    fn check_state(state: &Self::State, mode: Mode) -> Result<(), String>;
 }
 
-/// The version of the generic instance's payload: mode, time, stop time, the model's bytes.
-const FORMAT_VERSION: u16 = 2;
-
-/// Mode, time and the model: what an FMU state saves and restores.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FmuState<M> {
-    mode: Mode,
-    time: f64,
-    stop_time: Option<f64>,
-    model: M,
+/// For a [`Model::evaluate`] that computes on a copy of the state: runs `compute` on a copy and
+/// keeps it only if it succeeded with every output finite: the last guard of "never NaN or Inf
+/// out, never a half-updated model", for finite values whose arithmetic overflows (V/r with
+/// r = 5e-324) where the model's own checks missed it.
+pub fn keep_if_finite<M: Model>(
+    state: &mut M::State,
+    compute: impl FnOnce(&mut M::State) -> Result<(), String>,
+) -> Result<(), String> {
+    let mut next = state.clone();
+    compute(&mut next)?;
+    if let Some(problem) = non_finite_output::<M>(&next) {
+        return Err(problem);
+    }
+    *state = next;
+    Ok(())
 }
 
-impl<M: Model> FmuState<M> {
-    fn instantiated() -> Self {
-        FmuState { mode: Mode::Instantiated, time: 0.0, stop_time: None, model: M::default() }
-    }
+/// Why `state`'s outputs cannot be kept, if they cannot: the first non-finite output, its value
+/// and what it was computed from: the inputs it depends on (`<ModelStructure>`) with their
+/// values, or, for an output no input acts on directly, the parameters and the state.
+fn non_finite_output<M: Model>(state: &M::State) -> Option<String> {
+    let value = |variable: &Variable| M::real(state, variable.value_reference).unwrap_or(f64::NAN);
+    // The values in Debug form: 1e308, not its 309 digits.
+    let (output, x) = M::variables()
+        .iter()
+        .filter(|v| v.causality == Causality::Output && matches!(v.kind, Kind::Real { .. }))
+        .map(|v| (v, value(v)))
+        .find(|(_, x)| !x.is_finite())?;
+    let sources = if output.dependencies.is_empty() {
+        "the parameters and the state (no input acts on it directly)".to_owned()
+    } else {
+        let inputs: Vec<String> = output
+            .dependencies
+            .iter()
+            .filter_map(|&r| M::variable(r))
+            .map(|v| format!("{} = {:?}", v.name, value(v)))
+            .collect();
+        inputs.join(", ")
+    };
+    Some(format!(
+        "{} = {x:?} is not finite, computed from {sources}: a value beyond the floating-point range; the previous \
+         values are kept",
+        output.name
+    ))
+}
 
-    /// The byte format of this FMU's serialized states (for tools and tests that read or forge
-    /// one: its payload is mode, time, stop time and the model's bytes, see `encode`).
-    pub fn format() -> StateFormat {
-        StateFormat { magic: M::STATE_MAGIC, version: FORMAT_VERSION, layout_tag: M::STATE_LAYOUT_TAG, guid: M::GUID }
-    }
+/// Mode, time, stop time and the model's state: what an FMU state saves and restores. Not
+/// saved, because they are the master's settings rather than the instance's state: the
+/// instance name, the resource location, the logger and the debug-logging selection.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FmuState<S> {
+    /// The state-machine mode (never `Fatal`: a fatal instance gives no state).
+    pub mode: Mode,
+    /// The instance's time: the end of the last step.
+    pub time: f64,
+    /// fmi2SetupExperiment's stop time, if one was given.
+    pub stop_time: Option<f64>,
+    /// The variables' values and the model's state.
+    pub model: S,
+}
 
-    /// The slave layer's header ([`crate::state_format`]) around: mode (1 byte), time (8), stop
-    /// time (8, NaN for none), then the model's bytes; little-endian.
-    fn encode(&self) -> Vec<u8> {
-        let mut payload = vec![self.mode as u8];
-        payload.extend(self.time.to_le_bytes());
-        payload.extend(self.stop_time.unwrap_or(f64::NAN).to_le_bytes());
-        payload.extend(self.model.to_bytes());
-        Self::format().encode(&payload)
+impl<S> FmuState<S> {
+    /// A freshly instantiated instance's: `model` (the start values), time 0.
+    pub fn instantiated(model: S) -> Self {
+        FmuState { mode: Mode::Instantiated, time: 0.0, stop_time: None, model }
     }
+}
 
-    fn decode(bytes: &[u8]) -> Result<Self, String> {
-        const RUN: usize = 1 + 8 + 8;
-        let payload = Self::format().decode(bytes)?;
-        if payload.len() < RUN {
-            return Err(format!(
-                "corrupted: a payload of {} bytes, shorter than its {RUN}-byte run data",
-                payload.len()
-            ));
+/// The length of [`encode_run`]'s run data: mode, time, stop time.
+const RUN_BYTES: usize = 1 + 8 + 8;
+
+/// A payload for a model whose state is plain bytes ([`Model::encode`]): mode (1 byte), time
+/// (8), stop time (8, NaN for none), then `model`; little-endian.
+pub fn encode_run<S>(state: &FmuState<S>, model: &[u8]) -> Vec<u8> {
+    let mut payload = Vec::with_capacity(RUN_BYTES + model.len());
+    payload.push(state.mode as u8);
+    payload.extend(state.time.to_le_bytes());
+    payload.extend(state.stop_time.unwrap_or(f64::NAN).to_le_bytes());
+    payload.extend(model);
+    payload
+}
+
+/// The inverse of [`encode_run`]: the run data, with the model's bytes.
+pub fn decode_run(payload: &[u8]) -> Result<FmuState<&[u8]>, String> {
+    if payload.len() < RUN_BYTES {
+        return Err(format!(
+            "corrupted: a payload of {} bytes, shorter than its {RUN_BYTES}-byte run data",
+            payload.len()
+        ));
+    }
+    let word = |at: usize| f64::from_le_bytes(<[u8; 8]>::try_from(&payload[at..at + 8]).expect("8 bytes"));
+    let modes = [Mode::Instantiated, Mode::InitializationMode, Mode::StepComplete, Mode::Terminated];
+    let Some(&mode) = modes.iter().find(|m| **m as u8 == payload[0]) else {
+        return Err(format!("mode byte {} is not a state an FMU state can hold", payload[0]));
+    };
+    let (time, stop) = (word(1), word(9));
+    Ok(FmuState { mode, time, stop_time: (!stop.is_nan()).then_some(stop), model: &payload[RUN_BYTES..] })
+}
+
+/// What an intact but forged state must still satisfy: a live mode, a time fmi2SetupExperiment
+/// and the steps could have reached (finite, within ±[`MAX_TIME`]), a stop time the time has not
+/// passed, and the model's own checks.
+fn check_sense<M: Model>(state: &FmuState<M::State>) -> Result<(), String> {
+    if state.mode == Mode::Fatal {
+        return Err("mode fatal".to_owned());
+    }
+    if let Some(problem) = times_problem(("time", state.time), state.stop_time) {
+        return Err(problem);
+    }
+    M::check_state(&state.model, state.mode)
+}
+
+/// The FMI base types of the Get/Set functions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ValueType {
+    Real,
+    Integer,
+    Boolean,
+    String,
+}
+
+impl ValueType {
+    /// The [`access`] bit of the type (none for Boolean: no FMU of this layer has such
+    /// variables).
+    #[inline]
+    fn access_bit(self) -> u8 {
+        match self {
+            ValueType::Real => access::REAL,
+            ValueType::Integer => access::INTEGER,
+            ValueType::String => access::STRING,
+            ValueType::Boolean => 0,
         }
-        let word = |at: usize| f64::from_le_bytes(<[u8; 8]>::try_from(&payload[at..at + 8]).expect("8 bytes"));
-        let modes = [Mode::Instantiated, Mode::InitializationMode, Mode::StepComplete, Mode::Terminated];
-        let Some(&mode) = modes.iter().find(|m| **m as u8 == payload[0]) else {
-            return Err(format!("mode byte {} is not a state an FMU state can hold", payload[0]));
-        };
-        let (time, stop) = (word(1), word(9));
-        let model = M::from_bytes(&payload[RUN..])?;
-        let state = FmuState { mode, time, stop_time: (!stop.is_nan()).then_some(stop), model };
-        state.check_sense().map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
-        Ok(state)
     }
 
-    /// What an intact but forged state must still satisfy (the mode is one a state holds by
-    /// construction): a time fmi2SetupExperiment and the steps could have reached (finite, within
-    /// ±[`MAX_TIME`]), a stop time the time has not passed, and the model's own checks.
-    fn check_sense(&self) -> Result<(), String> {
-        if let Some(problem) = times_problem(("time", self.time), self.stop_time) {
-            return Err(problem);
+    fn name(self) -> &'static str {
+        match self {
+            ValueType::Real => "Real",
+            ValueType::Integer => "Integer",
+            ValueType::Boolean => "Boolean",
+            ValueType::String => "String",
         }
-        self.model.check_state(self.mode)
     }
 }
 
 /// One instance of an FMU whose model is `M`.
-pub struct Instance<M> {
-    run: FmuState<M>,
+pub struct Instance<M: Model> {
+    name: String,
+    resource_location: Option<String>,
+    /// Mode, time and the model's state: exactly what an FMU state saves and restores.
+    run: FmuState<M::State>,
+    /// What is not state: derived from the parameters (told when they change) or the master's
+    /// settings (the resources).
+    model: M,
+    /// What the last fmi2GetString returned: the master's pointers point into these.
+    returned_strings: Vec<CString>,
     /// The master's logger (with its own copy of the instance name) behind the log filter.
     log: Logger,
 }
 
 impl<M: Model> Instance<M> {
+    /// The name the master gave.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The resource location the master gave (`None` if it passed NULL).
+    pub fn resource_location(&self) -> Option<&str> {
+        self.resource_location.as_deref()
+    }
+
+    /// The state-machine mode.
+    pub fn mode(&self) -> Mode {
+        self.run.mode
+    }
+
+    /// The model's state: every variable's value (inputs, parameters, last outputs) and what it
+    /// carries from step to step.
+    pub fn model_state(&self) -> &M::State {
+        &self.run.model
+    }
+
+    /// The byte format of this FMU's serialized states (for tools and tests that read or forge
+    /// one: its payload is [`Model::encode`]'s).
+    pub fn state_format() -> StateFormat {
+        StateFormat {
+            magic: M::STATE_MAGIC,
+            version: M::STATE_FORMAT_VERSION,
+            layout_tag: M::STATE_LAYOUT_TAG,
+            guid: M::GUID,
+        }
+    }
+
+    /// The serialized bytes of `state` (their length is exactly what fmi2SerializedFMUstateSize
+    /// reports: the encoding is deterministic).
+    pub fn encode_state(state: &FmuState<M::State>) -> Vec<u8> {
+        Self::state_format().encode(&M::encode(state))
+    }
+
+    /// The state in `bytes`, or why they are not a state this FMU wrote or can be in: the
+    /// header ([`crate::state_format`]), the payload ([`Model::decode`]), then its sense.
+    pub fn decode_state(bytes: &[u8]) -> Result<FmuState<M::State>, String> {
+        let payload = Self::state_format().decode(bytes)?;
+        let state = M::decode(payload)?;
+        check_sense::<M>(&state).map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
+        Ok(state)
+    }
+
+    #[cold]
+    fn panicked(&mut self, call: Call, payload: &(dyn std::any::Any + Send)) -> Status {
+        self.run.mode = Mode::Fatal;
+        self.log.emit(Status::Fatal, &panic_message(call, payload));
+        Status::Fatal
+    }
+
+    #[inline]
     fn require(&mut self, call: Call) -> Result<(), Status> {
         self.require_in(call, call.allowed())
     }
 
+    /// Like [`Instance::require`] with other modes than the call's own (an argument error is
+    /// reported in every live mode).
+    #[inline]
     fn require_in(&mut self, call: Call, allowed: Modes) -> Result<(), Status> {
         if allowed.contains(self.run.mode) {
             Ok(())
         } else {
-            let state = self.run.mode.name();
-            Err(self.log.fail(call, &format!("illegal call in state {state}")))
+            Err(self.illegal_call(call))
         }
     }
 
-    /// Why `value_reference` cannot be written now, if it cannot (`real`: as a Real).
-    fn not_settable(&self, value_reference: u32, real: bool, type_name: &str) -> Option<String> {
+    #[cold]
+    fn illegal_call(&mut self, call: Call) -> Status {
+        let state = self.run.mode.name();
+        self.log.fail(call, &format!("illegal call in state {state}"))
+    }
+
+    /// Whether a variable of these [`access`] bits can be written as `value_type` now.
+    #[inline]
+    fn settable(&self, bits: u8, value_type: ValueType) -> bool {
+        bits & value_type.access_bit() != 0
+            && (bits & access::WRITABLE != 0 || (bits & access::FIXED != 0 && self.run.mode != Mode::StepComplete))
+    }
+
+    /// Why `value_reference` cannot be written as `value_type` now (only called when it cannot).
+    #[cold]
+    fn not_settable(&self, value_reference: u32, value_type: ValueType) -> String {
         match M::variable(value_reference) {
-            None => Some(format!("unknown value reference {value_reference}")),
-            Some(v) if !(real && matches!(v.kind, Kind::Real { .. })) => {
-                Some(format!("value reference {value_reference} ({}) is not a {type_name}", v.name))
+            None => format!("unknown value reference {value_reference}"),
+            Some(v) if access::of(v) & value_type.access_bit() == 0 => {
+                format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name())
             }
-            Some(v) if v.causality == Causality::Output => Some(format!("{} is an output and cannot be set", v.name)),
-            Some(v) if v.variability == Variability::Fixed && self.run.mode == Mode::StepComplete => {
-                Some(format!("{} is a fixed parameter and cannot be set after initialization", v.name))
-            }
-            Some(_) => None,
+            Some(v) if v.causality == Causality::Output => format!("{} is an output and cannot be set", v.name),
+            Some(v) => format!("{} is a fixed parameter and cannot be set after initialization", v.name),
         }
     }
 
-    fn not_readable(value_reference: u32, real: bool, type_name: &str) -> Option<String> {
+    #[inline]
+    fn readable(value_reference: u32, value_type: ValueType) -> bool {
+        M::access(value_reference) & value_type.access_bit() != 0
+    }
+
+    #[cold]
+    fn not_readable(value_reference: u32, value_type: ValueType) -> String {
         match M::variable(value_reference) {
-            None => Some(format!("unknown value reference {value_reference}")),
-            Some(v) if !(real && matches!(v.kind, Kind::Real { .. })) => {
-                Some(format!("value reference {value_reference} ({}) is not a {type_name}", v.name))
-            }
-            Some(_) => None,
+            None => format!("unknown value reference {value_reference}"),
+            Some(v) => format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name()),
         }
     }
 
-    /// Checks every reference first (all or nothing).
-    fn prepare_set(&mut self, call: Call, value_references: &[u32], real: bool, type_name: &str) -> Result<(), Status> {
+    /// Checks every reference first, so that a call sets either all its values or none; when
+    /// one is a parameter, the model is told. One pass over one byte of the access table per
+    /// reference.
+    #[inline]
+    fn prepare_set(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<(), Status> {
         self.require(call)?;
-        match value_references.iter().find_map(|&r| self.not_settable(r, real, type_name)) {
-            Some(reason) => Err(self.log.fail(call, &reason)),
-            None => Ok(()),
-        }
-    }
-
-    /// Checks the references and, in initialization mode, computes the outputs if one is read.
-    fn prepare_get(&mut self, call: Call, value_references: &[u32], real: bool, type_name: &str) -> Result<(), Status> {
-        self.require(call)?;
-        if let Some(reason) = value_references.iter().find_map(|&r| Self::not_readable(r, real, type_name)) {
-            return Err(self.log.fail(call, &reason));
-        }
-        let reads_output =
-            value_references.iter().any(|&r| M::variable(r).is_some_and(|v| v.causality == Causality::Output));
-        if self.run.mode == Mode::InitializationMode && reads_output {
-            if let Err(reason) = self.computed(M::initialize) {
+        let mut written = 0;
+        for &value_reference in value_references {
+            let bits = M::access(value_reference);
+            if !self.settable(bits, value_type) {
+                let reason = self.not_settable(value_reference, value_type);
                 return Err(self.log.fail(call, &reason));
             }
+            written |= bits;
+        }
+        if written & access::PARAMETER != 0 {
+            self.model.parameters_changed();
         }
         Ok(())
     }
 
-    /// Runs `compute` (initialize or a step) on a copy of the model and keeps the copy only if
-    /// it succeeded with every output finite: the last guard of "never NaN or Inf out, never a
-    /// half-updated model", for finite values whose arithmetic overflows (V/r with r = 5e-324)
-    /// where the model's own checks missed it.
-    fn computed(&mut self, compute: impl FnOnce(&mut M) -> Result<(), String>) -> Result<(), String> {
-        let mut next = self.run.model.clone();
-        compute(&mut next)?;
-        if let Some(problem) = non_finite_output(&next) {
-            return Err(problem);
+    /// Checks the references and, in initialization mode, brings the outputs up to date with
+    /// the values just set if any is read: the status of the call (fmi2Warning after an
+    /// evaluation's warning), or the error.
+    #[inline]
+    fn prepare_get(&mut self, call: Call, value_references: &[u32], value_type: ValueType) -> Result<Status, Status> {
+        self.require(call)?;
+        if let Some(&value_reference) = value_references.iter().find(|&&r| !Self::readable(r, value_type)) {
+            let reason = Self::not_readable(value_reference, value_type);
+            return Err(self.log.fail(call, &reason));
         }
-        self.run.model = next;
-        Ok(())
+        let reads_output = || value_references.iter().any(|&r| M::access(r) & access::OUTPUT != 0);
+        if self.run.mode == Mode::InitializationMode && reads_output() {
+            return self.evaluate(call, Evaluation::Initialise);
+        }
+        Ok(Status::Ok)
+    }
+
+    /// Brings the outputs up to date: `Ok(Status::Ok)`, or `Ok(Status::Warning)` after logging
+    /// why the outputs are to be used with care; the error is logged. On error the model's
+    /// state is unchanged ([`Model::evaluate`]'s contract).
+    #[inline]
+    fn evaluate(&mut self, call: Call, evaluation: Evaluation) -> Result<Status, Status> {
+        match self.model.evaluate(&mut self.run.model, evaluation) {
+            Ok(None) => Ok(Status::Ok),
+            Ok(Some(warning)) => Ok(self.warn(call, &warning)),
+            Err(reason) => Err(self.log.fail(call, &reason)),
+        }
+    }
+
+    #[cold]
+    fn warn(&mut self, call: Call, warning: &str) -> Status {
+        self.log.emit(Status::Warning, &format!("{call}: {warning}"));
+        Status::Warning
     }
 
     fn discard_status(&mut self, call: Call, kind: StatusKind) -> Status {
@@ -331,31 +579,48 @@ impl<M: Model> Instance<M> {
 }
 
 impl<M: Model> Slave for Instance<M> {
-    type FmuState = FmuState<M>;
+    type FmuState = FmuState<M::State>;
 
-    /// `None` (after logging why) for a wrong GUID, an empty name or Model Exchange.
+    /// `None` (after logging why) for a wrong GUID, an empty name, Model Exchange, or a model
+    /// that refuses (a resource it needs missing).
     fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self> {
         let mut log = Logger::new(arguments.logging_on, sink);
-        if let Some(problem) = instantiate_problem(&arguments, M::GUID, M::MODEL_IDENTIFIER) {
-            log.fail(Call::Instantiate, &problem);
-            return None;
-        }
-        let resource_location = arguments.resource_location;
-        let mut instance = Instance { run: FmuState::instantiated(), log };
+        let InstantiateArguments { instance_name, resource_location, .. } = arguments;
+        let model = match instantiate_problem(&arguments, M::GUID, M::MODEL_IDENTIFIER) {
+            Some(problem) => Err(problem),
+            None => M::instantiate(resource_location),
+        };
+        let (model, note) = match model {
+            Ok(model) => model,
+            Err(problem) => {
+                log.fail(Call::Instantiate, &problem);
+                return None;
+            }
+        };
+        let mut instance = Instance {
+            name: instance_name.to_owned(),
+            resource_location: resource_location.map(str::to_owned),
+            run: FmuState::instantiated(M::start()),
+            model,
+            returned_strings: Vec::new(),
+            log,
+        };
         instance.log.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
+        if let Some(note) = note {
+            instance.log.trace(|| format!("fmi2Instantiate: {note}"));
+        }
         Some(instance)
     }
 
-    /// `AssertUnwindSafe` is sound: after a panic the instance is `fatal` and nothing reads the
-    /// values the panic may have left half-updated.
+    /// A panic inside it (a bug: no valid input panics) becomes `Fatal`, is logged, and leaves
+    /// the instance in the `fatal` state, where every call but fmi2FreeInstance is refused.
+    /// `AssertUnwindSafe` is sound for that reason: nothing reads the values a panic may have
+    /// left half-updated.
+    #[inline]
     fn guarded(&mut self, call: Call, body: impl FnOnce(&mut Self) -> Status) -> Status {
         match catch_unwind(AssertUnwindSafe(|| body(self))) {
             Ok(status) => status,
-            Err(payload) => {
-                self.run.mode = Mode::Fatal;
-                self.log.emit(Status::Fatal, &panic_message(call, payload.as_ref()));
-                Status::Fatal
-            }
+            Err(payload) => self.panicked(call, payload.as_ref()),
         }
     }
 
@@ -391,6 +656,7 @@ impl<M: Model> Slave for Instance<M> {
         }
     }
 
+    /// The tolerance is not used: the master's step is the model's.
     fn setup_experiment(&mut self, start_time: f64, stop_time: Option<f64>) -> Status {
         const CALL: Call = Call::SetupExperiment;
         if let Err(status) = self.require(CALL) {
@@ -423,12 +689,12 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         self.log.trace(|| CALL.name().to_owned());
-        match self.computed(M::initialize) {
-            Ok(()) => {
+        match self.evaluate(CALL, Evaluation::Initialise) {
+            Ok(status) => {
                 self.run.mode = Mode::StepComplete;
-                Status::Ok
+                status
             }
-            Err(reason) => self.log.fail(CALL, &reason),
+            Err(status) => status,
         }
     }
 
@@ -442,52 +708,75 @@ impl<M: Model> Slave for Instance<M> {
         Status::Ok
     }
 
-    /// Back to the start values and the `instantiated` state (the log settings stay).
+    /// Back to the start values and the `instantiated` state (the log settings and the
+    /// resources stay).
     fn reset(&mut self) -> Status {
         const CALL: Call = Call::Reset;
         if let Err(status) = self.require(CALL) {
             return status;
         }
         self.log.trace(|| CALL.name().to_owned());
-        self.run = FmuState::instantiated();
+        self.run = FmuState::instantiated(M::start());
+        self.model.reset();
         Status::Ok
     }
 
+    #[inline]
     fn get_real(&mut self, value_references: &[u32], values: &mut [f64]) -> Status {
-        if let Err(status) = self.prepare_get(Call::GetReal, value_references, true, "Real") {
-            return status;
-        }
+        let status = match self.prepare_get(Call::GetReal, value_references, ValueType::Real) {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
         for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
-            *slot = self.run.model.real(value_reference).unwrap_or(f64::NAN);
+            *slot = M::real(&self.run.model, value_reference).unwrap_or(f64::NAN);
         }
         self.log.trace(|| format!("fmi2GetReal: {value_references:?} = {values:?}"));
-        Status::Ok
+        status
     }
 
-    /// No Integer variables: only n = 0 succeeds.
-    fn get_integer(&mut self, value_references: &[u32], _values: &mut [i32]) -> Status {
-        let result = self.prepare_get(Call::GetInteger, value_references, false, "Integer");
-        status(result)
+    /// Integer and Enumeration variables.
+    fn get_integer(&mut self, value_references: &[u32], values: &mut [i32]) -> Status {
+        let status = match self.prepare_get(Call::GetInteger, value_references, ValueType::Integer) {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
+        for (&value_reference, slot) in value_references.iter().zip(values.iter_mut()) {
+            *slot = M::integer(&self.run.model, value_reference).unwrap_or_default();
+        }
+        self.log.trace(|| format!("fmi2GetInteger: {value_references:?} = {values:?}"));
+        status
     }
 
     /// No Boolean variables: only n = 0 succeeds.
     fn get_boolean(&mut self, value_references: &[u32], _values: &mut [i32]) -> Status {
-        let result = self.prepare_get(Call::GetBoolean, value_references, false, "Boolean");
-        status(result)
+        match self.prepare_get(Call::GetBoolean, value_references, ValueType::Boolean) {
+            Ok(status) | Err(status) => status,
+        }
     }
 
-    /// No String variables: only n = 0 succeeds.
+    /// The values as C strings, kept by the instance until its next fmi2GetString (FMI 2.0
+    /// §2.1.7: valid until the next call on the instance, and longer).
     fn get_string(&mut self, value_references: &[u32]) -> Result<&[CString], Status> {
-        self.prepare_get(Call::GetString, value_references, false, "String")?;
-        Ok(&[])
+        self.prepare_get(Call::GetString, value_references, ValueType::String)?;
+        let texts: Vec<CString> = value_references
+            .iter()
+            .map(|&r| {
+                // A NUL cannot come through fmi2SetString (it ends a C string).
+                CString::new(M::string(&self.run.model, r).unwrap_or_default()).unwrap_or_default()
+            })
+            .collect();
+        self.log.trace(|| format!("fmi2GetString: {value_references:?} = {texts:?}"));
+        self.returned_strings = texts;
+        Ok(&self.returned_strings)
     }
 
+    #[inline]
     fn set_real(&mut self, value_references: &[u32], values: &[f64]) -> Status {
-        if let Err(status) = self.prepare_set(Call::SetReal, value_references, true, "Real") {
+        if let Err(status) = self.prepare_set(Call::SetReal, value_references, ValueType::Real) {
             return status;
         }
         for (&value_reference, &value) in value_references.iter().zip(values) {
-            if let Some(field) = self.run.model.real_mut(value_reference) {
+            if let Some(field) = M::real_mut(&mut self.run.model, value_reference) {
                 *field = value;
             }
         }
@@ -495,22 +784,47 @@ impl<M: Model> Slave for Instance<M> {
         Status::Ok
     }
 
-    fn set_integer(&mut self, value_references: &[u32], _values: &[i32]) -> Status {
-        let result = self.prepare_set(Call::SetInteger, value_references, false, "Integer");
-        status(result)
+    /// Integer and Enumeration variables.
+    fn set_integer(&mut self, value_references: &[u32], values: &[i32]) -> Status {
+        if let Err(status) = self.prepare_set(Call::SetInteger, value_references, ValueType::Integer) {
+            return status;
+        }
+        for (&value_reference, &value) in value_references.iter().zip(values) {
+            if let Some(field) = M::integer_mut(&mut self.run.model, value_reference) {
+                *field = value;
+            }
+        }
+        self.log.trace(|| format!("fmi2SetInteger: {value_references:?} = {values:?}"));
+        Status::Ok
     }
 
+    /// No Boolean variables: only n = 0 succeeds.
     fn set_boolean(&mut self, value_references: &[u32], _values: &[i32]) -> Status {
-        let result = self.prepare_set(Call::SetBoolean, value_references, false, "Boolean");
-        status(result)
+        match self.prepare_set(Call::SetBoolean, value_references, ValueType::Boolean) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
     }
 
-    fn set_string(&mut self, value_references: &[u32], _values: &[Cow<'_, str>]) -> Status {
-        let result = self.prepare_set(Call::SetString, value_references, false, "String");
-        status(result)
+    /// Copies of the texts (the caller's pointers are not kept).
+    fn set_string(&mut self, value_references: &[u32], values: &[Cow<'_, str>]) -> Status {
+        if let Err(status) = self.prepare_set(Call::SetString, value_references, ValueType::String) {
+            return status;
+        }
+        for (&value_reference, value) in value_references.iter().zip(values) {
+            if let Some(field) = M::string_mut(&mut self.run.model, value_reference) {
+                value.as_ref().clone_into(field);
+            }
+        }
+        self.log.trace(|| {
+            let texts: Vec<&str> = values.iter().map(AsRef::as_ref).collect();
+            format!("fmi2SetString: {value_references:?} = {texts:?}")
+        });
+        Status::Ok
     }
 
-    fn get_fmu_state(&mut self) -> Result<FmuState<M>, Status> {
+    /// A copy of the instance's mode, time and model state.
+    fn get_fmu_state(&mut self) -> Result<Self::FmuState, Status> {
         const CALL: Call = Call::GetFMUstate;
         self.require(CALL)?;
         let (mode, time) = (self.run.mode, self.run.time);
@@ -518,48 +832,74 @@ impl<M: Model> Slave for Instance<M> {
         Ok(self.run.clone())
     }
 
-    fn set_fmu_state(&mut self, state: &FmuState<M>) -> Status {
+    /// From here on the instance behaves exactly as when `state` was taken.
+    fn set_fmu_state(&mut self, state: &Self::FmuState) -> Status {
         const CALL: Call = Call::SetFMUstate;
         if let Err(status) = self.require(CALL) {
             return status;
         }
         self.log.trace(|| format!("{CALL}: state {}, time {}", state.mode.name(), state.time));
+        self.model.restoring(&self.run.model, &state.model);
         self.run.clone_from(state);
         Status::Ok
     }
 
+    /// Whether the call is legal now (the C layer releases the memory).
     fn free_fmu_state(&mut self) -> Status {
-        let result = self.require(Call::FreeFMUstate);
-        status(result)
+        match self.require(Call::FreeFMUstate) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
     }
 
-    fn serialized_fmu_state_size(&mut self, state: &FmuState<M>) -> Result<usize, Status> {
+    fn serialized_fmu_state_size(&mut self, state: &Self::FmuState) -> Result<usize, Status> {
         self.require(Call::SerializedFMUstateSize)?;
-        Ok(state.encode().len())
+        Ok(Self::encode_state(state).len())
     }
 
-    fn serialize_fmu_state(&mut self, state: &FmuState<M>, bytes: &mut [u8]) -> Status {
+    fn serialize_fmu_state(&mut self, state: &Self::FmuState, bytes: &mut [u8]) -> Status {
         const CALL: Call = Call::SerializeFMUstate;
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        match copy_serialized(&state.encode(), bytes) {
+        match copy_serialized(&Self::encode_state(state), bytes) {
             Ok(()) => Status::Ok,
             Err(reason) => self.log.fail(CALL, &reason),
         }
     }
 
-    fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<FmuState<M>, Status> {
+    /// The state in `bytes`, after checking all of them ([`Instance::decode_state`]); the
+    /// instance itself is not changed.
+    fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<Self::FmuState, Status> {
         const CALL: Call = Call::DeSerializeFMUstate;
         self.require(CALL)?;
-        FmuState::decode(bytes).map_err(|reason| self.log.fail(CALL, &format!("serializedState rejected: {reason}")))
+        Self::decode_state(bytes).map_err(|reason| self.log.fail(CALL, &format!("serializedState rejected: {reason}")))
     }
 
-    fn get_directional_derivative(&mut self, _: &[u32], _: &[u32], _: &[f64], _: &mut [f64]) -> Status {
-        self.unsupported(Unsupported::DirectionalDerivative)
+    /// The model's ([`Model::directional_derivative`]), or unsupported if it provides none.
+    fn get_directional_derivative(
+        &mut self,
+        unknowns: &[u32],
+        knowns: &[u32],
+        known_rates: &[f64],
+        unknown_rates: &mut [f64],
+    ) -> Status {
+        const CALL: Call = Call::GetDirectionalDerivative;
+        if !M::PROVIDES_DIRECTIONAL_DERIVATIVE {
+            return self.unsupported(Unsupported::DirectionalDerivative);
+        }
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.log.trace(|| format!("{CALL}: unknowns {unknowns:?}, knowns {knowns:?} = {known_rates:?}"));
+        match self.model.directional_derivative(&self.run.model, unknowns, knowns, known_rates, unknown_rates) {
+            Ok(()) => Status::Ok,
+            Err(reason) => self.log.fail(CALL, &reason),
+        }
     }
 
-    /// The model advanced over the step; the time only if it succeeded.
+    /// The model advanced over the step, the outputs at its end; the time only if it succeeded.
+    #[inline]
     fn do_step(&mut self, current_communication_point: f64, communication_step_size: f64) -> Status {
         const CALL: Call = Call::DoStep;
         if let Err(status) = self.require(CALL) {
@@ -571,21 +911,24 @@ impl<M: Model> Slave for Instance<M> {
             Ok(end) => end,
             Err(problem) => return self.log.fail(CALL, &problem),
         };
-        match self.computed(|model| model.step(t, h)) {
-            Ok(()) => {
+        match self.evaluate(CALL, Evaluation::Step { time: t, size: h }) {
+            Ok(status) => {
                 self.run.time = end;
-                Status::Ok
+                status
             }
-            Err(reason) => self.log.fail(CALL, &reason),
+            Err(status) => status,
         }
     }
 
     /// DoStep never returns fmi2Pending, so there is never a step to cancel.
     fn cancel_step(&mut self) -> Status {
-        let result = self.require(Call::CancelStep);
-        status(result)
+        match self.require(Call::CancelStep) {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
     }
 
+    /// Nothing to report (steps are synchronous and never discarded).
     fn get_status(&mut self, kind: StatusKind) -> Status {
         match self.require(Call::GetStatus) {
             Ok(()) => self.discard_status(Call::GetStatus, kind),
@@ -602,6 +945,7 @@ impl<M: Model> Slave for Instance<M> {
         }
     }
 
+    /// The standard defines no integer status.
     fn get_integer_status(&mut self, kind: StatusKind) -> Status {
         match self.require(Call::GetIntegerStatus) {
             Ok(()) => self.discard_status(Call::GetIntegerStatus, kind),
@@ -618,6 +962,7 @@ impl<M: Model> Slave for Instance<M> {
         }
     }
 
+    /// `fmi2PendingStatus` has nothing to report (no pending step).
     fn get_string_status(&mut self, kind: StatusKind) -> Status {
         match self.require(Call::GetStringStatus) {
             Ok(()) => self.discard_status(Call::GetStringStatus, kind),
@@ -626,39 +971,5 @@ impl<M: Model> Slave for Instance<M> {
     }
 }
 
-/// The status of a call that either succeeds silently or has already logged its error.
-fn status(result: Result<(), Status>) -> Status {
-    match result {
-        Ok(()) => Status::Ok,
-        Err(status) => status,
-    }
-}
-
-/// Why `model`'s outputs cannot be kept, if they cannot: the first non-finite output, its value
-/// and what it was computed from: the inputs it depends on (`<ModelStructure>`) with their
-/// values, or, for an output no input acts on directly, the parameters and the state.
-fn non_finite_output<M: Model>(model: &M) -> Option<String> {
-    let value = |variable: &Variable| model.real(variable.value_reference).unwrap_or(f64::NAN);
-    // The values in Debug form: 1e308, not its 309 digits.
-    let (output, x) = M::variables()
-        .iter()
-        .filter(|v| v.causality == Causality::Output)
-        .map(|v| (v, value(v)))
-        .find(|(_, x)| !x.is_finite())?;
-    let sources = if output.dependencies.is_empty() {
-        "the parameters and the state (no input acts on it directly)".to_owned()
-    } else {
-        let inputs: Vec<String> = output
-            .dependencies
-            .iter()
-            .filter_map(|&r| M::variable(r))
-            .map(|v| format!("{} = {:?}", v.name, value(v)))
-            .collect();
-        inputs.join(", ")
-    };
-    Some(format!(
-        "{} = {x:?} is not finite, computed from {sources}: a value beyond the floating-point range; the previous \
-         values are kept",
-        output.name
-    ))
-}
+#[cfg(test)]
+mod tests;

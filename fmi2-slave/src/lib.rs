@@ -6,12 +6,15 @@
 //! - [`fmi2`]: the FMI 2.0 C types;
 //! - [`ffi`]: the 34 `fmi2*` functions as generic Rust (pointer checks, C strings and slices,
 //!   panic catching, FMU-state boxing) over a [`Slave`], and [`export_fmi2!`], which expands to
-//!   the `#[no_mangle] extern "C"` exports of one cdylib for its slave type. The only file with
-//!   `unsafe`;
+//!   the `#[no_mangle] extern "C"` exports of one cdylib for its slave type; for in-process
+//!   masters (tests), a logger callback from a Rust function and, behind the `message-log`
+//!   feature, the one recording logger (`ffi::message_log`). The only file with `unsafe`;
 //! - [`mode`]: the Co-Simulation state machine: modes and the call table saying which modes
 //!   allow each call;
-//! - [`instance`]: a generic instance (lifecycle, Get/Set, step checks, FMU states) around a
-//!   [`instance::Model`] with Real variables only, implementing [`Slave`];
+//! - [`instance`]: the generic instance (lifecycle, Get/Set of Real, Integer, Enumeration and
+//!   String variables, step checks, evaluation warnings, FMU states, directional derivatives)
+//!   around an [`instance::Model`] (its values, its evaluation, what it keeps that is not state),
+//!   implementing [`Slave`];
 //! - [`logging`]: statuses, the logger sink and the log filter;
 //! - [`state_format`]: the byte format of a serialized FMU state (magic, version, layout tag,
 //!   GUID, CRC-32 around the FMU's payload), the same for every FMU;
@@ -19,8 +22,8 @@
 //!   `build` (feature `build`, for build scripts): the generator itself, which also checks the
 //!   XML against the rules of the standard that masters rely on.
 //!
-//! A model crate implements [`Slave`] (safe code only) and writes `export_fmi2!(MyInstance);` in
-//! one module.
+//! A model crate implements [`instance::Model`] (safe code only) and writes
+//! `export_fmi2!(fmi2_slave::instance::Instance<MyModel>);` in one module.
 
 #![deny(unsafe_code)]
 

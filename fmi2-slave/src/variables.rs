@@ -51,3 +51,41 @@ pub struct Variable {
     /// For outputs: the value references of the inputs it depends on (`<ModelStructure><Outputs>`).
     pub dependencies: &'static [u32],
 }
+
+/// What Get/Set need to know of a variable, as bits in one byte: the generator writes them per
+/// value reference into a dense table (`ACCESS`, `access_of`), so that the hot path reads one
+/// byte instead of a table row; [`access::of`] computes them from a [`Variable`].
+pub mod access {
+    use super::{Causality, Kind, Variability, Variable};
+
+    /// A Real variable.
+    pub const REAL: u8 = 1;
+    /// An Integer or Enumeration variable.
+    pub const INTEGER: u8 = 2;
+    /// A parameter.
+    pub const PARAMETER: u8 = 4;
+    /// Writable in every mode that allows Set (inputs, tunable parameters).
+    pub const WRITABLE: u8 = 8;
+    /// Writable only before initialisation ends (fixed parameters).
+    pub const FIXED: u8 = 16;
+    /// An output.
+    pub const OUTPUT: u8 = 32;
+    /// A String variable.
+    pub const STRING: u8 = 64;
+
+    /// The bits of `variable` (the generator's table holds the same, one byte per value reference).
+    pub fn of(variable: &Variable) -> u8 {
+        let base = match variable.kind {
+            Kind::Real { .. } => REAL,
+            Kind::Integer { .. } | Kind::Enumeration { .. } => INTEGER,
+            Kind::String { .. } => STRING,
+        };
+        let writable = match (variable.causality, variable.variability) {
+            (Causality::Output, _) => OUTPUT,
+            (Causality::Parameter, Variability::Fixed) => PARAMETER | FIXED,
+            (Causality::Parameter, _) => PARAMETER | WRITABLE,
+            (Causality::Input, _) => WRITABLE,
+        };
+        base | writable
+    }
+}

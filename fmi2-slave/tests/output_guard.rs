@@ -7,12 +7,12 @@
 //! The FMU: `quotient` = `numerator` / `denominator` (inputs, direct feedthrough) and `integral`,
 //! a state that grows by `gain` × step (a parameter, no input acts on it).
 
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::ptr::null;
-use std::sync::Mutex;
 
+use fmi2_slave::ffi::message_log::MessageLog;
 use fmi2_slave::fmi2::*;
-use fmi2_slave::instance::Model;
+use fmi2_slave::instance::{decode_run, encode_run, keep_if_finite, Evaluation, FmuState, Model};
 use fmi2_slave::mode::Mode;
 use fmi2_slave::variables::{Causality, Kind, Variability, Variable};
 
@@ -65,13 +65,32 @@ fn index(value_reference: u32) -> Option<usize> {
     VARIABLES.iter().position(|v| v.value_reference == value_reference)
 }
 
-/// No checks of its own: every non-finite output below reaches the slave layer's guard.
-impl Model for Ratio {
+/// The gain that makes a step panic: a bug inside an export, to see it become fmi2Fatal.
+const PANICKING_GAIN: f64 = 13.0;
+
+/// The model: no checks of its own, so every non-finite output below reaches the slave layer's
+/// guard ([`keep_if_finite`]).
+struct RatioModel;
+
+impl Model for RatioModel {
+    type State = Ratio;
+
     const GUID: &'static str = GUID;
     const MODEL_IDENTIFIER: &'static str = "ratio";
     const LOG_CATEGORIES: &'static [&'static str] = &[];
     const STATE_LAYOUT_TAG: u64 = 1;
     const STATE_MAGIC: [u8; 8] = *b"RATstate";
+    const STATE_FORMAT_VERSION: u16 = 1;
+
+    fn instantiate(_resource_location: Option<&str>) -> Result<(Self, Option<String>), String> {
+        Ok((RatioModel, None))
+    }
+
+    fn reset(&mut self) {}
+
+    fn start() -> Ratio {
+        Ratio::default()
+    }
 
     fn variable(value_reference: u32) -> Option<&'static Variable> {
         index(value_reference).map(|i| &VARIABLES[i])
@@ -81,72 +100,50 @@ impl Model for Ratio {
         &VARIABLES
     }
 
-    fn real(&self, value_reference: u32) -> Option<f64> {
-        index(value_reference).map(|i| self.0[i])
+    fn real(state: &Ratio, value_reference: u32) -> Option<f64> {
+        index(value_reference).map(|i| state.0[i])
     }
 
-    fn real_mut(&mut self, value_reference: u32) -> Option<&mut f64> {
-        index(value_reference).map(|i| &mut self.0[i])
+    fn real_mut(state: &mut Ratio, value_reference: u32) -> Option<&mut f64> {
+        index(value_reference).map(|i| &mut state.0[i])
     }
 
-    fn initialize(&mut self) -> Result<(), String> {
-        self.0[3] = self.0[0] / self.0[1];
-        self.0[4] = 0.0;
-        Ok(())
+    fn evaluate(&mut self, state: &mut Ratio, evaluation: Evaluation) -> Result<Option<String>, String> {
+        keep_if_finite::<Self>(state, |ratio| {
+            ratio.0[3] = ratio.0[0] / ratio.0[1];
+            match evaluation {
+                Evaluation::Initialise => ratio.0[4] = 0.0,
+                Evaluation::Step { size, .. } => {
+                    assert!(ratio.0[2] != PANICKING_GAIN, "forced by a test");
+                    ratio.0[4] += ratio.0[2] * size;
+                }
+            }
+            Ok(())
+        })?;
+        Ok(None)
     }
 
-    fn step(&mut self, _time: f64, step: f64) -> Result<(), String> {
-        self.0[3] = self.0[0] / self.0[1];
-        self.0[4] += self.0[2] * step;
-        Ok(())
+    fn encode(state: &FmuState<Ratio>) -> Vec<u8> {
+        let bytes: Vec<u8> = state.model.0.iter().flat_map(|x| x.to_le_bytes()).collect();
+        encode_run(state, &bytes)
     }
 
-    fn to_bytes(&self) -> Vec<u8> {
-        self.0.iter().flat_map(|x| x.to_le_bytes()).collect()
+    fn decode(payload: &[u8]) -> Result<FmuState<Ratio>, String> {
+        let run = decode_run(payload)?;
+        let values: Vec<f64> = run.model.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
+        let model = values.try_into().map(Ratio).map_err(|_| format!("{} bytes of values", run.model.len()))?;
+        Ok(FmuState { mode: run.mode, time: run.time, stop_time: run.stop_time, model })
     }
 
-    fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
-        let values: Vec<f64> = bytes.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
-        values.try_into().map(Ratio).map_err(|_| format!("{} bytes of values", bytes.len()))
-    }
-
-    fn check_state(&self, _mode: Mode) -> Result<(), String> {
+    fn check_state(_state: &Ratio, _mode: Mode) -> Result<(), String> {
         Ok(())
     }
 }
 
-fmi2_slave::export_fmi2!(fmi2_slave::instance::Instance<crate::Ratio>);
+fmi2_slave::export_fmi2!(fmi2_slave::instance::Instance<crate::RatioModel>);
 
 const OK: fmi2Status = fmi2Status_fmi2OK;
 const ERROR: fmi2Status = fmi2Status_fmi2Error;
-
-/// Every message the FMU logged.
-#[derive(Default)]
-struct Log(Mutex<Vec<String>>);
-
-impl Log {
-    fn last(&self) -> String {
-        self.0.lock().unwrap().last().cloned().unwrap_or_default()
-    }
-}
-
-/// The logger. Stable Rust cannot define a C-variadic function, so it takes the one argument
-/// that `"%s"` announces as a named parameter (as the FMUs' C-ABI tests do).
-extern "C" fn record(
-    environment: fmi2ComponentEnvironment,
-    _instance_name: fmi2String,
-    _status: fmi2Status,
-    _category: fmi2String,
-    format: fmi2String,
-    text: fmi2String,
-) {
-    // SAFETY: the environment is the test's `Log`; the FMU passes NUL-terminated strings.
-    unsafe {
-        assert_eq!(CStr::from_ptr(format), c"%s");
-        let text = CStr::from_ptr(text).to_str().unwrap().to_owned();
-        (*environment.cast::<Log>()).0.lock().unwrap().push(text);
-    }
-}
 
 /// One instance, freed on drop.
 struct Fmu {
@@ -156,26 +153,14 @@ struct Fmu {
 
 impl Fmu {
     /// Instantiated, in initialization mode at t = 0.
-    fn initializing(log: &Log) -> Fmu {
-        type Named =
-            extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
-        type Variadic =
-            unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-        // SAFETY: see `record`.
-        let logger = unsafe { std::mem::transmute::<Named, Variadic>(record) };
-        let callbacks = Box::new(fmi2CallbackFunctions {
-            logger: Some(logger),
-            allocateMemory: None,
-            freeMemory: None,
-            stepFinished: None,
-            componentEnvironment: (log as *const Log).cast_mut().cast(),
-        });
+    fn initializing(log: &MessageLog) -> Fmu {
+        let callbacks = Box::new(log.callbacks());
         let guid = CString::new(GUID).unwrap();
         // SAFETY: valid strings and callbacks that outlive the instance.
         let c = unsafe {
             fmi2Instantiate(c"ratio".as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, 0, 0)
         };
-        assert!(!c.is_null(), "{}", log.last());
+        assert!(!c.is_null(), "{}", log.last_text());
         // SAFETY: `c` is live.
         unsafe {
             assert_eq!(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), OK);
@@ -225,30 +210,30 @@ const OUTPUTS: [u32; 2] = [QUOTIENT, INTEGRAL];
 
 #[test]
 fn a_non_finite_output_at_initialization_is_an_error_naming_it_and_its_inputs() {
-    let log = Log::default();
+    let log = MessageLog::default();
     let fmu = Fmu::initializing(&log);
     // 1 / 5e-324 overflows: finite values, an infinite output.
     fmu.set(DENOMINATOR, 5e-324);
     let message = "quotient = inf is not finite, computed from numerator = 1.0, denominator = 5e-324: a value beyond \
                    the floating-point range; the previous values are kept";
     assert_eq!(fmu.exit_initialization(), ERROR);
-    assert_eq!(log.last(), format!("fmi2ExitInitializationMode: {message}"));
+    assert_eq!(log.last_text(), format!("fmi2ExitInitializationMode: {message}"));
     // Still in initialization mode: reading an output computes them again, with the same error,
     // and hands out nothing.
     assert_eq!(fmu.get(&OUTPUTS).0, ERROR);
-    assert_eq!(log.last(), format!("fmi2GetReal: {message}"));
+    assert_eq!(log.last_text(), format!("fmi2GetReal: {message}"));
     // Corrected, it starts.
     fmu.set(DENOMINATOR, 4.0);
-    assert_eq!(fmu.exit_initialization(), OK, "{}", log.last());
+    assert_eq!(fmu.exit_initialization(), OK, "{}", log.last_text());
     assert_eq!(fmu.get(&OUTPUTS), (OK, vec![0.25, 0.0]));
 }
 
 #[test]
 fn a_non_finite_output_after_a_step_is_an_error_and_the_previous_values_stay() {
-    let log = Log::default();
+    let log = MessageLog::default();
     let fmu = Fmu::initializing(&log);
     fmu.set(GAIN, 1e308);
-    assert_eq!(fmu.exit_initialization(), OK, "{}", log.last());
+    assert_eq!(fmu.exit_initialization(), OK, "{}", log.last_text());
     assert_eq!(fmu.do_step(0.0, 1.0), OK);
     let before = fmu.get(&OUTPUTS);
     assert_eq!(before, (OK, vec![1.0, 1e308]));
@@ -257,7 +242,7 @@ fn a_non_finite_output_after_a_step_is_an_error_and_the_previous_values_stay() {
     fmu.set(DENOMINATOR, 1e-308);
     assert_eq!(fmu.do_step(1.0, 1.0), ERROR);
     assert_eq!(
-        log.last(),
+        log.last_text(),
         "fmi2DoStep: quotient = inf is not finite, computed from numerator = 1e308, denominator = 1e-308: a value \
          beyond the floating-point range; the previous values are kept"
     );
@@ -268,14 +253,34 @@ fn a_non_finite_output_after_a_step_is_an_error_and_the_previous_values_stay() {
     fmu.set(DENOMINATOR, 1.0);
     assert_eq!(fmu.do_step(1.0, 1.0), ERROR);
     assert_eq!(
-        log.last(),
+        log.last_text(),
         "fmi2DoStep: integral = inf is not finite, computed from the parameters and the state (no input acts on it \
          directly): a value beyond the floating-point range; the previous values are kept"
     );
     assert_eq!(fmu.get(&OUTPUTS), before);
     assert_eq!(fmu.last_successful_time(), 1.0);
     // A step that stays in range still succeeds from the kept values.
-    assert_eq!(fmu.do_step(1.0, 0.5), OK, "{}", log.last());
+    assert_eq!(fmu.do_step(1.0, 0.5), OK, "{}", log.last_text());
     assert_eq!(fmu.get(&OUTPUTS), (OK, vec![1.0, 1.5e308]));
     assert_eq!(fmu.last_successful_time(), 1.5);
+}
+
+/// A panic inside an export (a bug; here forced by the model's step) is caught at the C
+/// boundary: fmi2Fatal, a fatal message through the master's logger, and the instance refuses
+/// every further call but can be freed.
+#[test]
+fn a_panic_in_an_export_becomes_fmi2_fatal_and_only_freeing_remains() {
+    let log = MessageLog::default();
+    let fmu = Fmu::initializing(&log);
+    fmu.set(GAIN, PANICKING_GAIN);
+    assert_eq!(fmu.exit_initialization(), OK, "{}", log.last_text());
+    assert_eq!(fmu.do_step(0.0, 1.0), fmi2Status_fmi2Fatal);
+    let message = log.last_text();
+    assert!(message.starts_with("fmi2DoStep: internal error (forced by a test"), "{message}");
+    assert!(message.ends_with("); this instance can only be freed"), "{message}");
+    assert_eq!(fmu.do_step(0.0, 1.0), ERROR);
+    assert_eq!(log.last_text(), "fmi2DoStep: illegal call in state fatal");
+    // SAFETY: `c` is live.
+    assert_eq!(unsafe { fmi2Reset(fmu.c) }, ERROR);
+    assert_eq!(log.last_text(), "fmi2Reset: illegal call in state fatal");
 }

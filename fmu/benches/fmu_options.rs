@@ -7,8 +7,8 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use wheel_rail_contact_fmu::instance::{Instance, InstantiateArguments};
 use wheel_rail_contact_fmu::logging::{LogSink, Status};
+use wheel_rail_contact_fmu::model::{Instance, InstantiateArguments, Slave};
 use wheel_rail_contact_fmu::model_description::{
     value_reference as vr, ContactGeometry, Model, Switch, TractionLaw, GUID,
 };

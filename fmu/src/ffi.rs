@@ -1,5 +1,5 @@
 //! The C exports of the FMU: all 25 common and 9 Co-Simulation functions of FMI 2.0, generated
-//! by [`fmi2_slave::export_fmi2!`] for [`Instance`](crate::instance::Instance) (its
+//! by [`fmi2_slave::export_fmi2!`] for [`Instance`](crate::model::Instance) (its
 //! [`fmi2_slave::Slave`] implementation). Pointer checks, C strings, panic catching and
 //! FMU-state boxing are the slave layer's ([`fmi2_slave::ffi`], with its contract with the
 //! master); this file only instantiates them, and holds the tests of the exports.
@@ -8,57 +8,17 @@
 // allowed `unsafe` (the crate denies it).
 #![allow(unsafe_code)]
 
-fmi2_slave::export_fmi2!(crate::instance::Instance);
+fmi2_slave::export_fmi2!(crate::model::Instance);
 
 #[cfg(test)]
 mod tests {
     //! The exports themselves, called in-process as a master would.
     use super::*;
     use crate::fmi2::*;
-    use crate::instance::PANIC_CATEGORY_FOR_TESTS;
     use crate::model_description::{value_reference as vr, GUID};
-    use std::cell::RefCell;
+    use fmi2_slave::ffi::message_log::MessageLog;
     use std::ffi::{CStr, CString};
     use std::ptr::null_mut;
-
-    /// (status, category, format, message) of every logger call.
-    type Messages = RefCell<Vec<(fmi2Status, String, String, String)>>;
-
-    /// A logger for the tests. Stable Rust cannot define a C-variadic function, so it takes the
-    /// one argument that `"%s"` announces as a named parameter; on the platforms the FMU is
-    /// built for (x86-64 System V, AArch64 Linux) a variadic pointer argument is passed exactly
-    /// like a named one, which is also how fmpy's ctypes logger receives it.
-    extern "C" fn record(
-        environment: fmi2ComponentEnvironment,
-        _instance_name: fmi2String,
-        status: fmi2Status,
-        category: fmi2String,
-        format: fmi2String,
-        text: fmi2String,
-    ) {
-        // SAFETY: the tests pass a `Messages` as environment; the strings are the FMU's C strings.
-        unsafe {
-            let messages = &*environment.cast::<Messages>();
-            let string = |p: fmi2String| CStr::from_ptr(p).to_string_lossy().into_owned();
-            messages.borrow_mut().push((status, string(category), string(format), string(text)));
-        }
-    }
-
-    fn callbacks(messages: &Messages) -> fmi2CallbackFunctions {
-        type Named =
-            extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
-        type Variadic =
-            unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-        // SAFETY: see `record`.
-        let logger = unsafe { std::mem::transmute::<Named, Variadic>(record) };
-        fmi2CallbackFunctions {
-            logger: Some(logger),
-            allocateMemory: None,
-            freeMemory: None,
-            stepFinished: None,
-            componentEnvironment: (messages as *const Messages).cast_mut().cast(),
-        }
-    }
 
     fn instantiate(name: &std::ffi::CStr, guid: &std::ffi::CStr, functions: &fmi2CallbackFunctions) -> fmi2Component {
         // SAFETY: valid strings and callbacks.
@@ -100,16 +60,17 @@ mod tests {
 
     #[test]
     fn guid_mismatch_and_missing_callbacks_give_null() {
-        let messages = Messages::default();
-        assert!(instantiate(c"wheel", c"{00000000-0000-0000-0000-000000000000}", &callbacks(&messages)).is_null());
-        let (status, category, format, message) = messages.borrow()[0].clone();
-        assert_eq!((status, category.as_str(), format.as_str()), (fmi2Status_fmi2Error, "logStatusError", "%s"));
+        let messages = MessageLog::default();
+        assert!(instantiate(c"wheel", c"{00000000-0000-0000-0000-000000000000}", &messages.callbacks()).is_null());
+        // The format ("%s") and every string: the MessageLog's logger checks them.
+        let (status, category, message) = messages.0.lock().unwrap()[0].clone();
+        assert_eq!((status, category.as_str()), (fmi2Status_fmi2Error, "logStatusError"));
         assert!(message.contains("does not match this FMU's GUID"), "{message}");
         // SAFETY: NULL callbacks and strings are what is being tested.
         unsafe {
             let no_functions = null_mut();
             assert!(fmi2Instantiate(c"w".as_ptr(), 1, guid().as_ptr(), null_mut(), no_functions, 0, 0).is_null());
-            let functions = callbacks(&messages);
+            let functions = messages.callbacks();
             assert!(fmi2Instantiate(null_mut(), 1, guid().as_ptr(), null_mut(), &functions, 0, 0).is_null());
             assert!(fmi2Instantiate(c"w".as_ptr(), 1, null_mut(), null_mut(), &functions, 0, 0).is_null());
         }
@@ -117,8 +78,8 @@ mod tests {
 
     #[test]
     fn pointers_are_checked() {
-        let messages = Messages::default();
-        let c = stepping(&callbacks(&messages));
+        let messages = MessageLog::default();
+        let c = stepping(&messages.callbacks());
         // SAFETY: NULL pointers are what is being tested; n = 0 makes them legal.
         unsafe {
             assert_eq!(fmi2GetReal(null_mut(), &vr::FORCE_LATERAL, 1, &mut 0.0), fmi2Status_fmi2Error);
@@ -129,18 +90,18 @@ mod tests {
             assert_eq!(fmi2GetString(c, std::ptr::null(), 0, null_mut()), fmi2Status_fmi2OK);
             assert_eq!(fmi2SetDebugLogging(c, 1, 0, std::ptr::null()), fmi2Status_fmi2OK);
             assert_eq!(fmi2SetReal(c, &vr::NORMAL_FORCE, 1, std::ptr::null()), fmi2Status_fmi2Error);
-            assert_eq!(messages.borrow().last().unwrap().3, "fmi2SetReal: NULL array pointer with n > 0");
+            assert_eq!(messages.last_text(), "fmi2SetReal: NULL array pointer with n > 0");
             assert_eq!(fmi2GetRealStatus(c, fmi2StatusKind_fmi2LastSuccessfulTime, null_mut()), fmi2Status_fmi2Error);
             assert_eq!(fmi2GetStatus(c, 17, &mut 0), fmi2Status_fmi2Error);
-            assert_eq!(messages.borrow().last().unwrap().3, "fmi2GetStatus: unknown fmi2StatusKind 17");
+            assert_eq!(messages.last_text(), "fmi2GetStatus: unknown fmi2StatusKind 17");
             fmi2FreeInstance(c);
         }
     }
 
     #[test]
     fn status_functions_through_the_exports() {
-        let messages = Messages::default();
-        let c = stepping(&callbacks(&messages));
+        let messages = MessageLog::default();
+        let c = stepping(&messages.callbacks());
         // SAFETY: `c` is live; the value pointers are valid.
         unsafe {
             assert_eq!(fmi2DoStep(c, 0.0, 0.5, 1), fmi2Status_fmi2OK);
@@ -155,15 +116,15 @@ mod tests {
             let mut text: fmi2String = std::ptr::null();
             assert_eq!(fmi2GetStringStatus(c, fmi2StatusKind_fmi2PendingStatus, &mut text), fmi2Status_fmi2Discard);
             assert_eq!(fmi2CancelStep(c), fmi2Status_fmi2Error);
-            assert_eq!(messages.borrow().last().unwrap().3, "fmi2CancelStep: illegal call in state stepComplete");
+            assert_eq!(messages.last_text(), "fmi2CancelStep: illegal call in state stepComplete");
             fmi2FreeInstance(c);
         }
     }
 
     #[test]
     fn instances_are_independent() {
-        let (first_log, second_log) = (Messages::default(), Messages::default());
-        let (first_callbacks, second_callbacks) = (callbacks(&first_log), callbacks(&second_log));
+        let (first_log, second_log) = (MessageLog::default(), MessageLog::default());
+        let (first_callbacks, second_callbacks) = (first_log.callbacks(), second_log.callbacks());
         let first = stepping(&first_callbacks);
         let second = stepping(&second_callbacks);
         let start = force_longitudinal(first);
@@ -178,35 +139,12 @@ mod tests {
         }
         assert_eq!(force_longitudinal(first), start);
         assert_eq!(force_longitudinal(second), -start);
-        assert!(first_log.borrow().is_empty());
-        assert_eq!(second_log.borrow()[0].3, "fmi2DoStep: semi_axis_b = NaN is invalid: must be finite and > 0");
+        assert!(first_log.texts().is_empty());
+        assert_eq!(second_log.texts()[0], "fmi2DoStep: semi_axis_b = NaN is invalid: must be finite and > 0");
         // SAFETY: freed once each.
         unsafe {
             fmi2FreeInstance(first);
             fmi2FreeInstance(second);
-        }
-    }
-
-    /// A panic inside an export (forced by the test-only log category) is caught at the C
-    /// boundary: fmi2Fatal, a fatal message through the master's logger, and the instance
-    /// refuses further calls but can be freed.
-    #[test]
-    fn a_panic_in_an_export_becomes_fmi2_fatal() {
-        let messages = Messages::default();
-        let c = stepping(&callbacks(&messages));
-        let category = CString::new(PANIC_CATEGORY_FOR_TESTS).unwrap();
-        // SAFETY: `c` is live; one category string.
-        unsafe {
-            assert_eq!(fmi2SetDebugLogging(c, 1, 1, &category.as_ptr()), fmi2Status_fmi2Fatal);
-            let (status, log_category, format, message) = messages.borrow().last().cloned().unwrap();
-            assert_eq!(
-                (status, log_category.as_str(), format.as_str()),
-                (fmi2Status_fmi2Fatal, "logStatusFatal", "%s")
-            );
-            assert!(message.starts_with("fmi2SetDebugLogging: internal error (forced by a test"), "{message}");
-            assert_eq!(fmi2DoStep(c, 0.0, 1.0, 0), fmi2Status_fmi2Error);
-            assert_eq!(messages.borrow().last().unwrap().3, "fmi2DoStep: illegal call in state fatal");
-            fmi2FreeInstance(c);
         }
     }
 }

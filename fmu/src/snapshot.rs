@@ -1,24 +1,26 @@
-//! The FMU state (fmi2GetFMUstate, fmi2SerializeFMUstate, …): a copy of everything an instance
-//! computes with, as plain values, and its byte encoding.
+//! The contact FMU's part of an FMU state (fmi2GetFMUstate, fmi2SerializeFMUstate, …): what the
+//! slave layer's [`FmuState`] holds beside the mode, time and stop time, as plain values, and its
+//! byte encoding.
 //!
-//! What is saved is a [`Snapshot`]: the state-machine mode, time and stop time, every variable's
-//! value (the generated [`Values`], whole, and the String parameters, [`Strings`]), the scene's
-//! state (relaxed forces, the exact theory's warm start: [`SceneState`]) and the wheel's with
-//! profiles (each patch's, [`WheelState`]). A
-//! field added to any of these is saved and restored with no change here. Not saved, because
-//! they are the master's settings for this instance rather than its state: the instance name,
-//! the resource location, the logger and the debug-logging selection.
+//! What is saved is a [`Snapshot`]: the state-machine mode, time and stop time (the slave
+//! layer's), every variable's value (the generated [`Values`], whole, and the String parameters,
+//! [`Strings`]), the scene's state (relaxed forces, the exact theory's warm start:
+//! [`SceneState`]) and the wheel's with profiles (each patch's, [`WheelState`]): a
+//! [`ContactState`]. A field added to any of these is saved and restored with no change here.
+//! Not saved, because they are the master's settings for this instance rather than its state:
+//! the instance name, the resource location, the logger and the debug-logging selection.
 //!
 //! Byte format: the slave layer's ([`fmi2_slave::state_format`]: magic `WRCstate`, version
 //! [`FORMAT_VERSION`], the variable-layout tag, the GUID, a CRC-32) around the [`Snapshot`]
 //! encoded by postcard (serde). [`decode`] checks every part before it builds anything, then
-//! the snapshot's sense (`check_sense`).
+//! the snapshot's sense (the slave layer's: a live mode, the times; then `check_state`).
 
-use fmi2_slave::state_format::StateFormat;
+use fmi2_slave::instance::FmuState;
 use serde::{Deserialize, Serialize};
 
 use crate::mode::Mode;
-use crate::model_description::{Causality, Strings, Values, GUID, STATE_LAYOUT_TAG, VARIABLES};
+use crate::model::Instance;
+use crate::model_description::{Causality, Strings, Values, VARIABLES};
 use crate::profiles::ProfileDigest;
 use wheel_rail_contact::scene::SceneState;
 use wheel_rail_contact::wheel::WheelState;
@@ -28,15 +30,9 @@ pub const MAGIC: [u8; 8] = *b"WRCstate";
 /// The layout of the header and payload described in the module documentation.
 pub const FORMAT_VERSION: u16 = 5;
 
-/// Everything an instance computes with: what an FMU state holds.
+/// Everything an instance computes with beside its mode and times.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Snapshot {
-    /// The state-machine mode (never `Fatal`: a fatal instance gives no state).
-    pub mode: Mode,
-    /// The instance's time: the end of the last step.
-    pub time: f64,
-    /// fmi2SetupExperiment's stop time, if one was given.
-    pub stop_time: Option<f64>,
+pub struct ContactState {
     /// Every variable: inputs, parameters and the last outputs.
     pub values: Values,
     /// The String parameters (the profiles).
@@ -54,13 +50,10 @@ pub struct Snapshot {
     pub profiles: Option<ProfileDigest>,
 }
 
-impl Snapshot {
-    /// A freshly instantiated instance's: start values, time 0.
-    pub fn instantiated() -> Snapshot {
-        Snapshot {
-            mode: Mode::Instantiated,
-            time: 0.0,
-            stop_time: None,
+impl ContactState {
+    /// A freshly instantiated instance's: the start values.
+    pub fn start() -> ContactState {
+        ContactState {
             values: Values::default(),
             strings: Strings::default(),
             scene: SceneState::default(),
@@ -70,41 +63,41 @@ impl Snapshot {
     }
 }
 
-/// This FMU's states: its magic, version, layout and GUID.
-const FORMAT: StateFormat =
-    StateFormat { magic: MAGIC, version: FORMAT_VERSION, layout_tag: STATE_LAYOUT_TAG, guid: GUID };
+/// What an FMU state of this FMU holds: the mode, time and stop time, then the [`ContactState`]
+/// (encoded in this order: postcard writes a struct as its fields one after the other).
+pub type Snapshot = FmuState<ContactState>;
 
 /// The serialized bytes of `state` (their length is exactly what fmi2SerializedFMUstateSize
 /// reports: the encoding is deterministic).
 pub fn encode(state: &Snapshot) -> Vec<u8> {
-    FORMAT.encode(&postcard::to_stdvec(state).expect("plain values always encode"))
+    Instance::encode_state(state)
 }
 
 /// The state in `bytes`, or why they are not a state this FMU wrote.
 pub fn decode(bytes: &[u8]) -> Result<Snapshot, String> {
-    let payload = FORMAT.decode(bytes)?;
-    let state: Snapshot = match postcard::take_from_bytes(payload) {
-        Ok((state, [])) => state,
-        Ok(_) => return Err("corrupted: the payload has bytes after the state".to_owned()),
-        Err(error) => return Err(format!("corrupted: the payload does not decode ({error})")),
-    };
-    check_sense(&state).map_err(|reason| format!("not a state this FMU can be in: {reason}"))?;
-    Ok(state)
+    Instance::decode_state(bytes)
 }
 
-/// The checks the setters and the state machine apply to what a state holds, for a state whose
-/// bytes are intact but whose content did not come from this FMU (a forged or hand-edited one):
-/// a live mode, a time and a stop time fmi2SetupExperiment would accept (the time has not
-/// passed the stop time), finite outputs (an instance only ever keeps finite ones) and a valid
-/// scene state. Inputs and parameters may hold any value, as after fmi2SetReal/fmi2SetInteger:
-/// an invalid one is reported by the next evaluation, naming it.
-fn check_sense(state: &Snapshot) -> Result<(), String> {
-    if state.mode == Mode::Fatal {
-        return Err("mode fatal".to_owned());
+/// The payload of `state` ([`crate::model::ContactModel`]'s `Model::encode`).
+pub(crate) fn encode_payload(state: &Snapshot) -> Vec<u8> {
+    postcard::to_stdvec(state).expect("plain values always encode")
+}
+
+/// The inverse of [`encode_payload`], every byte used.
+pub(crate) fn decode_payload(payload: &[u8]) -> Result<Snapshot, String> {
+    match postcard::take_from_bytes(payload) {
+        Ok((state, [])) => Ok(state),
+        Ok(_) => Err("corrupted: the payload has bytes after the state".to_owned()),
+        Err(error) => Err(format!("corrupted: the payload does not decode ({error})")),
     }
-    if let Some(problem) = fmi2_slave::instance::times_problem(("time", state.time), state.stop_time) {
-        return Err(problem);
-    }
+}
+
+/// The checks the setters apply to what a state holds, for a state whose bytes are intact but
+/// whose content did not come from this FMU (a forged or hand-edited one), after the slave
+/// layer's of its mode and times: finite outputs (an instance only ever keeps finite ones) and
+/// a valid scene state. Inputs and parameters may hold any value, as after
+/// fmi2SetReal/fmi2SetInteger: an invalid one is reported by the next evaluation, naming it.
+pub(crate) fn check_state(state: &ContactState, _mode: Mode) -> Result<(), String> {
     for variable in VARIABLES.iter().filter(|variable| variable.causality == Causality::Output) {
         if let Some(value) = state.values.real(variable.value_reference).filter(|value| !value.is_finite()) {
             return Err(format!("{} = {value} is invalid: an output is always finite", variable.name));
@@ -118,14 +111,16 @@ fn check_sense(state: &Snapshot) -> Result<(), String> {
 mod tests {
     use super::*;
 
+    use crate::model_description::GUID;
+
     fn stepping_state() -> Snapshot {
-        let mut state = Snapshot::instantiated();
+        let mut state = Snapshot::instantiated(ContactState::start());
         state.mode = Mode::StepComplete;
         state.time = 0.125;
         state.stop_time = Some(2.0);
-        state.values.inputs.creepage_lateral = -1.5e-3;
-        state.values.inputs.spin_creepage = f64::from_bits(0x7ff8_0000_dead_beef); // a NaN payload
-        state.values.outputs.force_longitudinal = -1234.5;
+        state.model.values.inputs.creepage_lateral = -1.5e-3;
+        state.model.values.inputs.spin_creepage = f64::from_bits(0x7ff8_0000_dead_beef); // a NaN payload
+        state.model.values.outputs.force_longitudinal = -1234.5;
         state
     }
 
@@ -134,7 +129,7 @@ mod tests {
         let state = stepping_state();
         let bytes = encode(&state);
         let decoded = decode(&bytes).unwrap();
-        assert_eq!(decoded.values.inputs.spin_creepage.to_bits(), 0x7ff8_0000_dead_beef);
+        assert_eq!(decoded.model.values.inputs.spin_creepage.to_bits(), 0x7ff8_0000_dead_beef);
         assert_eq!(encode(&decoded), bytes, "re-encoding gives the same bytes");
         assert_eq!(&bytes[..8], b"WRCstate");
         assert_eq!(bytes[18] as usize, GUID.len());

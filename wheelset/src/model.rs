@@ -1,11 +1,12 @@
-//! The FMU's values ↔ the physics: the slave layer's [`Model`] for the wheelset.
+//! The FMU's values ↔ the physics: the slave layer's [`Model`] for the wheelset ([`WheelsetModel`],
+//! whose state is a [`Wheelset`]).
 //!
 //! The outputs are the state (y, ψ, ẏ, ψ̇, Ω, and V): ExitInitializationMode sets them from the
 //! initial-value parameters, with Ω = V/r_c (both wheels on their centred rolling radius, so the
 //! run starts without longitudinal creepage, docs/wheelset.md); DoStep advances them with
 //! [`physics::advance`] under the inputs held. Errors name the variable, the value and the time.
 
-use fmi2_slave::instance::Model;
+use fmi2_slave::instance::{decode_run, encode_run, keep_if_finite, Evaluation, FmuState, Model};
 use fmi2_slave::mode::{Mode, STEPPED};
 
 use crate::model_description::{self, Causality, Inputs, Outputs, Parameters, Values, VARIABLES};
@@ -152,12 +153,31 @@ fn describe(error: WheelsetError, time: f64) -> String {
     }
 }
 
-impl Model for Wheelset {
+/// The slave layer's model of the wheelset FMU: its state is a [`Wheelset`], and it keeps nothing
+/// beside it (no cache, no resources).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WheelsetModel;
+
+impl Model for WheelsetModel {
+    type State = Wheelset;
+
     const GUID: &'static str = model_description::GUID;
     const MODEL_IDENTIFIER: &'static str = model_description::MODEL_IDENTIFIER;
     const LOG_CATEGORIES: &'static [&'static str] = model_description::LOG_CATEGORIES;
     const STATE_LAYOUT_TAG: u64 = model_description::STATE_LAYOUT_TAG;
     const STATE_MAGIC: [u8; 8] = *b"WSTstate";
+    /// Mode, time, stop time, then every Real ([`encode_run`]).
+    const STATE_FORMAT_VERSION: u16 = 2;
+
+    fn instantiate(_resource_location: Option<&str>) -> Result<(Self, Option<String>), String> {
+        Ok((WheelsetModel, None))
+    }
+
+    fn reset(&mut self) {}
+
+    fn start() -> Wheelset {
+        Wheelset::default()
+    }
 
     fn variable(value_reference: u32) -> Option<&'static fmi2_slave::variables::Variable> {
         model_description::variable(value_reference)
@@ -167,17 +187,50 @@ impl Model for Wheelset {
         &VARIABLES
     }
 
-    fn real(&self, value_reference: u32) -> Option<f64> {
-        self.values.real(value_reference)
+    #[inline]
+    fn access(value_reference: u32) -> u8 {
+        model_description::access_of(value_reference)
     }
 
-    fn real_mut(&mut self, value_reference: u32) -> Option<&mut f64> {
-        self.values.real_mut(value_reference)
+    #[inline]
+    fn real(state: &Wheelset, value_reference: u32) -> Option<f64> {
+        state.values.real(value_reference)
     }
 
+    #[inline]
+    fn real_mut(state: &mut Wheelset, value_reference: u32) -> Option<&mut f64> {
+        state.values.real_mut(value_reference)
+    }
+
+    /// On a copy, kept only if every output is finite ([`keep_if_finite`]).
+    fn evaluate(&mut self, state: &mut Wheelset, evaluation: Evaluation) -> Result<Option<String>, String> {
+        keep_if_finite::<Self>(state, |next| match evaluation {
+            Evaluation::Initialise => next.initialize(),
+            Evaluation::Step { time, size } => next.step(time, size),
+        })?;
+        Ok(None)
+    }
+
+    fn encode(state: &FmuState<Wheelset>) -> Vec<u8> {
+        encode_run(state, &state.model.to_bytes())
+    }
+
+    fn decode(payload: &[u8]) -> Result<FmuState<Wheelset>, String> {
+        let run = decode_run(payload)?;
+        let model = Wheelset::from_bytes(run.model)?;
+        Ok(FmuState { mode: run.mode, time: run.time, stop_time: run.stop_time, model })
+    }
+
+    fn check_state(state: &Wheelset, mode: Mode) -> Result<(), String> {
+        state.check_state(mode)
+    }
+}
+
+/// The wheelset's computations on its values.
+impl Wheelset {
     /// The parameters checked, the outputs from the initial values; the start must lie within
     /// the derailment bound.
-    fn initialize(&mut self) -> Result<(), String> {
+    pub fn initialize(&mut self) -> Result<(), String> {
         let parameters = self.values.parameters;
         Self::check_parameters(&parameters)?;
         let initial = [
@@ -207,7 +260,7 @@ impl Model for Wheelset {
         Ok(())
     }
 
-    fn step(&mut self, time: f64, step: f64) -> Result<(), String> {
+    pub fn step(&mut self, time: f64, step: f64) -> Result<(), String> {
         let loads = self.loads(time)?;
         let parameters = Self::physics_parameters(&self.values.parameters);
         let next = physics::advance(&parameters, &Self::state(&self.values.outputs), &loads, step)
@@ -218,7 +271,7 @@ impl Model for Wheelset {
 
     /// Every Real in the order of [`VARIABLES`], as little-endian f64: the outputs are the state,
     /// so this is all of it.
-    fn to_bytes(&self) -> Vec<u8> {
+    pub fn to_bytes(&self) -> Vec<u8> {
         VARIABLES.iter().flat_map(|v| self.values.real(v.value_reference).unwrap_or(f64::NAN).to_le_bytes()).collect()
     }
 
@@ -228,7 +281,7 @@ impl Model for Wheelset {
     /// parameters as initialize checked them and the lateral displacement within the derailment
     /// bound, where a step stops. Before that, parameters may hold any value, as after
     /// fmi2SetReal: ExitInitializationMode reports an invalid one.
-    fn check_state(&self, mode: Mode) -> Result<(), String> {
+    pub fn check_state(&self, mode: Mode) -> Result<(), String> {
         for output in VARIABLES.iter().filter(|v| v.causality == Causality::Output) {
             let value = self.values.real(output.value_reference).unwrap_or(f64::NAN);
             if !value.is_finite() {
@@ -250,7 +303,7 @@ impl Model for Wheelset {
         Ok(())
     }
 
-    fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
         if bytes.len() != 8 * VARIABLES.len() {
             return Err(format!(
                 "{} bytes of values, not the {} of this FMU's variables",
@@ -274,13 +327,19 @@ mod tests {
     use fmi2_slave::instance::Model;
     use fmi2_slave::mode::Mode::{self, InitializationMode, Instantiated, StepComplete, Terminated};
 
-    use super::{readable, Wheelset};
+    use super::{readable, Wheelset, WheelsetModel};
 
     /// The slave layer reads the outputs it guards (and their dependencies) from this table:
-    /// the model description's, every variable in its order.
+    /// the model description's, every variable in its order; and Get/Set read the generated
+    /// access table, which says of each variable what the slave layer's rule says.
     #[test]
     fn the_variables_the_slave_layer_reads_are_the_model_descriptions() {
-        assert_eq!(Wheelset::variables(), &crate::model_description::VARIABLES[..]);
+        assert_eq!(WheelsetModel::variables(), &crate::model_description::VARIABLES[..]);
+        for variable in WheelsetModel::variables() {
+            let bits = fmi2_slave::variables::access::of(variable);
+            assert_eq!(WheelsetModel::access(variable.value_reference), bits, "{}", variable.name);
+        }
+        assert_eq!(WheelsetModel::access(9999), 0);
     }
 
     fn initialized() -> Wheelset {

@@ -8,6 +8,8 @@ use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+pub use fmi2_slave::ffi::message_log::MessageLog;
+use fmi2_slave::ffi::variadic_logger;
 pub use fmu_master::binary::file_uri;
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::fmi2::*;
@@ -32,9 +34,9 @@ pub const OUTPUTS: [u32; 3] = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::AD
 /// `"%s"` and every string is a valid, NUL-terminated pointer.
 pub struct LogCounter(pub AtomicUsize);
 
-/// The logger: stable Rust cannot define a C-variadic function, so it takes the one argument
-/// that `"%s"` announces as a named parameter (passed identically on x86-64 System V and
-/// AArch64 Linux, as in the adapter's own tests).
+/// The logger of [`LogCounter`] (a named parameter for the variadic one:
+/// [`fmi2_slave::ffi::NamedLogger`]). It allocates nothing, so that the leak check counts the
+/// FMU's allocations only; [`MessageLog`] records the texts.
 extern "C" fn count_message(
     environment: fmi2ComponentEnvironment,
     instance_name: fmi2String,
@@ -58,49 +60,12 @@ extern "C" fn count_message(
 
 /// Callbacks whose logger counts into `counter` (`None`: no logger).
 pub fn callbacks(counter: Option<&LogCounter>) -> fmi2CallbackFunctions {
-    type Named = extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
-    type Variadic = unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-    // SAFETY: see `count_message`.
-    let logger = counter.map(|_| unsafe { std::mem::transmute::<Named, Variadic>(count_message) });
     fmi2CallbackFunctions {
-        logger,
+        logger: counter.and_then(|_| variadic_logger(count_message)),
         allocateMemory: None,
         freeMemory: None,
         stepFinished: None,
         componentEnvironment: counter.map_or(null_mut(), |c| (c as *const LogCounter).cast_mut().cast()),
-    }
-}
-
-/// Every message the FMU logged, as (status, category, text).
-#[derive(Default)]
-pub struct MessageLog(pub std::sync::Mutex<Vec<(fmi2Status, String, String)>>);
-
-impl MessageLog {
-    pub fn texts(&self) -> Vec<String> {
-        self.0.lock().unwrap().iter().map(|(_, _, text)| text.clone()).collect()
-    }
-
-    /// The last message's status and text.
-    pub fn last(&self) -> Option<(fmi2Status, String)> {
-        self.0.lock().unwrap().last().map(|(status, _, text)| (*status, text.clone()))
-    }
-}
-
-/// The logger of [`MessageLog`] (named parameter: see `count_message`).
-extern "C" fn record_message(
-    environment: fmi2ComponentEnvironment,
-    _instance_name: fmi2String,
-    status: fmi2Status,
-    category: fmi2String,
-    format: fmi2String,
-    text: fmi2String,
-) {
-    // SAFETY: the environment is the `MessageLog` given at instantiation; the FMU passes
-    // NUL-terminated strings.
-    unsafe {
-        assert_eq!(CStr::from_ptr(format), c"%s");
-        let [category, text] = [category, text].map(|s| CStr::from_ptr(s).to_str().unwrap().to_owned());
-        (*environment.cast::<MessageLog>()).0.lock().unwrap().push((status, category, text));
     }
 }
 
@@ -140,22 +105,7 @@ impl Fmu {
 
     /// [`Self::instantiate_logged_at`], `None` where fmi2Instantiate returns NULL.
     pub fn try_instantiate_logged_at(name: &str, log: &MessageLog, resource_location: Option<&str>) -> Option<Fmu> {
-        type Named =
-            extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, fmi2String);
-        type Variadic =
-            unsafe extern "C" fn(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-        Self::with_callbacks(
-            name,
-            fmi2CallbackFunctions {
-                // SAFETY: see `count_message`.
-                logger: Some(unsafe { std::mem::transmute::<Named, Variadic>(record_message) }),
-                allocateMemory: None,
-                freeMemory: None,
-                stepFinished: None,
-                componentEnvironment: (log as *const MessageLog).cast_mut().cast(),
-            },
-            resource_location,
-        )
+        Self::with_callbacks(name, log.callbacks(), resource_location)
     }
 
     fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions, resource_location: Option<&str>) -> Option<Fmu> {

@@ -259,13 +259,16 @@ fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
     fmu.free_state(state);
     let outputs = fmu.get_real(&OUTPUTS);
     let cases: [(Forgery, &str); 7] = [
-        (Box::new(|s| s.values.outputs.force_longitudinal = f64::NAN), "force_longitudinal = NaN is invalid"),
-        (Box::new(|s| s.values.outputs.max_pressure = f64::INFINITY), "max_pressure = inf is invalid"),
+        (Box::new(|s| s.model.values.outputs.force_longitudinal = f64::NAN), "force_longitudinal = NaN is invalid"),
+        (Box::new(|s| s.model.values.outputs.max_pressure = f64::INFINITY), "max_pressure = inf is invalid"),
         (Box::new(|s| s.time = f64::NAN), "time = NaN is invalid: must be finite"),
         (Box::new(|s| s.time = f64::NEG_INFINITY), "time = -inf is invalid: must be finite"),
         (Box::new(|s| s.stop_time = Some(f64::NAN)), "stopTime = NaN is invalid: must be >= time = 0.01"),
         (Box::new(|s| s.stop_time = Some(0.005)), "stopTime = 0.005 is invalid: must be >= time = 0.01"),
-        (Box::new(|s| s.scene.relaxed_forces[1] = f64::NAN), "relaxed_force_lateral = NaN is invalid: must be finite"),
+        (
+            Box::new(|s| s.model.scene.relaxed_forces[1] = f64::NAN),
+            "relaxed_force_lateral = NaN is invalid: must be finite",
+        ),
     ];
     for (forge, reason) in cases {
         let blob = forged(&bytes, forge);
@@ -282,12 +285,12 @@ fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
     let state = exact.get_state();
     let exact_bytes = exact.serialize(state);
     exact.free_state(state);
-    let memory = decode(&exact_bytes).unwrap().scene.model;
+    let memory = decode(&exact_bytes).unwrap().model.scene.model;
     let mut encoded = postcard::to_stdvec(&memory).unwrap();
     let last = encoded.len() - 8;
     encoded[last..].copy_from_slice(&f64::NAN.to_le_bytes());
     let with_nan: ModelMemory = postcard::from_bytes(&encoded).unwrap();
-    let blob = forged(&exact_bytes, |s| s.scene.model = with_nan.clone());
+    let blob = forged(&exact_bytes, |s| s.model.scene.model = with_nan.clone());
     assert_eq!(fmu.deserialize(&blob), Err(ERROR));
     assert!(log.texts().pop().unwrap().ends_with("warm_start_lateral = NaN is invalid: must be finite"));
     // The lateral values' count (a varint of 960 = 2 bytes) one less.
@@ -296,7 +299,7 @@ fn a_forged_state_with_a_valid_checksum_is_refused_with_its_reason() {
     encoded[count] = 0xbf;
     encoded.truncate(encoded.len() - 8);
     let short: ModelMemory = postcard::from_bytes(&encoded).unwrap();
-    assert_eq!(fmu.deserialize(&forged(&exact_bytes, |s| s.scene.model = short.clone())), Err(ERROR));
+    assert_eq!(fmu.deserialize(&forged(&exact_bytes, |s| s.model.scene.model = short.clone())), Err(ERROR));
     assert!(log
         .texts()
         .pop()
@@ -349,9 +352,10 @@ fn a_wheel_on_profiles_continues_bit_identically() {
     // Relaxation matters here: the forces lag behind the steady ones.
     let snapshot = decode(&fmu.serialize(state)).unwrap();
     assert!(
-        !snapshot.wheel.patches.is_empty() && snapshot.wheel.patches.iter().all(|p| p.scene.relaxed_forces != [0.0; 2])
+        !snapshot.model.wheel.patches.is_empty()
+            && snapshot.model.wheel.patches.iter().all(|p| p.scene.relaxed_forces != [0.0; 2])
     );
-    assert_eq!(snapshot.strings.wheel_profile, "MBench_S1002");
+    assert_eq!(snapshot.model.strings.wheel_profile, "MBench_S1002");
     let bytes = fmu.serialize(state);
     fmu.free_state(state);
     let fresh = Fmu::instantiate("fresh", None);
@@ -361,6 +365,6 @@ fn a_wheel_on_profiles_continues_bit_identically() {
     fresh.free_state(restored);
     // A state whose wheel holds a non-finite patch position is refused.
     let mut forged_state = snapshot;
-    forged_state.wheel.patches[0].rail_lateral = f64::NAN;
+    forged_state.model.wheel.patches[0].rail_lateral = f64::NAN;
     assert_eq!(fresh.deserialize(&encode(&forged_state)), Err(ERROR));
 }

@@ -1,6 +1,7 @@
 //! Unit tests of fmi2GetDirectionalDerivative.
 
 use super::test_support::*;
+use super::Slave;
 use crate::logging::Status;
 use crate::model_description::{value_reference as vr, Causality, VARIABLES};
 
@@ -13,7 +14,7 @@ fn directional_derivative_is_the_core_models_along_the_given_rates() {
     let rates = [1.0, -0.5, 2e3, 0.25];
     let mut derivative = [f64::NAN; 3];
     assert_eq!(instance.get_directional_derivative(&OUTPUTS, &knowns, &rates, &mut derivative), Status::Ok);
-    let input = crate::scene::contact_input(instance.values());
+    let input = crate::scene::contact_input(&instance.model_state().values);
     let direction = wheel_rail_contact::ContactInput {
         creepage_longitudinal: 1.25, // a known given twice adds its rates
         creepage_lateral: 0.0,

@@ -1,4 +1,6 @@
-//! Unit tests of fmi2DoStep and the outputs.
+//! Unit tests of fmi2DoStep and the contact's outputs: its evaluation, its errors naming the
+//! variable, its warning, its cache rebuilt for a tunable parameter. The step's time checks are
+//! the slave layer's, tested in `fmi2-slave/src/instance/tests.rs`.
 
 use super::test_support::*;
 use super::*;
@@ -29,31 +31,9 @@ fn outputs_follow_the_inputs_set_before_each_step() {
 }
 
 #[test]
-fn do_step_checks_time_and_step_size() {
-    let (mut instance, log) = new_instance();
-    instance.setup_experiment(0.0, Some(1.0));
-    instance.enter_initialization_mode();
-    instance.exit_initialization_mode();
-    for (t, h, expected) in [
-        (0.0, 0.0, "fmi2DoStep: communicationStepSize = 0 is invalid: must be finite and > 0"),
-        (0.0, -1e-3, "fmi2DoStep: communicationStepSize = -0.001 is invalid: must be finite and > 0"),
-        (0.0, f64::NAN, "fmi2DoStep: communicationStepSize = NaN is invalid: must be finite and > 0"),
-        (0.1, 1e-3, "fmi2DoStep: currentCommunicationPoint = 0.1 is not the instance's time 0"),
-        (f64::NAN, 1e-3, "fmi2DoStep: currentCommunicationPoint = NaN is not the instance's time 0"),
-        (0.0, 1.5, "fmi2DoStep: the step would end at 1.5, after stopTime = 1"),
-    ] {
-        assert_eq!(instance.do_step(t, h), Status::Error);
-        assert_eq!(last_message(&log), expected);
-    }
-    // A master's own rounding of t + h is accepted.
-    assert_eq!(instance.do_step(0.0, 0.1), Status::Ok);
-    assert_eq!(instance.do_step(0.1 + 1e-15, 0.2), Status::Ok);
-}
-
-#[test]
 fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
     let (mut instance, log) = stepping();
-    let before = *instance.values();
+    let before = instance.model_state().values;
     for (value_reference, value, expected) in [
         (vr::CREEPAGE_LATERAL, f64::NAN, "fmi2DoStep: creepage_lateral = NaN is invalid: must be finite"),
         (vr::NORMAL_FORCE, f64::INFINITY, "fmi2DoStep: normal_force = inf is invalid: must be finite"),
@@ -65,12 +45,12 @@ fn invalid_values_are_errors_naming_them_and_the_instance_recovers() {
         assert_eq!(instance.set_real(&[value_reference], &[value]), Status::Ok);
         assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
         assert_eq!(last_message(&log), expected);
-        assert_eq!(instance.values().outputs, before.outputs, "outputs keep their last valid values");
+        assert_eq!(instance.model_state().values.outputs, before.outputs, "outputs keep their last valid values");
         let start = before.real(value_reference).unwrap();
         instance.set_real(&[value_reference], &[start]);
     }
     assert_eq!(instance.do_step(0.0, 0.1), Status::Ok, "usable again once the values are good");
-    assert_eq!(*instance.values(), before);
+    assert_eq!(instance.model_state().values, before);
 }
 
 #[test]
@@ -88,7 +68,7 @@ fn an_overflowing_coulomb_limit_is_an_error_and_keeps_the_last_valid_values() {
     // Found by the fuzz harness: finite μ and Q whose product overflows. The core rejects it
     // by name; the finite-outputs check behind it stays as a backstop.
     let (mut instance, log) = stepping();
-    let before = instance.values().outputs;
+    let before = instance.model_state().values.outputs;
     instance.set_real(&[vr::FRICTION_COEFFICIENT], &[f64::MAX]);
     assert_eq!(instance.do_step(0.0, 0.1), Status::Error);
     assert_eq!(
@@ -96,7 +76,7 @@ fn an_overflowing_coulomb_limit_is_an_error_and_keeps_the_last_valid_values() {
         "fmi2DoStep: friction_coefficient = 1.7976931348623157e308 is invalid: times normal_force \
          (the Coulomb limit μQ) must be finite"
     );
-    assert_eq!(instance.values().outputs, before);
+    assert_eq!(instance.model_state().values.outputs, before);
 }
 
 /// A tunable parameter written between steps applies from the next step on (the scene built
@@ -189,7 +169,7 @@ fn an_exact_solve_that_does_not_converge_is_a_warning_naming_the_grid() {
 fn an_output_beyond_the_floating_point_range_is_an_error_and_nothing_changes() {
     let (mut instance, log) = stepping();
     assert_eq!(instance.do_step(0.0, 1e-3), Status::Ok);
-    let before = *instance.values();
+    let before = instance.model_state().values;
     let slip_velocity = get(&mut instance, vr::SLIP_VELOCITY);
     assert!(slip_velocity.is_finite());
     let references = [vr::CREEPAGE_LONGITUDINAL, vr::ROLLING_SPEED];
@@ -200,7 +180,7 @@ fn an_output_beyond_the_floating_point_range_is_an_error_and_nothing_changes() {
         "fmi2DoStep: slip_velocity = inf for these values: an input or parameter is too large for the model's \
          floating-point range"
     );
-    assert_eq!(instance.values().outputs, before.outputs);
+    assert_eq!(instance.model_state().values.outputs, before.outputs);
     assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(1e-3));
     // Each patch output is guarded, not only the slip velocity: F_x = −μQ at ξ = 1e200 is finite.
     assert_eq!(instance.set_real(&references, &[1e200, 20.0]), Status::Ok);

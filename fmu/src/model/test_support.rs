@@ -3,7 +3,7 @@
 use std::cell::RefCell;
 use std::rc::Rc;
 
-use super::{Instance, InstantiateArguments};
+use super::{Instance, InstantiateArguments, Slave};
 use crate::logging::{LogSink, Status};
 use crate::model_description::GUID;
 
@@ -29,8 +29,12 @@ pub(super) fn arguments(guid: &str) -> InstantiateArguments<'_> {
 
 pub(super) fn new_instance() -> (Instance, Log) {
     let log = Log::default();
-    let instance = Instance::instantiate(arguments(GUID), Box::new(Recorder(log.clone()))).unwrap();
-    (instance, log)
+    (instance_logging_to(&log), log)
+}
+
+/// A new instance whose messages go to `log`.
+pub(super) fn instance_logging_to(log: &Log) -> Instance {
+    Instance::instantiate(arguments(GUID), Box::new(Recorder(log.clone()))).unwrap()
 }
 
 pub(super) fn last_message(log: &Log) -> String {
@@ -39,11 +43,17 @@ pub(super) fn last_message(log: &Log) -> String {
 
 /// Instantiated → initialization mode → step mode, with the start values.
 pub(super) fn stepping() -> (Instance, Log) {
-    let (mut instance, log) = new_instance();
+    let log = Log::default();
+    (stepping_logging_to(&log), log)
+}
+
+/// [`stepping`], its messages going to `log`.
+pub(super) fn stepping_logging_to(log: &Log) -> Instance {
+    let mut instance = instance_logging_to(log);
     assert_eq!(instance.setup_experiment(0.0, None), Status::Ok);
     assert_eq!(instance.enter_initialization_mode(), Status::Ok);
     assert_eq!(instance.exit_initialization_mode(), Status::Ok);
-    (instance, log)
+    instance
 }
 
 pub(super) fn get(instance: &mut Instance, value_reference: u32) -> f64 {
