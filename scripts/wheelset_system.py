@@ -1,6 +1,6 @@
 """The wheelset running on track as an SSP (systems/wheelset_on_track/: the wheelset FMU and a left
 and a right contact unit), run by the fixed-step master scripts/ssp_master.py: assembling the
-SSP with the packaged FMUs, the runs of the physics checks (tests/wheelset/test_system.py),
+SSP with the packaged FMUs, the runs of the physics checks (wheelset/tests/system/test_system.py),
 the measurements on them, and the command `scripts/run-wheelset` (CSV and plots under
 target/wheelset/; `--measure` prints the Klingel and critical-speed figures of docs/wheelset.md).
 

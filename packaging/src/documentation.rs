@@ -221,7 +221,7 @@ on the flange; with <code>creep_force_model</code> = exact_table its normal forc
 within 0.041 μN, with Polach's method within 10 % and 0.2 μN (but on the flange at 6.5 mm, under large spin,
 Polach's lateral force is short and its share of the vertical balance leaves the normal force 10.5 % high) — except
 where the gap is flat or has two nearby minima (y<sub>ws</sub> = 0; the right wheel at 0.5 mm) or the contact jumps
-from tread to flange (the right wheel at 5 mm). The fmpy test <code>tests/fmpy/test_profiles.py</code> checks it.</p>
+from tread to flange (the right wheel at 5 mm). The fmpy test <code>fmu/tests/fmpy/test_profiles.py</code> checks it.</p>
 
 <h2>Which variables each option uses</h2>
 {option_table}

@@ -215,7 +215,7 @@ benchmarks for rail vehicle simulation”, <i>Vehicle System Dynamics</i> 30 (19
 <i>The Manchester Benchmarks for Rail Vehicle Simulation</i>, Swets &amp; Zeitlinger, 1999), whose S1002 wheel and
 UIC60 rail the contact unit has built in. They are kept, each with its unit and source, in one file of the
 project's repository, <code>data/wheelset/passenger_coach.toml</code>, which the wheelset's tests check the start
-values against and the Python reference (<code>tests/wheelset/linear_stability.py</code>) reads. The paper itself
+values against and the Python reference (<code>wheelset/tests/system/linear_stability.py</code>) reads. The paper itself
 was not at hand: the values are as two public vehicle-model files transcribe it, and the primary dampings are
 in one of them only (docs/wheelset.md, “Parameters”, says which file gave which value). The table above gives
 each parameter's source in its description. <code>centred_rolling_radius</code> is the library's rolling radius

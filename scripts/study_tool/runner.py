@@ -48,7 +48,7 @@ def keep_freed_memory():
     with MALLOC_TRIM_THRESHOLD_=65536 (distributed's nanny.pre-spawn-environ), which also returns
     the heap's free top: every scene then faults its pages in afresh, 5 400 page faults per exact
     scene in-process and 6 000 on a worker, 16 % of its CPU time. Blocks up to 32 MiB from the
-    heap and 64 MiB of free heap kept make that next to 0 (tests/study/test_allocator.py).
+    heap and 64 MiB of free heap kept make that next to 0 (scripts/study_tool/tests/test_allocator.py).
     Without glibc (no mallopt) nothing changes."""
     mallopt = getattr(ctypes.CDLL(None), "mallopt", None)
     if mallopt is not None:

@@ -109,7 +109,7 @@ fn at_the_tables_a_over_b_edge_the_derivative_is_the_inside_one() {
     }
 }
 
-/// The generic property once through the C ABI (the core's tests/library/derivative_properties.rs
+/// The generic property once through the C ABI (the core's core/tests/library/derivative_properties.rs
 /// checks it over the whole domain through the scene): at 60 deterministic points, creepages
 /// exactly 0 among them (every fold plane: ξ = 0, η = 0, φ = 0, pure spin, rest), a/b from
 /// the table's edges inwards, ∂(F_x, F_y, M_z)/∂(each contact input) from

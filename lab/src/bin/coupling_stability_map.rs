@@ -60,7 +60,7 @@ fn main() -> Result<(), String> {
     // wheelset's holds nothing.
     let resources = root.join("data");
     let contact =
-        Fmu::load(&release.join("libwheel_rail_contact_fmu.so"), &root.join("modelDescription.xml"), &resources)?;
+        Fmu::load(&release.join("libwheel_rail_contact_fmu.so"), &root.join("fmu/modelDescription.xml"), &resources)?;
     let wheelset = Fmu::load(&release.join("libwheelset.so"), &root.join("wheelset/modelDescription.xml"), &resources)?;
     let wheel_load = 0.5 * number(&document(), "wheelset", "axle_load");
     let only = std::env::args().nth(1);

@@ -525,7 +525,7 @@ fn write_held_out_recheck(
     .unwrap();
 }
 
-/// CONTACT's published values (tests/data/contact_published_cases.md): the exact theory, and
+/// CONTACT's published values (core/tests/data/contact_published_cases.md): the exact theory, and
 /// CONTACT's own FASTSIM on the `fastsim` case; an independent check of the reference.
 fn write_contact_comparison(report: &mut String, settings: &Settings) -> std::io::Result<()> {
     let published = FASTSIM_CASE_EXACT;
@@ -533,7 +533,7 @@ fn write_contact_comparison(report: &mut String, settings: &Settings) -> std::io
     writeln!(
         report,
         "## Against CONTACT (published examples)\n\n`tractcurv`: a/b = 0.5, pure ξ, the {} published exact-theory \
-         points from 0.001 % to 25 % (tests/data/contact_published_cases.md, case 1; CONTACT's grid 48 × 44). \
+         points from 0.001 % to 25 % (core/tests/data/contact_published_cases.md, case 1; CONTACT's grid 48 × 44). \
          `fastsim`: a = 8 mm, b = 4 mm, η = −6.25e-4, φ = 0.625 /m (case 2): CONTACT's exact theory on its \
          44 × 44 grid gives F_y/(μN) = {}, M_z = {} N·m.\n\n\
          | model | tractcurv max abs ΔF_x/(μN) | fastsim F_y/(μN) | fastsim M_z [N·m] |\n|---|---|---|---|",

@@ -1,6 +1,6 @@
 //! The contact data of the passenger-coach wheelset (data/wheelset/passenger_coach.toml) on its
 //! track, from the library's geometry, as JSON for the linear stability reference
-//! (tests/wheelset/linear_stability.py, docs/wheelset.md):
+//! (wheelset/tests/system/linear_stability.py, docs/wheelset.md):
 //!
 //! - the equivalent conicity tan γ_e(A) by EN 15302's principle and its harmonic linearisation,
 //!   for amplitudes A = 0.25 … 6 mm every 0.25 mm (`RollingRadiusDifference`, Δr every 0.1 mm);
@@ -14,7 +14,7 @@
 //!   at rest in yaw and lateral motion, rolling at V = 10 m/s with Ω = V/r_c (r_c the centred
 //!   wheelset's rolling radius), `kalker_linear`, half the axle load prescribed: the lateral
 //!   force and the yaw moment on the wheelset [N, N m] (`WheelRailContact`), against which the
-//!   linear reference's force model is checked (tests/wheelset/test_linear_stability.py).
+//!   linear reference's force model is checked (wheelset/tests/system/test_linear_stability.py).
 //!
 //! `cargo run --release -p lab --bin wheelset_contact_data > data/wheelset/contact_data.json`
 

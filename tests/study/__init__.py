@@ -1,1 +1,0 @@
-"""The parameter-study tool's suite (a package, so its conftest does not collide with tests/fmpy's)."""

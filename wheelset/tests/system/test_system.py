@@ -1,0 +1,218 @@
+"""The wheelset on track as an SSP (systems/wheelset_on_track/), run by the fixed-step master
+scripts/ssp_master.py (fmpy's FMU2Slave): its files against the SSP 1.0 schemas and the parameter
+file, the physics of the coupled FMUs against references that do not come from them (Klingel's
+formula with the geometry's conicity; the linear stability analysis of linear_stability.py), and
+bad input ending the run with a message naming the unit, the time and the variable.
+
+Needs the packaged FMUs (`cargo fmu package`, run first by scripts/test-all; built if missing)."""
+
+import pathlib
+import re
+import sys
+import zipfile
+
+import numpy as np
+import pytest
+from fmpy.ssp.simulation import simulate_ssp
+from fmpy.ssp.ssd import find_components, read_ssd, read_ssv
+
+import linear_stability as ls
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+sys.path.insert(0, str(ROOT / "scripts"))
+
+import ssp_master  # noqa: E402
+import wheelset_system as ws  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def ssp(tmp_path_factory):
+    return ws.system_ssp(tmp_path_factory.mktemp("ssp") / "wheelset_on_track.ssp")
+
+
+def _values(ssp, resource):
+    return {p.name: p.value for p in read_ssv(str(ssp), resource=resource).parameters}
+
+
+def test_the_ssd_and_its_parameter_sets_are_valid_ssp_1_0(ssp):
+    """fmpy's reader validates SystemStructure.ssd and every .ssv it binds against the SSP 1.0
+    schemas it ships; the variants are checked here too. Every input of the three units that the
+    run needs is connected: the wheelset's twelve loads and each wheel's six motions."""
+    ssd = read_ssd(str(ssp))
+    for variant in ("hunting_check", "klingel_check"):
+        read_ssv(str(ssp), resource=f"resources/{variant}.ssv")
+    assert [c.name for c in find_components(ssd.system)] == ["wheelset", "left_wheel", "right_wheel"]
+    ends = {(c.endElement, c.endConnector) for c in ssd.system.connections}
+    loads = [f"{side}_{kind}_{axis}" for side in ("left", "right") for kind in ("track_force", "track_moment")
+             for axis in "xyz"]
+    assert {("wheelset", n) for n in loads} <= ends
+    for wheel in ("left_wheel", "right_wheel"):
+        assert {(wheel, n) for n in ["wheelset_lateral_displacement", "wheelset_yaw_angle",
+                                     "wheelset_lateral_velocity", "wheelset_yaw_rate", "rolling_speed",
+                                     "wheel_angular_speed"]} <= ends
+    assert len(ends) == len(ssd.system.connections) == 24
+
+
+def _with_ssd(ssp, directory, edit):
+    """A copy of the SSP whose SystemStructure.ssd is edit(text)."""
+    copy = directory / "edited.ssp"
+    with zipfile.ZipFile(ssp) as source, zipfile.ZipFile(copy, "w") as target:
+        for item in source.infolist():
+            data = source.read(item)
+            if item.filename == "SystemStructure.ssd":
+                data = edit(data.decode()).encode()
+            target.writestr(item, data)
+    return copy
+
+
+def test_an_ssd_that_breaks_the_schema_or_names_a_missing_variable_is_refused(ssp, tmp_path):
+    """The validation is real: an element SSP 1.0 does not have fails the schema; a connection to
+    a variable the FMU lacks ends the run before it starts, naming it."""
+    broken = _with_ssd(ssp, tmp_path, lambda text: text.replace("<ssd:Connections>", "<ssd:Connections><ssd:Wire/>"))
+    with pytest.raises(Exception, match="Failed to validate SystemStructure.ssd"):
+        ws.run(broken, stop_time=0.01)
+    renamed = _with_ssd(ssp, tmp_path, lambda text: text.replace(
+        'endConnector="left_track_force_y"', 'endConnector="left_track_force_lateral"'))
+    with pytest.raises(ssp_master.SystemRunError, match="names wheelset.left_track_force_lateral, which the system lacks"):
+        ws.run(renamed, stop_time=0.01)
+
+
+def test_the_parameter_sets_are_the_parameter_files(ssp):
+    """The .ssv values against data/wheelset/passenger_coach.toml (wheelset, suspension, the two
+    variants, the wheel load W/2 and the profiles) and the track the contact data were made on."""
+    parameters = ls.load_parameters()
+    wheelset = _values(ssp, "resources/passenger_coach.ssv")
+    for table in ("wheelset", "primary_suspension"):
+        for name, value in parameters[table].items():
+            if name in wheelset:
+                assert float(wheelset[name]) == value, name
+    assert {n for n in parameters["primary_suspension"]} <= set(wheelset)
+    for name in ("mass", "yaw_inertia", "spin_inertia"):
+        assert float(wheelset[name]) == parameters["wheelset"][name]
+    for variant in ("hunting_check", "klingel_check"):
+        values = _values(ssp, f"resources/{variant}.ssv")
+        assert {f"wheelset.{n}": v for n, v in parameters[variant].items()} == {n: float(v) for n, v in values.items()}
+    contact = _values(ssp, "resources/contact_unit.ssv")
+    data = ls.load_contact_data()
+    assert float(contact["vertical_force"]) == pytest.approx(parameters["wheelset"]["axle_load"] / 2, rel=1e-12)
+    assert (contact["wheel_profile"], contact["rail_profile"]) == (data["wheel_profile"], data["rail_profile"])
+    assert float(contact["track_gauge"]) == data["track_gauge"]
+    assert float(contact["wheel_nominal_radius"]) == data["nominal_radius"]
+    assert float(wheelset["centred_rolling_radius"]) == pytest.approx(data["centred_radius"], abs=1e-10)
+
+
+def test_fmpys_own_ssp_simulation_cannot_run_this_system(ssp):
+    """Why the master is our own (scripts/ssp_master.py): fmpy 0.3.32's simulate_ssp starts every
+    connection at 0, so the wheelset's first step sees track_force_z = 0, lift-off, and fails."""
+    with pytest.raises(Exception, match="fmi2DoStep failed"):
+        simulate_ssp(str(ssp), stop_time=0.01, step_size=1e-3)
+
+
+def test_the_passenger_coach_runs_from_the_ssps_defaults(ssp):
+    """The SSD's default experiment (1 s, step 0.2 ms): the cited suspension holds the wheelset,
+    started 3 mm off centre at 20 m/s, and its oscillation dies out; each wheel carries W/2."""
+    result = ws.run(ssp)
+    assert result["time"][-1] == pytest.approx(1.0)
+    y = result[ws.DISPLACEMENT]
+    assert abs(y[0]) == pytest.approx(3e-3)
+    assert np.max(np.abs(y[len(y) // 2:])) < 1e-5
+    for side in ("left", "right"):
+        assert result[f"{side}_wheel.track_force_z"][-1] == pytest.approx(-109092.1 / 2, rel=1e-6)
+
+
+def test_klingels_kinematic_oscillation(ssp):
+    """The free wheelset (no suspension) at 10 m/s through the coupled FMUs (kalker_linear): its
+    wavelength within 5 % of Klingel's λ = 2π √(r0 s / tan γ_e) (Klingel 1883; Wickens 2003,
+    ch. 2), with r0, s of the parameter file and tan γ_e the geometry module's equivalent conicity
+    (data/wheelset/contact_data.json) at the simulated amplitude. Bounded: no extremum beyond the
+    start (the kinematic mode decays slightly, docs/wheelset.md)."""
+    result = ws.klingel_run(ssp)
+    wavelength, amplitude, klingel = ws.klingel_measurement(result)
+    assert 1e-3 < amplitude <= ws.KLINGEL_START
+    assert np.max(np.abs(result[ws.DISPLACEMENT])) <= 1.001 * ws.KLINGEL_START
+    assert wavelength == pytest.approx(klingel, rel=0.05)
+
+
+def test_critical_speed_against_the_linear_stability_analysis(ssp):
+    """The hunting_check wheelset through the coupled FMUs (kalker_linear): the growth rate of its
+    oscillation at amplitudes 4–5 mm at 60, 62 and 64 m/s, interpolated to zero, within 5 % of the
+    critical speed of the linear model (linear_stability.py, spin free, describing functions at
+    A = 4.5 mm: 62.80 m/s). The rates must bracket zero: decaying at 60 m/s, growing at 64."""
+    parameters = ls.load_parameters()
+    reference = ls.critical_speed(ls.variant(parameters, "hunting_check"),
+                                  ls.ContactModel(ls.load_contact_data()).linearised(4.5e-3))
+    rates, speed = ws.measured_critical_speed(ssp)
+    assert None not in rates.values(), rates
+    assert rates[60.0] < 0 < rates[64.0]
+    assert speed == pytest.approx(reference, rel=0.05)
+
+
+def test_a_parameter_out_of_range_names_the_unit_the_time_and_the_variable(ssp):
+    with pytest.raises(ssp_master.SystemRunError) as error:
+        ws.run(ssp, parameters={"wheelset.mass": -1813.0}, stop_time=0.01)
+    assert error.value.component == "wheelset" and error.value.time == 0.0
+    assert "mass = -1813 is invalid" in str(error.value)
+    with pytest.raises(ssp_master.SystemRunError, match=r"right_wheel at t = 0 s: .*track_gauge = -1"):
+        ws.run(ssp, parameters={"right_wheel.track_gauge": -1.0}, stop_time=0.01)
+
+
+def test_a_wheelset_that_climbs_the_flange_derails_with_a_message(ssp):
+    """Above its critical speed the hunting_check wheelset's oscillation grows to the flange
+    (contact from 6.6 mm); with kalker_linear (creep forces unbounded by friction) it climbs it.
+    With the derailment bound at 7 mm the wheelset unit ends the run naming the time and
+    wheelset_lateral_displacement, and the run up to it is kept."""
+    hunting = {"wheelset.forward_speed": 68.0, "wheelset.initial_lateral_displacement": 4e-3}
+    with pytest.raises(ssp_master.SystemRunError) as error:
+        ws.run(ssp, "hunting_check", dict(hunting, **{"wheelset.derailment_displacement": 7e-3}), stop_time=1.0)
+    failure = error.value
+    assert failure.component == "wheelset" and 0.1 < failure.time < 1.0
+    reported = re.search(r"the wheelset derails at t = ([0-9.]+) s: wheelset_lateral_displacement = 0\.007\d* m "
+                         r"is beyond derailment_displacement = 0\.007 m", failure.message)
+    assert reported, failure.message
+    # The wheelset names the end of the step that took it beyond the bound (SSD step 0.2 ms).
+    assert float(reported.group(1)) == pytest.approx(failure.time + 2e-4, abs=1e-9)
+    assert failure.result["time"][-1] == pytest.approx(failure.time)
+    assert np.max(np.abs(failure.result[ws.DISPLACEMENT])) > 6.6e-3
+
+
+def test_a_wheel_whose_creep_forces_lift_it_ends_the_run_naming_its_inputs(ssp):
+    """The same run with the default bound (10 mm): a contact unit stops it first, at the flange
+    (y ≈ 7.4 mm), its vertical balance with the creep forces failing; the master adds the values
+    of the unit's inputs to its message, so the wheelset's state shows."""
+    with pytest.raises(ssp_master.SystemRunError) as error:
+        ws.run(ssp, "hunting_check", {"wheelset.forward_speed": 68.0,
+                                      "wheelset.initial_lateral_displacement": 4e-3}, stop_time=1.0)
+    failure = error.value
+    assert failure.component in ("left_wheel", "right_wheel") and 0.1 < failure.time < 1.0
+    assert "flange climb (derailment): vertical_force = 54546.05 N is not carried" in failure.message
+    assert "wheelset_lateral_displacement = 0.007" in failure.message
+
+
+def test_an_unloaded_wheel_is_lift_off(ssp):
+    """A contact unit given no vertical force carries none: the wheelset stops at t = 0 naming
+    the wheel's track_force_z."""
+    with pytest.raises(ssp_master.SystemRunError,
+                       match=r"wheelset at t = 0 s: .*lifts off the rail at t = 0 s: left_track_force_z = 0 N"):
+        ws.run(ssp, parameters={"left_wheel.vertical_force": 0.0}, stop_time=0.01)
+
+
+def test_the_run_command_writes_the_csv_and_plots(tmp_path, monkeypatch):
+    """`scripts/run-wheelset` (scripts/wheelset_system.py): a short run's CSV and figures."""
+    monkeypatch.setattr(ws, "OUTPUT", tmp_path)
+    assert ws.main(["--stop-time", "0.05", "--name", "short"]) == 0
+    header = (tmp_path / "short.csv").read_text().splitlines()[0].split(",")
+    assert header[0] == "time" and ws.DISPLACEMENT in header and "left_wheel.track_force_y" in header
+    assert (tmp_path / "short.png").stat().st_size > 0 and (tmp_path / "short.svg").stat().st_size > 0
+    assert ws.main(["--set", "left_wheel.vertical_force=0", "--stop-time", "0.01", "--name", "bad"]) == 1
+
+
+def test_growth_rate_of_runs_without_enough_extrema_is_none():
+    """A run that never turns (a drift) or turns once has no growth rate to fit: None, not an
+    IndexError; with three extrema after the first the slope of ln |y| is the decay rate."""
+    time = np.linspace(0.0, 1.0, 1001)
+    drift = {"time": time, ws.DISPLACEMENT: 1e-3 * time}
+    assert ws.growth_rate([drift]) is None
+    assert ws.growth_rate([]) is None
+    sigma = -0.7
+    decaying = {"time": time, ws.DISPLACEMENT: 2e-3 * np.exp(sigma * time) * np.cos(2 * np.pi * 5 * time)}
+    assert ws.growth_rate([decaying], window=(1e-4, 1e-2)) == pytest.approx(sigma, rel=0.02)
