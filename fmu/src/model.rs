@@ -2,7 +2,7 @@
 //! ([`fmi2_slave::instance::Instance`], which holds the lifecycle, Get/Set, the step's checks,
 //! FMU states and logging): what is this FMU's own. Its state is a [`ContactState`] (values,
 //! profile names, the scene's and the wheel's state); beside it the model keeps what is not
-//! state: the [`ModelCache`] derived from the parameters, and the resources directory.
+//! state: the [`ContactCache`] derived from the parameters, and the resources directory.
 //!
 //! - evaluation: `crate::scene::update_outputs`, in place (the hot path of a co-simulation
 //!   step), with a warning when an exact solve stopped at its limits;
@@ -24,7 +24,7 @@ use wheel_rail_contact::scene::Evaluation as SceneEvaluation;
 use crate::mode::Mode;
 use crate::model_description::{self, access_of, Variable, VARIABLES};
 use crate::resources::resource_directory;
-use crate::scene::{update_outputs, ModelCache};
+use crate::scene::{update_outputs, ContactCache};
 use crate::snapshot::{self, ContactState};
 
 mod derivative;
@@ -40,7 +40,7 @@ pub struct ContactModel {
     /// paths are looked up first.
     resources: Option<PathBuf>,
     /// Derived from the parameters (not state: it is rebuilt whenever they differ).
-    cache: ModelCache,
+    cache: ContactCache,
 }
 
 impl Model for ContactModel {
@@ -66,11 +66,11 @@ impl Model for ContactModel {
             _ => None,
         };
         let resources = resources.and_then(Result::ok);
-        Ok((ContactModel { cache: ModelCache::new(resources.clone()), resources }, note))
+        Ok((ContactModel { cache: ContactCache::new(resources.clone()), resources }, note))
     }
 
     fn reset(&mut self) {
-        self.cache = ModelCache::new(self.resources.clone());
+        self.cache = ContactCache::new(self.resources.clone());
     }
 
     fn start() -> ContactState {

@@ -11,3 +11,18 @@
 pub use fmi2_slave::variables::{Causality, Kind, Variability, Variable};
 
 include!(concat!(env!("OUT_DIR"), "/model_description.rs"));
+
+/// An Enumeration variable's value as its generated enum (`from_value`, `items`: the generated
+/// `T::from_value` and `T::ITEMS`), or the error "name = value is invalid: must be one of
+/// 1 (a), 2 (b)".
+pub fn enumeration<T>(
+    name: &str,
+    value: i32,
+    from_value: fn(i32) -> Option<T>,
+    items: &[(&str, i32, &str)],
+) -> Result<T, String> {
+    from_value(value).ok_or_else(|| {
+        let items: Vec<String> = items.iter().map(|(item, value, _)| format!("{value} ({item})")).collect();
+        format!("{name} = {value} is invalid: must be one of {}", items.join(", "))
+    })
+}

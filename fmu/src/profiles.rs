@@ -13,10 +13,9 @@
 
 use super::files::read_regular_file;
 use super::model_description::{
-    Inputs, Parameters, Strings, VerticalContact as VerticalChoice, WheelSide as SideChoice,
+    enumeration, Inputs, Parameters, Strings, VerticalContact as VerticalChoice, WheelSide as SideChoice,
 };
 use super::resources::file_path;
-use super::scene::enumeration;
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
 use std::path::Path;

@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 
 use super::model_description::{
-    ContactGeometry, Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters,
+    enumeration, ContactGeometry, Flexibility as FlexibilityChoice, Inputs, Model, Outputs, Parameters,
     StiffnessSource as StiffnessChoice, Strings, Switch, TractionBound as TractionBoundChoice,
     TractionLaw as TractionLawChoice, Values,
 };
@@ -37,13 +37,13 @@ enum Contact {
 
 /// The contact the parameters select, built (the measured-curve fit, FASTSIM's load
 /// normalisation, the profiles read and placed, every check of the parameters) when first
-/// needed and again only after [`ModelCache::parameters_changed`] — the instance calls it
+/// needed and again only after [`ContactCache::parameters_changed`] — the instance calls it
 /// whenever a parameter is written or an FMU state is set — so a step pays no comparison of the
 /// parameters; and the scene's [`SceneCache`] (Polach's shape factors for the last ellipse shape)
 /// or the wheel's. Derived data, so not part of the FMU's state (the scene's [`SceneState`] and
 /// the wheel's [`WheelState`] are, in the instance's snapshot).
 #[derive(Debug, Clone, Default)]
-pub struct ModelCache {
+pub struct ContactCache {
     /// The parameters it was built for (checked against the current ones in debug builds: a
     /// missed `parameters_changed` fails every test) and the contact or why there is none.
     built: Option<(Parameters, Strings, Result<Contact, String>)>,
@@ -57,7 +57,7 @@ pub struct ModelCache {
     expected_profiles: Option<ProfileDigest>,
 }
 
-impl ModelCache {
+impl ContactCache {
     /// An empty cache whose profiles are looked up in `resources` first (see
     /// [`crate::resources::file_path`]).
     pub fn new(resources: Option<PathBuf>) -> Self {
@@ -89,7 +89,7 @@ impl ModelCache {
     }
 
     /// The contact for these parameters, the caches, and whether the contact was built by this
-    /// call (after [`ModelCache::parameters_changed`]); the error names the parameter.
+    /// call (after [`ContactCache::parameters_changed`]); the error names the parameter.
     #[inline]
     fn plan(
         &mut self,
@@ -113,7 +113,7 @@ impl ModelCache {
         // error, reported alike whether cached or rebuilt.
         #[allow(clippy::eq_op)]
         let unchanged_or_nan = (built_for == parameters || parameters != parameters) && built_strings == strings;
-        debug_assert!(unchanged_or_nan, "a parameter changed without ModelCache::parameters_changed");
+        debug_assert!(unchanged_or_nan, "a parameter changed without ContactCache::parameters_changed");
         match contact {
             Ok(contact) => Ok((contact, &mut self.scene_cache, &mut self.wheel_cache, rebuilt)),
             Err(reason) => Err(reason.clone()),
@@ -134,19 +134,6 @@ fn changed_profiles(read: ProfileDigest, saved: ProfileDigest) -> String {
          saved; restore the files, or set the profile parameters again to start from the files as they are",
         changed.join(" and ")
     )
-}
-
-/// "name = value is invalid: must be one of 1 (a), 2 (b)".
-pub(crate) fn enumeration<T>(
-    name: &str,
-    value: i32,
-    from_value: fn(i32) -> Option<T>,
-    items: &[(&str, i32, &str)],
-) -> Result<T, String> {
-    from_value(value).ok_or_else(|| {
-        let items: Vec<String> = items.iter().map(|(item, value, _)| format!("{value} ({item})")).collect();
-        format!("{name} = {value} is invalid: must be one of {}", items.join(", "))
-    })
 }
 
 fn switch(name: &str, value: i32) -> Result<bool, String> {
@@ -351,7 +338,7 @@ fn contact_of(parameters: &Parameters, strings: &Strings, resources: Option<&Pat
 pub(crate) fn update_outputs(
     values: &mut Values,
     strings: &Strings,
-    cache: &mut ModelCache,
+    cache: &mut ContactCache,
     scene_state: &mut SceneState,
     wheel_state: &mut WheelState,
     evaluation: Evaluation,
@@ -485,7 +472,7 @@ fn unconverged_warning(output: &SceneOutput) -> Option<String> {
 pub(crate) fn directional_derivative(
     values: &Values,
     strings: &Strings,
-    cache: &mut ModelCache,
+    cache: &mut ContactCache,
     direction: &Inputs,
 ) -> Result<Outputs, String> {
     match cache.plan(&values.parameters, strings)? {
@@ -680,8 +667,8 @@ mod tests {
     /// The repository's `data/`, which holds `exact_table.bin` as the FMU's `resources/` does.
     const TEST_RESOURCES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../data");
 
-    fn test_cache() -> ModelCache {
-        ModelCache::new(Some(PathBuf::from(TEST_RESOURCES)))
+    fn test_cache() -> ContactCache {
+        ContactCache::new(Some(PathBuf::from(TEST_RESOURCES)))
     }
 
     /// A rung's model with its default parameters, `exact_table`'s from the test resources.
@@ -702,7 +689,7 @@ mod tests {
     /// advance on success.
     fn evaluate_relaxed(
         values: &Values,
-        cache: &mut ModelCache,
+        cache: &mut ContactCache,
         relaxed_forces: &mut [f64; 2],
         evaluation: Evaluation,
     ) -> Result<Outputs, String> {

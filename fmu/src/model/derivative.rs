@@ -3,14 +3,14 @@
 //! [`crate::scene::directional_derivative`]).
 
 use crate::model_description::{self, variable, Causality, Kind, Values, Variability};
-use crate::scene::{directional_derivative as scene_derivative, finite, ModelCache};
+use crate::scene::{directional_derivative as scene_derivative, finite, ContactCache};
 use crate::snapshot::ContactState;
 
 /// `unknown_rates` = J·`known_rates`, J = ∂(outputs)/∂(inputs) at `state`'s values, or why not.
 /// Knowns must be continuous inputs (a value reference given twice adds its rates), unknowns
 /// outputs; all-or-nothing like Get.
 pub(super) fn directional_derivative(
-    cache: &mut ModelCache,
+    cache: &mut ContactCache,
     state: &ContactState,
     unknowns: &[u32],
     knowns: &[u32],
