@@ -5,7 +5,7 @@
 //! Per evaluation, in order (each option only when the scene selects it; an option that is off
 //! costs a branch and nothing else, and its inputs are not read):
 //! 1. creepages: the inputs, or from the kinematics ([`super::kinematics`]);
-//! 2. contact ellipse: the inputs, or Hertz's ([`super::hertz`]; Q ≤ 0 is lift-off and gives
+//! 2. contact ellipse: the inputs, or Hertz's ([`crate::hertz`]; Q ≤ 0 is lift-off and gives
 //!    zero forces before any Hertz computation);
 //! 3. forces: the chosen [`ModelChoice`], with Polach's 2005 traction law applied at this
 //!    evaluation's speed when selected;

@@ -8,6 +8,7 @@ mod derivatives;
 mod exact_step_cost;
 mod exact_table;
 mod exact_theory;
+mod floors;
 mod geometry_benchmark;
 mod geometry_conicity;
 mod geometry_invariants;
