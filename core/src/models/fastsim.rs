@@ -542,6 +542,12 @@ fn clamp_rate(value: f64) -> f64 {
     value.clamp(-RATE_MAX, RATE_MAX)
 }
 
+/// Nothing carried from one evaluation to the next: each solve sweeps its strips from the leading edge.
+impl crate::models::sequence::SequenceModel for Fastsim {
+    type Memory = ();
+    type Cache = ();
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -150,3 +150,9 @@ fn finite<D: Scalar>(x: D) -> D {
         D::from(f64::MAX.copysign(value(x)))
     }
 }
+
+/// Nothing carried from one evaluation to the next: the forces are linear in the input.
+impl crate::models::sequence::SequenceModel for KalkerLinear {
+    type Memory = ();
+    type Cache = ();
+}

@@ -11,6 +11,7 @@ pub mod model_choice;
 pub mod polach;
 pub mod polach2005;
 pub mod rung;
+pub mod sequence;
 pub mod shen_hedrick_elkins;
 
 // The ladder, in the order of the FMU's `creep_force_model` values: variant of `ModelChoice`,

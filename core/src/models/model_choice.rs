@@ -1,11 +1,9 @@
 //! One type for "whichever rung of the ladder the user picked": enum dispatch, so a caller (the
 //! FMU) holds one value, pays one `match` per evaluation and nothing for the models not chosen.
 
-use crate::models::exact::{ExactTheory, GridSize, WarmStart};
+use crate::models::exact::ExactTheory;
 use crate::models::ModelChoice;
-use crate::{
-    ContactInput, CreepForceModel, CreepForces, InvalidInput, LargeCreepage, Polach, Polach2005, Rung, ShapeCache,
-};
+use crate::{InvalidInput, LargeCreepage, Polach, Polach2005, Rung};
 
 /// Defines [`ModelChoice`] from the list of rungs in `src/models/mod.rs` (one line per rung:
 /// variant, model type, module declaring its `RUNG`): the enum, [`ModelChoice::RUNGS`],
@@ -29,6 +27,84 @@ macro_rules! ladder {
             pub fn rung(&self) -> &'static $crate::Rung {
                 match self {
                     $(Self::$variant(_) => &$module::RUNG,)*
+                }
+            }
+        }
+
+        /// What the models carry from one evaluation of a sequence to the next that can change
+        /// the next result: each rung's [`SequenceModel::Memory`](crate::models::sequence::SequenceModel)
+        /// (the exact theory's warm start: its last tractions, from which the next solve ends
+        /// within the solver's tolerance of a cold solve, not bit for bit on it). It is state, not
+        /// cache: an FMU state saves it, so that a restored run continues bit for bit.
+        #[derive(Debug, Clone, PartialEq, Default)]
+        #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+        pub struct ModelMemory {
+            $($module: <$model as $crate::models::sequence::SequenceModel>::Memory,)*
+        }
+
+        impl ModelMemory {
+            /// Checks a memory that did not come from an evaluation (one read back from a saved
+            /// state).
+            ///
+            /// ```
+            /// # use wheel_rail_contact::ModelMemory;
+            /// assert!(ModelMemory::default().validate().is_ok());
+            /// ```
+            pub fn validate(&self) -> Result<(), $crate::InvalidInput> {
+                $(<$model as $crate::models::sequence::SequenceModel>::validate_memory(&self.$module)?;)*
+                Ok(())
+            }
+        }
+
+        /// What the models keep between evaluations for speed only — results are bit-identical
+        /// without it: each rung's [`SequenceModel::Cache`](crate::models::sequence::SequenceModel)
+        /// (Polach's shape factors for the last a/b and ν). Never saved.
+        #[derive(Debug, Clone, Default)]
+        pub struct ModelCache {
+            $($module: <$model as $crate::models::sequence::SequenceModel>::Cache,)*
+        }
+
+        impl ModelChoice {
+            /// The forces of one evaluation of a sequence (a co-simulation's steps): the chosen
+            /// rung's [`SequenceModel::creep_forces_in_sequence`](crate::models::sequence::SequenceModel::creep_forces_in_sequence)
+            /// from its part of `memory` (read here; its successor is returned, so that a failed
+            /// evaluation leaves the caller's memory as it was) and of `cache` (updated).
+            ///
+            /// ```
+            /// use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTheory, ModelCache, ModelChoice, ModelMemory};
+            /// let model = ModelChoice::Exact(ExactTheory::new(24, 24));
+            /// let contact = |xi: f64| ContactInput {
+            ///     creepage_longitudinal: xi, creepage_lateral: 0.0, spin_creepage: 0.0,
+            ///     normal_force: 100e3, semi_axis_a: 7.2e-3, semi_axis_b: 5.4e-3,
+            ///     friction_coefficient: 0.3, shear_modulus: 82e9, poisson_ratio: 0.28,
+            /// };
+            /// let mut cache = ModelCache::default();
+            /// let first = model.creep_forces_in_sequence(&contact(1e-3), &ModelMemory::default(), &mut cache).unwrap();
+            /// // The next step starts from the first one's tractions: the same forces as a cold solve,
+            /// // to the solver's tolerance (10⁻⁹ μQ), not bit for bit.
+            /// let next = model.creep_forces_in_sequence(&contact(1.1e-3), &first.memory, &mut cache).unwrap();
+            /// let cold = model.creep_forces(&contact(1.1e-3)).unwrap();
+            /// assert!((next.forces.force_longitudinal - cold.force_longitudinal).abs() < 1e-9 * 0.3 * 100e3);
+            /// assert_ne!(next.memory, first.memory);
+            /// assert!(next.unconverged_grid.is_none());
+            /// ```
+            #[inline]
+            pub fn creep_forces_in_sequence(
+                &self,
+                input: &$crate::ContactInput,
+                memory: &ModelMemory,
+                cache: &mut ModelCache,
+            ) -> Result<$crate::SequenceStep, $crate::InvalidInput> {
+                use $crate::models::sequence::SequenceModel;
+                match self {
+                    $(Self::$variant(model) => {
+                        let step = model.creep_forces_in_sequence(input, &memory.$module, &mut cache.$module)?;
+                        Ok($crate::SequenceStep {
+                            forces: step.forces,
+                            memory: ModelMemory { $module: step.memory, ..ModelMemory::default() },
+                            unconverged_grid: step.unconverged_grid,
+                        })
+                    })*
                 }
             }
         }
@@ -85,98 +161,7 @@ impl ModelChoice {
     }
 }
 
-/// What a model carries from one evaluation of a sequence to the next that can change the next
-/// result: the exact theory's warm start (its last tractions; the next solve starts there and
-/// ends within the solver's tolerance of a cold solve, not bit for bit on it). It is state, not
-/// cache: an FMU state saves it, so that a restored run continues bit for bit.
-#[derive(Debug, Clone, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct ModelMemory {
-    exact_start: WarmStart,
-}
-
-impl ModelMemory {
-    /// Checks a memory that did not come from an evaluation (one read back from a saved state).
-    ///
-    /// ```
-    /// # use wheel_rail_contact::ModelMemory;
-    /// assert!(ModelMemory::default().validate().is_ok());
-    /// ```
-    pub fn validate(&self) -> Result<(), InvalidInput> {
-        self.exact_start.validate()
-    }
-}
-
-/// What a model keeps between evaluations for speed only — results are bit-identical without
-/// it: Polach's shape factors for the last a/b and ν ([`ShapeCache`]). Never saved.
-#[derive(Debug, Clone, Default)]
-pub struct ModelCache {
-    polach_shape: ShapeCache,
-}
-
-/// One evaluation of a sequence ([`ModelChoice::creep_forces_in_sequence`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SequenceStep {
-    pub forces: CreepForces,
-    /// The memory the next evaluation starts from.
-    pub memory: ModelMemory,
-    /// The exact theory's grid when its iteration stopped at its limits without converging (the
-    /// forces are its last iterate); `None` for every other evaluation.
-    pub unconverged_grid: Option<GridSize>,
-}
-
-impl SequenceStep {
-    fn of(forces: CreepForces) -> Self {
-        Self { forces, memory: ModelMemory::default(), unconverged_grid: None }
-    }
-}
-
 impl ModelChoice {
-    /// The forces of one evaluation of a sequence (a co-simulation's steps): the model's
-    /// [`CreepForceModel::creep_forces`] of `input`, with what it keeps between evaluations —
-    /// `memory` (read here; its successor is returned, so that a failed evaluation leaves the
-    /// caller's memory as it was) and `cache` (updated).
-    ///
-    /// ```
-    /// use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTheory, ModelCache, ModelChoice, ModelMemory};
-    /// let model = ModelChoice::Exact(ExactTheory::new(24, 24));
-    /// let contact = |xi: f64| ContactInput {
-    ///     creepage_longitudinal: xi, creepage_lateral: 0.0, spin_creepage: 0.0,
-    ///     normal_force: 100e3, semi_axis_a: 7.2e-3, semi_axis_b: 5.4e-3,
-    ///     friction_coefficient: 0.3, shear_modulus: 82e9, poisson_ratio: 0.28,
-    /// };
-    /// let mut cache = ModelCache::default();
-    /// let first = model.creep_forces_in_sequence(&contact(1e-3), &ModelMemory::default(), &mut cache).unwrap();
-    /// // The next step starts from the first one's tractions: the same forces as a cold solve,
-    /// // to the solver's tolerance (10⁻⁹ μQ), not bit for bit.
-    /// let next = model.creep_forces_in_sequence(&contact(1.1e-3), &first.memory, &mut cache).unwrap();
-    /// let cold = model.creep_forces(&contact(1.1e-3)).unwrap();
-    /// assert!((next.forces.force_longitudinal - cold.force_longitudinal).abs() < 1e-9 * 0.3 * 100e3);
-    /// assert_ne!(next.memory, first.memory);
-    /// assert!(next.unconverged_grid.is_none());
-    /// ```
-    pub fn creep_forces_in_sequence(
-        &self,
-        input: &ContactInput,
-        memory: &ModelMemory,
-        cache: &mut ModelCache,
-    ) -> Result<SequenceStep, InvalidInput> {
-        match self {
-            Self::Polach(polach) => {
-                Ok(SequenceStep::of(polach.creep_forces_with_cache(input, &mut cache.polach_shape)?))
-            }
-            Self::Exact(exact) => {
-                let solution = exact.solve_from(input, Some(&memory.exact_start))?;
-                Ok(SequenceStep {
-                    forces: solution.forces,
-                    memory: ModelMemory { exact_start: solution.warm_start() },
-                    unconverged_grid: (!solution.converged).then_some(solution.grid),
-                })
-            }
-            model => Ok(SequenceStep::of(model.creep_forces(input)?)),
-        }
-    }
-
     /// This model under Polach's 2005 traction law (friction falling with the slip velocity,
     /// reduced stiffness) at the speed `speed` [m/s]: Polach's method only, `None` for every
     /// other model.
@@ -223,6 +208,7 @@ impl ModelChoice {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::CreepForceModel;
 
     /// The FMU's values are 1, 2, … in the list's order, and each rung's default model is that
     /// rung (a rung registered in `RUNGS` but answered by another `rung()` arm fails here).

@@ -380,6 +380,24 @@ fn capped<D: Scalar>(x: D, limit: f64) -> D {
     }
 }
 
+/// Polach's shape factors for the last a/b and ν are cached between evaluations ([`ShapeCache`]):
+/// bit-identical results, paid only when the shape changes.
+impl crate::models::sequence::SequenceModel for Polach {
+    type Memory = ();
+    type Cache = ShapeCache;
+
+    #[inline]
+    fn creep_forces_in_sequence(
+        &self,
+        input: &ContactInput,
+        _memory: &(),
+        cache: &mut ShapeCache,
+    ) -> Result<crate::SequenceStep<()>, InvalidInput> {
+        let forces = self.creep_forces_with_cache(input, cache)?;
+        Ok(crate::SequenceStep { forces, memory: (), unconverged_grid: None })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::spin_moment_factor;

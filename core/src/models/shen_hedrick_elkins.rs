@@ -110,3 +110,9 @@ fn saturated_forces<D: Scalar>(input: &ContactInput<D>) -> CreepForces<D> {
         CreepForces::new(limit * unit_x / unit_norm, limit * unit_y / unit_norm, None, limit)
     }
 }
+
+/// Nothing carried from one evaluation to the next: a closed form of the input.
+impl crate::models::sequence::SequenceModel for ShenHedrickElkins {
+    type Memory = ();
+    type Cache = ();
+}

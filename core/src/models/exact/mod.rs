@@ -604,6 +604,32 @@ fn rigid_slip(input: &ContactInput, grid: &ContactGrid, creepage_scale: f64) -> 
     (slip_x, slip_y)
 }
 
+/// The exact theory carries its last tractions from one evaluation to the next ([`WarmStart`]):
+/// each solve starts there and ends within the solver's tolerance of a cold solve. That is state:
+/// an FMU state saves it.
+impl crate::models::sequence::SequenceModel for ExactTheory {
+    type Memory = WarmStart;
+    type Cache = ();
+
+    fn creep_forces_in_sequence(
+        &self,
+        input: &ContactInput,
+        memory: &WarmStart,
+        _cache: &mut (),
+    ) -> Result<crate::SequenceStep<WarmStart>, InvalidInput> {
+        let solution = self.solve_from(input, Some(memory))?;
+        Ok(crate::SequenceStep {
+            forces: solution.forces,
+            memory: solution.warm_start(),
+            unconverged_grid: (!solution.converged).then_some(solution.grid),
+        })
+    }
+
+    fn validate_memory(memory: &WarmStart) -> Result<(), InvalidInput> {
+        memory.validate()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -220,6 +220,12 @@ fn zero_forces<D: Scalar>() -> CreepForces<D> {
     CreepForces { force_longitudinal: zero, force_lateral: zero, spin_moment: Some(zero), adhesion_utilisation: zero }
 }
 
+/// Nothing carried from one evaluation to the next: a read of the table.
+impl crate::models::sequence::SequenceModel for ExactTable {
+    type Memory = ();
+    type Cache = ();
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
