@@ -647,7 +647,10 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
             (Causality::Input, _) => 8,
         };
         let output = if v.causality == Causality::Output { 32 } else { 0 };
-        access[v.value_reference as usize] = base | writable | output;
+        let feeds_through = v.causality == Causality::Input
+            && output_dependencies.iter().any(|dependencies| dependencies.contains(&v.index));
+        let feedthrough = if feeds_through { 128 } else { 0 };
+        access[v.value_reference as usize] = base | writable | output | feedthrough;
     }
     writeln!(
         source,

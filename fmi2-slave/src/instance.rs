@@ -150,6 +150,10 @@ pub enum Evaluation {
     Initialise,
     /// Over one communication step from `time` of `size` > 0, the inputs held.
     Step { time: f64, size: f64 },
+    /// The outputs at the current inputs at the instance's `time`, without advancing the
+    /// model's state (direct feedthrough: a read of an output after an input it depends on was
+    /// written in step mode). A model whose outputs depend on no input directly has nothing to do.
+    Feedthrough { time: f64 },
 }
 
 /// A model as the generated interface and its physics give it: its variables' values (what an
@@ -192,7 +196,7 @@ pub trait Model: Sized {
     /// from their dense table (`access_of`), which is what the hot path reads.
     #[inline]
     fn access(value_reference: u32) -> u8 {
-        Self::variable(value_reference).map_or(0, access::of)
+        Self::variable(value_reference).map_or(0, |v| access::of(v, Self::variables()))
     }
 
     fn real(state: &Self::State, value_reference: u32) -> Option<f64>;
@@ -404,6 +408,11 @@ pub struct Instance<M: Model> {
     returned_strings: Vec<CString>,
     /// The master's logger (with its own copy of the instance name) behind the log filter.
     log: Logger,
+    /// Whether an input that an output depends on directly ([`access::FEEDTHROUGH`]) was
+    /// written since the outputs were last computed: the next read of an output in step mode
+    /// computes them at the current inputs first (FMI 2.0, §4.2.1: a master may set inputs and
+    /// read the outputs that depend on them to solve an algebraic loop).
+    outputs_stale: bool,
 }
 
 impl<M: Model> Instance<M> {
@@ -495,7 +504,7 @@ impl<M: Model> Instance<M> {
     fn not_settable(&self, value_reference: u32, value_type: ValueType) -> String {
         match M::variable(value_reference) {
             None => format!("unknown value reference {value_reference}"),
-            Some(v) if access::of(v) & value_type.access_bit() == 0 => {
+            Some(v) if access::of(v, M::variables()) & value_type.access_bit() == 0 => {
                 format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name())
             }
             Some(v) if v.causality == Causality::Output => format!("{} is an output and cannot be set", v.name),
@@ -534,6 +543,9 @@ impl<M: Model> Instance<M> {
         if written & access::PARAMETER != 0 {
             self.model.parameters_changed();
         }
+        if written & access::FEEDTHROUGH != 0 {
+            self.outputs_stale = true;
+        }
         Ok(())
     }
 
@@ -550,6 +562,11 @@ impl<M: Model> Instance<M> {
         let reads_output = || value_references.iter().any(|&r| M::access(r) & access::OUTPUT != 0);
         if self.run.mode == Mode::InitializationMode && reads_output() {
             return self.evaluate(call, Evaluation::Initialise);
+        }
+        if self.outputs_stale && self.run.mode == Mode::StepComplete && reads_output() {
+            let status = self.evaluate(call, Evaluation::Feedthrough { time: self.run.time })?;
+            self.outputs_stale = false;
+            return Ok(status);
         }
         Ok(Status::Ok)
     }
@@ -604,6 +621,7 @@ impl<M: Model> Slave for Instance<M> {
             model,
             returned_strings: Vec::new(),
             log,
+            outputs_stale: false,
         };
         instance.log.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
         if let Some(note) = note {
@@ -692,6 +710,7 @@ impl<M: Model> Slave for Instance<M> {
         match self.evaluate(CALL, Evaluation::Initialise) {
             Ok(status) => {
                 self.run.mode = Mode::StepComplete;
+                self.outputs_stale = false;
                 status
             }
             Err(status) => status,
@@ -718,6 +737,7 @@ impl<M: Model> Slave for Instance<M> {
         self.log.trace(|| CALL.name().to_owned());
         self.run = FmuState::instantiated(M::start());
         self.model.reset();
+        self.outputs_stale = false;
         Status::Ok
     }
 
@@ -841,6 +861,9 @@ impl<M: Model> Slave for Instance<M> {
         self.log.trace(|| format!("{CALL}: state {}, time {}", state.mode.name(), state.time));
         self.model.restoring(&self.run.model, &state.model);
         self.run.clone_from(state);
+        // The state may have been taken after an input was written and before the outputs were
+        // brought up to date: the next read computes them at the restored inputs.
+        self.outputs_stale = true;
         Status::Ok
     }
 
@@ -914,6 +937,7 @@ impl<M: Model> Slave for Instance<M> {
         match self.evaluate(CALL, Evaluation::Step { time: t, size: h }) {
             Ok(status) => {
                 self.run.time = end;
+                self.outputs_stale = false;
                 status
             }
             Err(status) => status,

@@ -72,9 +72,13 @@ pub mod access {
     pub const OUTPUT: u8 = 32;
     /// A String variable.
     pub const STRING: u8 = 64;
+    /// An input some output depends on directly (`<ModelStructure>`): after it is written in
+    /// step mode, a read of an output first computes the outputs at the new inputs.
+    pub const FEEDTHROUGH: u8 = 128;
 
-    /// The bits of `variable` (the generator's table holds the same, one byte per value reference).
-    pub fn of(variable: &Variable) -> u8 {
+    /// The bits of `variable` among `variables` (the generator's table holds the same, one byte
+    /// per value reference).
+    pub fn of(variable: &Variable, variables: &[Variable]) -> u8 {
         let base = match variable.kind {
             Kind::Real { .. } => REAL,
             Kind::Integer { .. } | Kind::Enumeration { .. } => INTEGER,
@@ -86,6 +90,10 @@ pub mod access {
             (Causality::Parameter, _) => PARAMETER | WRITABLE,
             (Causality::Input, _) => WRITABLE,
         };
-        base | writable
+        let feeds_through = variable.causality == Causality::Input
+            && variables
+                .iter()
+                .any(|o| o.causality == Causality::Output && o.dependencies.contains(&variable.value_reference));
+        base | writable | if feeds_through { FEEDTHROUGH } else { 0 }
     }
 }

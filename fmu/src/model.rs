@@ -121,15 +121,25 @@ impl Model for ContactModel {
 
     /// The outputs at the start or at the step's end from the inputs set before it (the model is
     /// algebraic in them; the step size matters to the relaxed forces), in place; the outputs
-    /// and the contact's state change only if every output is finite.
+    /// and the contact's state change only if every output is finite. Direct feedthrough (new
+    /// inputs read back before the next step) is a step of zero length whose state is dropped:
+    /// the outputs at the new inputs, with the relaxed forces and the exact theory's warm start
+    /// as the last step left them.
     #[inline]
     fn evaluate(&mut self, state: &mut ContactState, evaluation: Evaluation) -> Result<Option<String>, String> {
-        let evaluation = match evaluation {
-            Evaluation::Initialise => SceneEvaluation::Initialise,
-            Evaluation::Step { size, .. } => SceneEvaluation::Step(size),
-        };
         let ContactState { values, strings, scene, wheel, profiles } = state;
-        let warning = update_outputs(values, strings, &mut self.cache, scene, wheel, evaluation)?;
+        let warning = match evaluation {
+            Evaluation::Initialise => {
+                update_outputs(values, strings, &mut self.cache, scene, wheel, SceneEvaluation::Initialise)?
+            }
+            Evaluation::Step { size, .. } => {
+                update_outputs(values, strings, &mut self.cache, scene, wheel, SceneEvaluation::Step(size))?
+            }
+            Evaluation::Feedthrough { .. } => {
+                let (mut scene, mut wheel) = (scene.clone(), wheel.clone());
+                update_outputs(values, strings, &mut self.cache, &mut scene, &mut wheel, SceneEvaluation::Step(0.0))?
+            }
+        };
         *profiles = self.cache.profile_digest();
         Ok(warning)
     }

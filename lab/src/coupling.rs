@@ -67,10 +67,10 @@ impl Fmu {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Master {
     /// All units stepped with the others' outputs at t_k, as most hand-written loops do. The
-    /// contact unit's outputs at t_k are those its last doStep computed from the inputs held over
-    /// [t_(k-1), t_k] (it updates them in doStep only, even after its inputs are set): the
-    /// wheelset feels the forces of x_(k-1), one step late. scripts/ssp_master.py, which sets a
-    /// feedthrough unit's inputs before reading its outputs, gets the same with this unit.
+    /// contact unit's outputs at t_k, read before its inputs are set, are those its last doStep
+    /// computed from the inputs held over [t_(k-1), t_k]: the wheelset feels the forces of
+    /// x_(k-1), one step late. (scripts/ssp_master.py sets a feedthrough unit's inputs before it
+    /// reads its outputs, which the unit then computes at them: that master is Gauss–Seidel.)
     Jacobi,
     /// The contact units first (inputs x_k), their outputs then feed the wheelset's step over
     /// [t_k, t_(k+1)]: the forces of x_k, no delay. Same cost as Jacobi.

@@ -264,7 +264,10 @@ its table), and
 four options, each off by default, supply what a scene lacks: Polach's 2005 traction law, Hertz's contact ellipse,
 creepages from kinematics, creep relaxation (sections below). Without relaxation the outputs are algebraic in the
 inputs: every fmi2DoStep computes them from the inputs set before the step, so any communication step size is
-exact; with relaxation the exact exponential update keeps that property.</p>
+exact; with relaxation the exact exponential update keeps that property. An output read after an input it depends
+on was set within a step is computed at the new inputs, without advancing the time or the relaxed forces (direct
+feedthrough, as <code>&lt;ModelStructure&gt;</code> declares), so a master can solve an algebraic loop through
+the unit.</p>
 
 <h2>Sign convention and units</h2>
 <p>Kalker's and CONTACT's convention: x in the rolling direction, y lateral, z the contact normal into the wheel;

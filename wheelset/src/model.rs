@@ -204,10 +204,12 @@ impl Model for WheelsetModel {
 
     /// On a copy, kept only if every output is finite ([`keep_if_finite`]).
     fn evaluate(&mut self, state: &mut Wheelset, evaluation: Evaluation) -> Result<Option<String>, String> {
-        keep_if_finite::<Self>(state, |next| match evaluation {
-            Evaluation::Initialise => next.initialize(),
-            Evaluation::Step { time, size } => next.step(time, size),
-        })?;
+        match evaluation {
+            Evaluation::Initialise => keep_if_finite::<Self>(state, Wheelset::initialize)?,
+            Evaluation::Step { time, size } => keep_if_finite::<Self>(state, |next| next.step(time, size))?,
+            // Its outputs are its state: no input acts on them within a step.
+            Evaluation::Feedthrough { .. } => {}
+        }
         Ok(None)
     }
 
@@ -336,7 +338,7 @@ mod tests {
     fn the_variables_the_slave_layer_reads_are_the_model_descriptions() {
         assert_eq!(WheelsetModel::variables(), &crate::model_description::VARIABLES[..]);
         for variable in WheelsetModel::variables() {
-            let bits = fmi2_slave::variables::access::of(variable);
+            let bits = fmi2_slave::variables::access::of(variable, WheelsetModel::variables());
             assert_eq!(WheelsetModel::access(variable.value_reference), bits, "{}", variable.name);
         }
         assert_eq!(WheelsetModel::access(9999), 0);

@@ -71,6 +71,7 @@ struct Told {
     parameters_changed: usize,
     restorings: usize,
     resets: usize,
+    feedthroughs: usize,
 }
 
 struct Affine {
@@ -165,11 +166,12 @@ impl Model for Affine {
         }
         assert!(state.offset != f64::MAX, "forced by a test");
         state.y = state.gain * state.x + state.offset;
-        state.count += 1;
-        let warning = (state.x == WARNING_X).then(|| format!("x = {WARNING_X} is where the model warns"));
+        // The count is the model's state: a step advances it, the feedthrough does not.
         match evaluation {
-            Evaluation::Initialise | Evaluation::Step { .. } => Ok(warning),
+            Evaluation::Initialise | Evaluation::Step { .. } => state.count += 1,
+            Evaluation::Feedthrough { .. } => self.told.borrow_mut().feedthroughs += 1,
         }
+        Ok((state.x == WARNING_X).then(|| format!("x = {WARNING_X} is where the model warns")))
     }
 
     fn parameters_changed(&mut self) {
@@ -575,11 +577,63 @@ fn outputs_follow_the_inputs_set_before_each_evaluation() {
     assert_eq!(get(&mut instance, Y), 6.0);
     assert_eq!(get(&mut instance, X), 3.0);
     assert_eq!(instance.exit_initialization_mode(), Status::Ok);
-    instance.set_real(&[X], &[4.0]);
-    assert_eq!(get(&mut instance, Y), 6.0, "not before the step");
     assert_eq!(instance.do_step(0.5, 0.25), Status::Ok);
-    assert_eq!(get(&mut instance, Y), 8.0);
+    assert_eq!(get(&mut instance, Y), 6.0);
     assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.75));
+}
+
+/// Direct feedthrough (FMI 2.0, §4.2.1): in step mode an output read after an input it depends
+/// on (`<ModelStructure>`) was written is computed at the new input — once, however often it
+/// is read — without advancing the time or the model's state; an input no output depends on, a
+/// parameter, or a step in between makes no extra evaluation.
+#[test]
+fn an_output_read_after_its_input_is_written_follows_it_within_the_step() {
+    let (mut instance, told) = instance_logging_to(&Log::default());
+    instance.setup_experiment(0.0, None);
+    instance.enter_initialization_mode();
+    instance.set_real(&[X], &[3.0]);
+    assert_eq!(instance.exit_initialization_mode(), Status::Ok);
+    assert_eq!(instance.do_step(0.0, 0.25), Status::Ok);
+    let count = |instance: &mut Instance<Affine>| {
+        let mut value = [0];
+        assert_eq!(instance.get_integer(&[COUNT], &mut value), Status::Ok);
+        value[0]
+    };
+    assert_eq!((get(&mut instance, Y), count(&mut instance)), (6.0, 2));
+    instance.set_real(&[X], &[4.0]);
+    assert_eq!(get(&mut instance, Y), 8.0, "the output at the new input");
+    assert_eq!(get(&mut instance, Y), 8.0);
+    assert_eq!(told.borrow().feedthroughs, 1, "one evaluation for two reads");
+    assert_eq!(count(&mut instance), 2, "the state did not advance");
+    assert_eq!(instance.get_real_status(StatusKind::LastSuccessfulTime), Ok(0.25), "nor the time");
+    // A step computes the outputs itself: no feedthrough before or after it.
+    instance.set_real(&[X], &[5.0]);
+    assert_eq!(instance.do_step(0.25, 0.25), Status::Ok);
+    assert_eq!((get(&mut instance, Y), count(&mut instance)), (10.0, 3));
+    // A tunable parameter is not a feedthrough input (its effect waits for the step) …
+    instance.set_real(&[OFFSET], &[1.0]);
+    assert_eq!(get(&mut instance, Y), 10.0);
+    assert_eq!(told.borrow().feedthroughs, 1);
+    // … and a restored state is brought up to date at its own inputs when an output is read.
+    let state = instance.get_fmu_state().unwrap();
+    instance.set_real(&[X], &[6.0]);
+    assert_eq!(instance.set_fmu_state(&state), Status::Ok);
+    assert_eq!(get(&mut instance, Y), 11.0);
+    assert_eq!((told.borrow().feedthroughs, count(&mut instance)), (2, 3));
+}
+
+/// A feedthrough that fails is the read's error, naming the call and the value; the outputs and
+/// the state stay, and the next read tries again.
+#[test]
+fn a_feedthrough_that_fails_is_the_reads_error() {
+    let (mut instance, log) = stepping();
+    assert_eq!(instance.do_step(0.0, 0.25), Status::Ok);
+    instance.set_real(&[X], &[f64::NAN]);
+    let mut value = [0.0];
+    assert_eq!(instance.get_real(&[Y], &mut value), Status::Error);
+    assert_eq!(last_message(&log), "fmi2GetReal: x = NaN is invalid: must be finite");
+    instance.set_real(&[X], &[2.0]);
+    assert_eq!(get(&mut instance, Y), 2.0 * 2.0);
 }
 
 /// An evaluation's warning is the status of the call that evaluated (logged with its name), and

@@ -61,7 +61,7 @@ fn reset_returns_to_the_start_values() {
 #[test]
 fn the_access_table_is_the_slave_layers_rule_for_every_variable() {
     for variable in ContactModel::variables() {
-        let bits = fmi2_slave::variables::access::of(variable);
+        let bits = fmi2_slave::variables::access::of(variable, ContactModel::variables());
         assert_eq!(ContactModel::access(variable.value_reference), bits, "{}", variable.name);
     }
     assert_eq!(ContactModel::access(4095), 0);

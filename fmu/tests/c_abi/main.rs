@@ -6,6 +6,7 @@
 mod creep_relaxation;
 mod exact_table_fold_derivatives;
 mod exact_table_resources;
+mod feedthrough;
 mod fmi2_headers;
 mod fmu_derivatives;
 mod fmu_fuzz;
