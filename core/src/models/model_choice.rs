@@ -218,6 +218,7 @@ mod tests {
             assert_eq!(rung.fmu_value, index as i32 + 1, "{}", rung.name);
             let model = (rung.default_model)().unwrap_or_else(|e| panic!("{}: {e}", rung.name));
             assert_eq!((model.rung().name, model.rung().fmu_value), (rung.name, rung.fmu_value));
+            assert_eq!(model.name(), rung.name);
             assert_eq!(ModelChoice::rung_of_fmu_value(rung.fmu_value).map(|r| r.name), Some(rung.name));
             assert_eq!(
                 model.creep_forces(&crate::reference_cases::FASTSIM_CASE).map(|f| f.spin_moment.is_some()),

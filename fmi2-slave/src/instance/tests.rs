@@ -914,3 +914,23 @@ fn keep_if_finite_keeps_only_finite_outputs() {
     );
     assert_eq!(state.y, 1.0);
 }
+
+/// The run data of a plain-bytes payload: round trip at its length; one byte short is refused
+/// naming both lengths, and a payload of the run data alone is a state with an empty model.
+#[test]
+fn run_data_round_trips_and_a_short_payload_is_refused() {
+    let state = FmuState { mode: Mode::StepComplete, time: 0.25, stop_time: Some(2.0), model: () };
+    let payload = encode_run(&state, &[7, 8]);
+    assert_eq!(payload.len(), RUN_BYTES + 2);
+    let decoded = decode_run(&payload).unwrap();
+    assert_eq!(
+        (decoded.mode, decoded.time, decoded.stop_time, decoded.model),
+        (state.mode, 0.25, Some(2.0), &[7, 8][..])
+    );
+    let alone = decode_run(&payload[..RUN_BYTES]).unwrap();
+    assert!(alone.model.is_empty());
+    assert_eq!(
+        decode_run(&payload[..RUN_BYTES - 1]).map(|s| s.time),
+        Err("corrupted: a payload of 16 bytes, shorter than its 17-byte run data".to_owned())
+    );
+}
