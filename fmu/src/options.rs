@@ -1,6 +1,6 @@
 //! Which variables each model choice and scene option uses — declared once: the options here,
 //! the models in their rungs (`wheel_rail_contact::ModelChoice::RUNGS`). The FMU's
-//! documentation prints this table (`packaging/src/documentation.rs`), the README carries the
+//! documentation prints this table (`packaging/src/documentation.rs`), docs/fmu.md carries the
 //! same table (checked by `packaging/tests/readme_tables.rs`), and the tests check it against the
 //! model description: every name is a variable of the stated causality, and every input listed
 //! for an output is among that output's declared dependencies.
@@ -192,7 +192,7 @@ pub fn option_uses() -> Vec<OptionUse> {
 pub const COLUMNS: [&str; 5] =
     ["choice or option", "inputs used", "inputs it replaces", "parameters used", "outputs it sets"];
 
-/// The table's rows as cells, each name formatted by `code` (`—` for none): what the README's
+/// The table's rows as cells, each name formatted by `code` (`—` for none): what docs/fmu.md's
 /// Markdown and the documentation's HTML are written from.
 pub fn rows(code: impl Fn(&str) -> String) -> Vec<[String; 5]> {
     let list = |names: &[&str]| {
@@ -210,7 +210,7 @@ pub fn rows(code: impl Fn(&str) -> String) -> Vec<[String; 5]> {
         .collect()
 }
 
-/// The table as Markdown (the README's copy).
+/// The table as Markdown (docs/fmu.md's copy).
 pub fn markdown_table() -> String {
     let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
     let mut table = line(&COLUMNS.map(str::to_owned));

@@ -46,8 +46,8 @@ impl Settings {
     /// The shipped table: a/b ∈ [0.1, 10^1.5] (36 nodes, uniform in ln a/b), ν ∈ [0, 0.5] (4),
     /// β (41), α (13), τ (49); nodes solved on 80 × 20 elements (40 × 40 for a/b < 1/3) and on
     /// half as many along x, and extrapolated (docs/exact_table.md, "How it was made": the node
-    /// study behind the choice); 22.8 MB in 16-bit values (the 29 nodes up to a/b = 10 took the
-    /// 18.4 MB of the 20 MB that issue 11 allowed for that range).
+    /// study behind the choice); 16-bit values (its size: docs/exact_table.md, "What is
+    /// tabulated").
     pub fn shipped() -> Self {
         Self {
             axes: TableAxes { counts: [36, 4, 41, 13, 49], a_over_b: A_OVER_B_RANGE, poisson_ratio: (0.0, 0.5) },

@@ -19,7 +19,7 @@ macro_rules! ladder {
 
         impl ModelChoice {
             /// Every rung, in the order of their FMU values: the one list the FMU's enumeration,
-            /// its documentation, the README's ladder table, the tests and the benchmarks are
+            /// its documentation, the ladder table of docs/library.md, the tests and the benchmarks are
             /// made from or checked against.
             pub const RUNGS: &'static [&'static $crate::Rung] = &[$(&$module::RUNG),*];
 

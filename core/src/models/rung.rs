@@ -3,7 +3,7 @@
 //! ladder in `src/models/mod.rs` (which defines [`ModelChoice`] and its
 //! [`RUNGS`](ModelChoice::RUNGS)). From that list the FMU's adapter checks its `creep_force_model`
 //! enumeration, builds the rungs without parameters of their own and writes its options table;
-//! the packaging tool writes the FMU's documentation and the README's ladder table; the tests,
+//! the packaging tool writes the FMU's documentation and the ladder table of docs/library.md; the tests,
 //! benchmarks and the trade report take their models. Adding a rung without FMU parameters of
 //! its own therefore takes its model file (with its `RUNG`), its line in the ladder, its tests
 //! and its item in `modelDescription.xml` (checked against the list by the adapter's tests); one
@@ -29,9 +29,9 @@ pub struct Rung {
     pub friction_limited: bool,
     /// Whether it is for offline or low-rate use only (the exact theory: milliseconds per step).
     pub offline: bool,
-    /// What it is, one line of Markdown (the README's ladder table).
+    /// What it is, one line of Markdown (the ladder table of docs/library.md).
     pub summary: &'static str,
-    /// Where it comes from, Markdown (the README's ladder table).
+    /// Where it comes from, Markdown (the ladder table of docs/library.md).
     pub source: &'static str,
     /// Its paragraph of the FMU's documentation, HTML: the equations, the FMU parameters it reads
     /// and where its accuracy and cost are measured.

@@ -1,5 +1,5 @@
 //! The library's integration tests: one program, so that they compile and link once (each file of
-//! tests/ would be a program of its own, linking the library and its 23 MB table again). One module
+//! tests/ would be a program of its own, linking the library and its embedded table again). One module
 //! per subject; `cargo test --test library <module>` runs one, e.g. `geometry_benchmark`.
 
 mod common;

@@ -9,7 +9,7 @@
 //!
 //! Budget: `FMU_FUZZ_CALLS` calls (default 1 000 000, about a second) from seed
 //! `FMU_FUZZ_SEED` (default fixed, so CI is reproducible). A failure prints the seed and the
-//! call number; rerun with that seed to reproduce. Longer runs: see the README.
+//! call number; rerun with that seed to reproduce. Longer runs: see docs/testing.md.
 
 use std::collections::BTreeMap;
 use std::ffi::{c_char, CString};

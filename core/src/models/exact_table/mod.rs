@@ -1,5 +1,5 @@
-//! Kalker's exact theory, tabulated: the rung as fast as Polach's method and as accurate as the
-//! exact theory ([`ExactTable`]).
+//! Kalker's exact theory, tabulated: the rung at about Polach's cost (the trade report,
+//! docs/trade/README.md, measures the ratio) and as accurate as the exact theory ([`ExactTable`]).
 //!
 //! Kalker tabulated his own exact theory for the same purpose (USETAB, 1996: 25 a/b × 16 ξ ×
 //! 16 η × 32 φ cases on 12 × 12 grids). This table is made by our exact solver

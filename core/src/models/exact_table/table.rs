@@ -9,8 +9,9 @@
 //! F_y/(μQ), M_z/(μQc); differenced along τ and ν and split into byte planes, see
 //! `encode_counts`), and a CRC-32 of all the bytes before it.
 //!
-//! The values are 16-bit, which is what lets the 29 a/b nodes up to a/b = 10 fit in the 20 MB
-//! issue 11 allowed (18.4 MB; the 7 nodes on to 10^1.5 for a flange's long patches add 4.5 MB).
+//! The values are 16-bit, which keeps the table at 22.9 MB (docs/exact_table.md, "What is
+//! tabulated": the 29 a/b nodes up to a/b = 10 take 18.4 MB, the 7 on to 10^1.5 for a flange's
+//! long patches 4.5 MB).
 //! Each τ node has its own units, its largest |F| and |M_z| over the table divided by 32767:
 //! near t = 0 the forces are O(s), and one unit for all nodes (1/32767 μQ) made the first τ
 //! node's spin-driven F_y (≈ 2e-5 μQ at a/b = 0.1) wrong by up to 80 %, and the linear limit by
