@@ -97,3 +97,44 @@ pub mod access {
         base | writable | if feeds_through { FEEDTHROUGH } else { 0 }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::access::{self, FEEDTHROUGH, OUTPUT, PARAMETER, REAL, WRITABLE};
+    use super::{Causality, Kind, Variability, Variable};
+
+    const fn real(
+        name: &'static str,
+        value_reference: u32,
+        causality: Causality,
+        dependencies: &'static [u32],
+    ) -> Variable {
+        let variability =
+            if matches!(causality, Causality::Parameter) { Variability::Tunable } else { Variability::Continuous };
+        Variable {
+            name,
+            value_reference,
+            causality,
+            variability,
+            kind: Kind::Real { start: None },
+            unit: None,
+            display_unit: None,
+            description: "",
+            dependencies,
+        }
+    }
+
+    /// An input is a feedthrough input when some output lists it among its dependencies; an input
+    /// no output lists is not, nor is a parameter an output lists.
+    #[test]
+    fn only_inputs_an_output_depends_on_feed_through() {
+        let variables = [
+            real("fed", 0, Causality::Input, &[]),
+            real("unused", 1, Causality::Input, &[]),
+            real("gain", 2, Causality::Parameter, &[]),
+            real("out", 3, Causality::Output, &[0, 2]),
+        ];
+        let bits: Vec<u8> = variables.iter().map(|v| access::of(v, &variables)).collect();
+        assert_eq!(bits, [REAL | WRITABLE | FEEDTHROUGH, REAL | WRITABLE, REAL | PARAMETER | WRITABLE, REAL | OUTPUT]);
+    }
+}
