@@ -13,7 +13,7 @@ use wheel_rail_contact::wheel::{
 };
 use wheel_rail_contact::{ModelChoice, Polach};
 use wheel_rail_contact_fmu::ffi::{
-    fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2SetString, fmi2SetupExperiment,
+    fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetReal, fmi2SetString, fmi2SetupExperiment,
 };
 use wheel_rail_contact_fmu::fmi2::fmi2Status;
 use wheel_rail_contact_fmu::model_description::{
@@ -288,9 +288,17 @@ fn an_invalid_position_is_an_error_naming_it_and_the_instance_carries_on() {
         assert_eq!(fmu.do_step(0.0, 1e-3), ERROR);
         let (_, message) = log.last().unwrap();
         assert!(message.starts_with(&format!("fmi2DoStep: {name}")), "{message}");
-        assert_eq!(fmu.get_real(&WHEEL_OUTPUTS), before, "the outputs are kept");
+        // Read at the invalid input, the outputs are the same error (direct feedthrough) …
+        let mut values = [0.0; WHEEL_OUTPUTS.len()];
+        // SAFETY: a live instance; the arrays have the length passed.
+        let status = unsafe { fmi2GetReal(fmu.c, WHEEL_OUTPUTS.as_ptr(), WHEEL_OUTPUTS.len(), values.as_mut_ptr()) };
+        assert_eq!(status, ERROR);
+        let (_, message) = log.last().unwrap();
+        assert!(message.starts_with(&format!("fmi2GetReal: {name}")), "{message}");
+        // … and back at the good value they are the ones before: the failed step kept nothing.
         let index = WHEELSET.iter().position(|r| *r == reference).unwrap();
         assert_eq!(fmu.set_real(&[reference], &[CASE_11[index]]), OK);
+        assert_eq!(fmu.get_real(&WHEEL_OUTPUTS), before, "the outputs are kept");
     }
     assert_eq!(fmu.do_step(0.0, 1e-3), OK);
     // The vertical position is not read with a prescribed force.
@@ -429,9 +437,11 @@ impl Sweep {
     fn at(&self, lateral: f64) -> (fmi2Status, f64, f64) {
         assert_eq!(self.fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[lateral]), OK);
         let status = self.fmu.do_step(self.time.get(), 1e-3);
-        if status == OK {
-            self.time.set(self.time.get() + 1e-3);
+        if status != OK {
+            // Read at this position the outputs would be the same error (direct feedthrough).
+            return (status, f64::NAN, f64::NAN);
         }
+        self.time.set(self.time.get() + 1e-3);
         let [count, force] = self.fmu.get_real(&[vr::CONTACT_PATCH_COUNT, vr::TRACK_FORCE_Z])[..] else {
             unreachable!()
         };
