@@ -635,22 +635,21 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
     // one byte instead of a whole table row.
     let mut access = vec![0u8; largest as usize + 1];
     for v in variables {
+        use crate::variables::access::{FEEDTHROUGH, FIXED, INTEGER, OUTPUT, PARAMETER, REAL, STRING, WRITABLE};
         let base = match v.base_type {
-            BaseType::Real => 1,
-            BaseType::Integer | BaseType::Enumeration => 2,
-            BaseType::String => 64,
+            BaseType::Real => REAL,
+            BaseType::Integer | BaseType::Enumeration => INTEGER,
+            BaseType::String => STRING,
         };
         let writable = match (v.causality, v.variability.as_str()) {
-            (Causality::Output, _) => 0,
-            (Causality::Parameter, "fixed") => 4 | 16,
-            (Causality::Parameter, _) => 4 | 8,
-            (Causality::Input, _) => 8,
+            (Causality::Output, _) => OUTPUT,
+            (Causality::Parameter, "fixed") => PARAMETER | FIXED,
+            (Causality::Parameter, _) => PARAMETER | WRITABLE,
+            (Causality::Input, _) => WRITABLE,
         };
-        let output = if v.causality == Causality::Output { 32 } else { 0 };
         let feeds_through = v.causality == Causality::Input
             && output_dependencies.iter().any(|dependencies| dependencies.contains(&v.index));
-        let feedthrough = if feeds_through { 128 } else { 0 };
-        access[v.value_reference as usize] = base | writable | output | feedthrough;
+        access[v.value_reference as usize] = base | writable | if feeds_through { FEEDTHROUGH } else { 0 };
     }
     writeln!(
         source,
