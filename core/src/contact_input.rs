@@ -113,7 +113,14 @@ impl<T: Scalar> ContactInput<T> {
 /// lift-off (Q ≤ 0).
 pub(crate) fn hertz_max_pressure<T: Scalar>(normal_force: T, semi_axis_a: T, semi_axis_b: T) -> T {
     if value(normal_force) > 0.0 {
-        normal_force * 3.0 / (semi_axis_a * (2.0 * std::f64::consts::PI)) / semi_axis_b
+        // One division where a·b is a normal number (two dependent divisions were a tenth of a
+        // single-patch step); two where the product would underflow (a, b < 1e-154).
+        let area = semi_axis_a * semi_axis_b;
+        if value(area) >= f64::MIN_POSITIVE {
+            normal_force * (3.0 / (2.0 * std::f64::consts::PI)) / area
+        } else {
+            normal_force * 3.0 / (semi_axis_a * (2.0 * std::f64::consts::PI)) / semi_axis_b
+        }
     } else {
         T::from(0.0)
     }
@@ -134,5 +141,29 @@ fn check(variable: &'static str, value: f64, valid: bool, requirement: &'static 
         Ok(())
     } else {
         Err(InvalidInput::new(variable, value, requirement))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::hertz_max_pressure;
+
+    /// p₀ = 3Q/(2πab) where a·b underflows (a = 1e-200, b = 1e-120 m; Q = 1e-20 N): still to
+    /// full precision, 3/(2π)·1e300 Pa (3/(2π) = 0.477464829275686 by hand), not a quotient of a
+    /// subnormal product.
+    #[test]
+    fn max_pressure_where_the_area_underflows() {
+        let p0 = hertz_max_pressure(1e-20, 1e-200, 1e-120);
+        let expected = 0.477_464_829_275_686e300;
+        assert!((p0 - expected).abs() <= 1e-14 * expected, "{p0:e} against {expected:e}");
+    }
+
+    /// The usual case: Q = 100 kN on a = 7.2, b = 5.4 mm: 3Q/(2πab) = 1.228047400400427 GPa
+    /// (by hand), to rounding.
+    #[test]
+    fn max_pressure_of_a_wheel_patch() {
+        let p0 = hertz_max_pressure(100e3, 7.2e-3, 5.4e-3);
+        assert!((p0 - 1.228_047_400_400_427e9).abs() <= 1e-6, "{p0}");
+        assert_eq!(hertz_max_pressure(0.0, 7.2e-3, 5.4e-3), 0.0, "lift-off");
     }
 }

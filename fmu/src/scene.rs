@@ -376,11 +376,12 @@ pub(crate) fn update_outputs(
     }
 }
 
-/// Whether every value is finite: x·0 is ±0 for a finite x and NaN for ±Inf or NaN, so one
-/// branch-free sum tells.
+/// Whether every value is finite. Each value is tested on its own and the answers combined by a
+/// bitwise and: no value waits for another (a running sum of x·0 made one chain of dependent
+/// additions, 13 additions' latency at the end of every step).
 #[inline]
 fn all_finite(reals: &[f64]) -> bool {
-    reals.iter().fold(0.0, |sum, x| sum + x * 0.0) == 0.0
+    reals.iter().fold(true, |all, x| all & x.is_finite())
 }
 
 /// Whether every output of one patch is finite.
@@ -774,7 +775,9 @@ mod tests {
         // The echoes: creepages and ellipse as given, p0 = 3Q/(2πab), μ as given, w = ξ|V|.
         assert_eq!(outputs.effective_creepage_longitudinal, 1e-3);
         assert_eq!((outputs.contact_semi_axis_a, outputs.contact_semi_axis_b), (7.2e-3, 5.4e-3));
-        assert_eq!(outputs.max_pressure, 3.0 * 100e3 / (2.0 * PI * 7.2e-3) / 5.4e-3);
+        // To rounding: the FMU forms 3Q/(2π)/(ab), one division instead of two.
+        let p0 = 3.0 * 100e3 / (2.0 * PI * 7.2e-3) / 5.4e-3;
+        assert!((outputs.max_pressure - p0).abs() <= 4.0 * f64::EPSILON * p0, "{} against {p0}", outputs.max_pressure);
         assert_eq!((outputs.approach, outputs.current_friction_coefficient), (0.0, 0.3));
         assert!((outputs.slip_velocity - 1e-3 * 20.0).abs() < 1e-18);
     }
