@@ -57,6 +57,24 @@ struct EnumerationType {
     items: Vec<(String, i32, String)>,
 }
 
+/// For a Windows GNU target: makes the cdylib export the [`crate::FMI2_FUNCTIONS`] and nothing
+/// else, by a module-definition file in `out_dir` handed to the linker as an input file. With
+/// mingw-w64's ld, rustc's own export list already does that; zig's linker (cargo-zigbuild, the
+/// win64 build that needs no root) ignores rustc's list, passed as `-Wl,<file>`, and exported
+/// every global symbol (2 233 of them) — a positional `.def` it honours. Other targets: nothing.
+pub fn export_only_fmi2_functions(out_dir: &Path) {
+    let target = |key: &str| std::env::var(key).unwrap_or_default();
+    if target("CARGO_CFG_TARGET_OS") != "windows" || target("CARGO_CFG_TARGET_ENV") != "gnu" {
+        return;
+    }
+    let definitions = out_dir.join("fmi2_exports.def");
+    let text: String = std::iter::once("EXPORTS\n".to_owned())
+        .chain(crate::FMI2_FUNCTIONS.iter().map(|name| format!("    {name}\n")))
+        .collect();
+    std::fs::write(&definitions, text).unwrap_or_else(|e| panic!("cannot write {}: {e}", definitions.display()));
+    println!("cargo:rustc-cdylib-link-arg={}", definitions.display());
+}
+
 pub fn generate(xml_path: &str, out_path: &Path) {
     println!("cargo:rerun-if-changed={xml_path}");
     let text = std::fs::read_to_string(xml_path).unwrap_or_else(|e| panic!("cannot read {xml_path}: {e}"));

@@ -43,6 +43,46 @@ use std::ffi::CString;
 use logging::{LogSink, Status};
 use mode::Call;
 
+/// The FMI 2.0 Co-Simulation functions (`fmi2Functions.h`: 19 common, 6 Co-Simulation, plus the
+/// FMU-state, derivative and status functions): what [`export_fmi2!`] exports, and all a
+/// binary of this layer may export (`build::export_only_fmi2_functions` holds a win64 DLL to it).
+pub const FMI2_FUNCTIONS: [&str; 34] = [
+    "fmi2GetTypesPlatform",
+    "fmi2GetVersion",
+    "fmi2SetDebugLogging",
+    "fmi2Instantiate",
+    "fmi2FreeInstance",
+    "fmi2SetupExperiment",
+    "fmi2EnterInitializationMode",
+    "fmi2ExitInitializationMode",
+    "fmi2Terminate",
+    "fmi2Reset",
+    "fmi2GetReal",
+    "fmi2GetInteger",
+    "fmi2GetBoolean",
+    "fmi2GetString",
+    "fmi2SetReal",
+    "fmi2SetInteger",
+    "fmi2SetBoolean",
+    "fmi2SetString",
+    "fmi2GetFMUstate",
+    "fmi2SetFMUstate",
+    "fmi2FreeFMUstate",
+    "fmi2SerializedFMUstateSize",
+    "fmi2SerializeFMUstate",
+    "fmi2DeSerializeFMUstate",
+    "fmi2GetDirectionalDerivative",
+    "fmi2SetRealInputDerivatives",
+    "fmi2GetRealOutputDerivatives",
+    "fmi2DoStep",
+    "fmi2CancelStep",
+    "fmi2GetStatus",
+    "fmi2GetRealStatus",
+    "fmi2GetIntegerStatus",
+    "fmi2GetBooleanStatus",
+    "fmi2GetStringStatus",
+];
+
 /// `fmi2StatusKind`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StatusKind {

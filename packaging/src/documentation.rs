@@ -376,7 +376,7 @@ mod tests {
     fn the_platforms_section_states_what_the_binaries_need() {
         let zig = BinaryNote::Linux64 { glibc: (2, 28), baseline_applied: true };
         let plain = BinaryNote::Linux64 { glibc: (2, 35), baseline_applied: false };
-        let html = index_html(&[zig, BinaryNote::Win64]);
+        let html = index_html(&[zig, BinaryNote::Win64 { linked_by_zig: true }]);
         assert!(html.contains("needs glibc ≥ 2.28 (the newest glibc symbol version it uses; built against"));
         assert!(html.contains("<b>win64</b>") && !html.contains("No win64 binary"));
         let html = index_html(&[plain]);
@@ -386,7 +386,7 @@ mod tests {
 
     #[test]
     fn every_variable_is_documented_with_its_unit() {
-        let html = index_html(&[BinaryNote::Win64]);
+        let html = index_html(&[BinaryNote::Win64 { linked_by_zig: true }]);
         for variable in &VARIABLES {
             assert!(html.contains(&format!("<td><code>{}</code></td>", variable.name)), "{}", variable.name);
         }
@@ -398,7 +398,7 @@ mod tests {
     /// curve's plot and two of the profiles in contact.
     #[test]
     fn the_profile_mode_is_documented_with_its_figure() {
-        let html = index_html(&[BinaryNote::Win64]);
+        let html = index_html(&[BinaryNote::Win64 { linked_by_zig: true }]);
         assert!(html.contains("<h2>Contact from profiles (parameter <code>contact_geometry</code>)</h2>"));
         assert_eq!(html.matches("<svg").count(), 3);
         assert!(html.contains("right wheel, y_ws = 2 mm") && html.contains("right wheel, y_ws = 7 mm"));

@@ -4,12 +4,14 @@
 //! | folder     | Rust target              | toolchain                                             |
 //! |------------|--------------------------|-------------------------------------------------------|
 //! | `linux64`  | `x86_64-unknown-linux-gnu` | cargo-zigbuild (+ zig) for glibc ≥ [`GLIBC_BASELINE`]; else plain cargo, this machine's glibc |
-//! | `win64`    | `x86_64-pc-windows-gnu`  | `rustup target add x86_64-pc-windows-gnu` + mingw-w64's `x86_64-w64-mingw32-gcc` |
+//! | `win64`    | `x86_64-pc-windows-gnu`  | the Rust target (`cargo fmu` adds it with rustup) + cargo-zigbuild (+ zig); else mingw-w64's `x86_64-w64-mingw32-gcc` |
 //!
 //! Every binary is read back before it is zipped ([`check_library`]): it must export the 34
 //! FMI 2.0 functions, a linux64 one built for the baseline must need no newer glibc symbol, and
-//! a win64 one may import only DLLs that Windows ships (the C runtime and libgcc linked
-//! statically), so nothing but the FMU itself has to be copied to a user's machine.
+//! a win64 one may import only DLLs that Windows ships (the Universal C Runtime with zig; with
+//! mingw-w64 its runtime and libgcc linked statically), so nothing but the FMU itself has to be
+//! copied to a user's machine. Both commands of the README build both binaries without root:
+//! zig comes from PyPI into `.venv`, the Rust target from rustup.
 
 use std::collections::BTreeSet;
 use std::io::Write as _;
@@ -69,44 +71,9 @@ pub const UNITS: [Unit; 2] = [CONTACT, WHEELSET];
 /// The oldest glibc the linux64 binary loads on: 2.28 is Debian 10, RHEL/Rocky 8, Ubuntu 18.10.
 pub const GLIBC_BASELINE: (u32, u32) = (2, 28);
 
-/// The FMI 2.0 Co-Simulation functions (`fmi2Functions.h`: 19 common, 6 Co-Simulation, plus the
-/// FMU-state, derivative and status functions), all of which the binary must export.
-pub const FMI2_FUNCTIONS: [&str; 34] = [
-    "fmi2GetTypesPlatform",
-    "fmi2GetVersion",
-    "fmi2SetDebugLogging",
-    "fmi2Instantiate",
-    "fmi2FreeInstance",
-    "fmi2SetupExperiment",
-    "fmi2EnterInitializationMode",
-    "fmi2ExitInitializationMode",
-    "fmi2Terminate",
-    "fmi2Reset",
-    "fmi2GetReal",
-    "fmi2GetInteger",
-    "fmi2GetBoolean",
-    "fmi2GetString",
-    "fmi2SetReal",
-    "fmi2SetInteger",
-    "fmi2SetBoolean",
-    "fmi2SetString",
-    "fmi2GetFMUstate",
-    "fmi2SetFMUstate",
-    "fmi2FreeFMUstate",
-    "fmi2SerializedFMUstateSize",
-    "fmi2SerializeFMUstate",
-    "fmi2DeSerializeFMUstate",
-    "fmi2GetDirectionalDerivative",
-    "fmi2SetRealInputDerivatives",
-    "fmi2GetRealOutputDerivatives",
-    "fmi2DoStep",
-    "fmi2CancelStep",
-    "fmi2GetStatus",
-    "fmi2GetRealStatus",
-    "fmi2GetIntegerStatus",
-    "fmi2GetBooleanStatus",
-    "fmi2GetStringStatus",
-];
+/// The FMI 2.0 functions the binary must export, and only they (the slave layer's list, which
+/// its build module also writes into the win64 binary's export definitions).
+pub use fmi2_slave::FMI2_FUNCTIONS;
 
 /// DLLs every 64-bit Windows (10 and later) ships, matched case-insensitively; `api-ms-win-*`
 /// API sets are resolved by the loader itself.
@@ -184,8 +151,10 @@ pub enum Linkage {
     GlibcBaseline,
     /// Plain `cargo build` for this machine: the binary needs this machine's glibc or newer.
     ThisMachinesGlibc,
-    /// Cross-built with mingw-w64, its runtime linked statically.
+    /// Cross-built with mingw-w64, its runtime linked statically (where zig is missing).
     Mingw,
+    /// Cross-linked by zig (cargo-zigbuild), against Windows' Universal C Runtime: no root needed.
+    Zig,
 }
 
 /// A binary built for the FMU and what its check found.
@@ -244,7 +213,8 @@ fn install_zigbuild() -> Option<PathBuf> {
     let script = workspace_root().join("scripts/install-zigbuild");
     eprintln!(
         "cargo fmu: cargo-zigbuild is missing; installing it and zig from PyPI into .venv (once, \
-         scripts/install-zigbuild) so that the linux64 binary loads on glibc ≥ {}.{}",
+         scripts/install-zigbuild) so that the linux64 binary loads on glibc ≥ {}.{} and the win64 one links \
+         without mingw-w64",
         GLIBC_BASELINE.0, GLIBC_BASELINE.1
     );
     match Command::new(&script).status() {
@@ -254,7 +224,10 @@ fn install_zigbuild() -> Option<PathBuf> {
                 Ok(status) => format!("{} ended with {status}", script.display()),
                 Err(error) => format!("{}: {error}", script.display()),
             };
-            eprintln!("cargo fmu: {reason}; building linux64 with plain cargo for this machine's glibc instead");
+            eprintln!(
+                "cargo fmu: {reason}; building linux64 with plain cargo for this machine's glibc instead, and \
+                 win64 with mingw-w64 if it is installed"
+            );
             None
         }
     }
@@ -342,25 +315,8 @@ fn build_platform(
             };
             match zigbuild {
                 Some(zigbuild) if native || rust_target_installed(target) => {
-                    let mut command = Command::new(&zigbuild);
-                    let manifest = workspace_root().join("Cargo.toml");
-                    command.args([
-                        "zigbuild",
-                        "--target",
-                        &format!("{target}.{}.{}", GLIBC_BASELINE.0, GLIBC_BASELINE.1),
-                    ]);
-                    command.arg("--manifest-path").arg(manifest);
-                    // Run from the file system's root: zig names its folders relative to the
-                    // working directory when it lives below it (the workspace's .venv), and
-                    // cargo-zigbuild hands these include folders to build scripts (bindgen), which
-                    // run elsewhere; below the root, every path is absolute.
-                    let root = workspace_root().ancestors().last().map(Path::to_path_buf).unwrap_or_default();
-                    command.current_dir(root);
-                    if let Some(venv_bin) = zigbuild.parent().filter(|folder| folder.join("python3").is_file()) {
-                        // The `ziglang` package lives beside cargo-zigbuild, in the same venv.
-                        command.env("CARGO_ZIGBUILD_PYTHON_PATH", venv_bin.join("python3"));
-                    }
-                    cargo_build_arguments(&mut command, profile, unit);
+                    let target = format!("{target}.{}.{}", GLIBC_BASELINE.0, GLIBC_BASELINE.1);
+                    let command = zigbuild_command(&zigbuild, &target, profile, unit);
                     Ok(Ok((cargo_artifact(command, platform, unit)?, Linkage::GlibcBaseline)))
                 }
                 _ if native => Ok(Ok((build_shared_library(unit, profile)?, Linkage::ThisMachinesGlibc))),
@@ -368,20 +324,59 @@ fn build_platform(
             }
         }
         Platform::Win64 => {
-            let mut missing = Vec::new();
-            if !rust_target_installed(target) {
-                missing.push(format!("`rustup target add {target}`"));
+            if !rust_target_installed(target) && !add_rust_target(target) {
+                return skipped(format!("`rustup target add {target}`"));
+            }
+            // zig first (from PyPI, no root); mingw-w64 (apt) where zig cannot be had.
+            // (On Linux the linux64 build, first, has installed it if it could be.)
+            let linux = Platform::this_machine() == Some(Platform::Linux64);
+            if let Some(zigbuild) = cargo_zigbuild().or_else(|| if linux { None } else { install_zigbuild() }) {
+                let command = zigbuild_command(&zigbuild, target, profile, unit);
+                return Ok(Ok((cargo_artifact(command, platform, unit)?, Linkage::Zig)));
             }
             if !runs("x86_64-w64-mingw32-gcc") {
-                missing.push("mingw-w64 (`apt-get install gcc-mingw-w64-x86-64`)".to_owned());
-            }
-            if !missing.is_empty() {
-                return skipped(missing.join(" and "));
+                return skipped(
+                    "`pip install cargo-zigbuild` (brings zig), or mingw-w64 (`apt-get install gcc-mingw-w64-x86-64`)"
+                        .to_owned(),
+                );
             }
             let mut command = Command::new(cargo);
             command.args(["build", "--target", target]);
             cargo_build_arguments(&mut command, profile, unit);
             Ok(Ok((cargo_artifact(command, platform, unit)?, Linkage::Mingw)))
+        }
+    }
+}
+
+/// A cargo-zigbuild build of `unit` for `target` (a Rust target, with a glibc version suffix
+/// for a Linux baseline).
+fn zigbuild_command(zigbuild: &Path, target: &str, profile: Profile, unit: &Unit) -> Command {
+    let mut command = Command::new(zigbuild);
+    command.args(["zigbuild", "--target", target]);
+    command.arg("--manifest-path").arg(workspace_root().join("Cargo.toml"));
+    // Run from the file system's root: zig names its folders relative to the working directory
+    // when it lives below it (the workspace's .venv), and cargo-zigbuild hands these include
+    // folders to build scripts (bindgen), which run elsewhere; below the root, every path is
+    // absolute.
+    let root = workspace_root().ancestors().last().map(Path::to_path_buf).unwrap_or_default();
+    command.current_dir(root);
+    if let Some(venv_bin) = zigbuild.parent().filter(|folder| folder.join("python3").is_file()) {
+        // The `ziglang` package lives beside cargo-zigbuild, in the same venv.
+        command.env("CARGO_ZIGBUILD_PYTHON_PATH", venv_bin.join("python3"));
+    }
+    cargo_build_arguments(&mut command, profile, unit);
+    command
+}
+
+/// Adds the Rust standard library for `target` with rustup (no root: it lives in the user's
+/// toolchain), saying so; false, after saying why, where that is not possible.
+fn add_rust_target(target: &str) -> bool {
+    eprintln!("cargo fmu: adding the Rust target {target} with rustup (once, about 30 MB) for the win64 binary");
+    match Command::new("rustup").args(["target", "add", target]).status() {
+        Ok(status) if status.success() => rust_target_installed(target),
+        outcome => {
+            eprintln!("cargo fmu: `rustup target add {target}` failed ({outcome:?}); win64 is left out");
+            false
         }
     }
 }
@@ -499,7 +494,7 @@ pub fn write_fmu(unit: &Unit, binaries: &[PlatformBinary], fmu_path: &Path) -> R
                 glibc: glibc_versions_needed(&bytes)?.last().copied().unwrap_or((0, 0)),
                 baseline_applied: binary.linkage == Linkage::GlibcBaseline,
             },
-            Platform::Win64 => BinaryNote::Win64,
+            Platform::Win64 => BinaryNote::Win64 { linked_by_zig: binary.linkage == Linkage::Zig },
         });
         let name = format!("binaries/{}/{}.{}", platform.folder(), unit.model_identifier, platform.extension());
         entries.push((name, bytes));

@@ -94,11 +94,9 @@ pub fn dependencies_list(variables: &[Variable]) -> String {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BinaryNote {
     /// linux64, needing glibc ≥ `glibc` (read off the binary), built against the baseline or not.
-    Linux64 {
-        glibc: (u32, u32),
-        baseline_applied: bool,
-    },
-    Win64,
+    Linux64 { glibc: (u32, u32), baseline_applied: bool },
+    /// win64, linked by zig (cargo-zigbuild) or else by mingw-w64.
+    Win64 { linked_by_zig: bool },
 }
 
 /// The Platforms section: what each binary in this FMU needs, read off the binaries (a linux64
@@ -123,13 +121,18 @@ pub fn platforms_section(binaries: &[BinaryNote], win64_tested: &str) -> String 
                      Debian 12.</li>"
                 )
             }
-            BinaryNote::Win64 => format!(
-                "<li><b>win64</b> (x86-64, Windows 10 or later): built with mingw-w64, the C runtime and libgcc \
-                 linked statically, so it needs only DLLs that Windows ships. {win64_tested}</li>"
+            BinaryNote::Win64 { linked_by_zig } => format!(
+                "<li><b>win64</b> (x86-64, Windows 10 or later): {}, so it needs only DLLs that Windows ships. \
+                 {win64_tested}</li>",
+                if linked_by_zig {
+                    "linked by zig (cargo-zigbuild) against Windows' Universal C Runtime"
+                } else {
+                    "built with mingw-w64, the C runtime and libgcc linked statically"
+                }
             ),
         })
         .collect();
-    if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Win64)) {
+    if !binaries.iter().any(|binary| matches!(binary, BinaryNote::Win64 { .. })) {
         items.push(
             "<li>No win64 binary in this build (its toolchain was missing where it was packaged).</li>".to_owned(),
         );

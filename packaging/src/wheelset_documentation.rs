@@ -282,7 +282,7 @@ mod tests {
     /// display unit where it declares one) and its description.
     #[test]
     fn every_variable_of_the_model_description_is_in_the_table_with_its_unit() {
-        let html = index_html(&[BinaryNote::Win64]);
+        let html = index_html(&[BinaryNote::Win64 { linked_by_zig: true }]);
         for variable in &VARIABLES {
             let row = html
                 .lines()
@@ -311,7 +311,7 @@ mod tests {
 
     #[test]
     fn the_page_has_one_svg_plot_with_its_source() {
-        let html = index_html(&[BinaryNote::Win64]);
+        let html = index_html(&[BinaryNote::Win64 { linked_by_zig: true }]);
         assert_eq!(html.matches("<svg").count(), 1);
         let svg = &html[html.find("<svg").unwrap()..html.find("</svg>").unwrap() + "</svg>".len()];
         assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
@@ -321,7 +321,10 @@ mod tests {
 
     #[test]
     fn the_platforms_section_states_what_the_binaries_need() {
-        let html = index_html(&[BinaryNote::Linux64 { glibc: (2, 28), baseline_applied: true }, BinaryNote::Win64]);
+        let html = index_html(&[
+            BinaryNote::Linux64 { glibc: (2, 28), baseline_applied: true },
+            BinaryNote::Win64 { linked_by_zig: true },
+        ]);
         assert!(html.contains("<h2>Platforms</h2>"));
         assert!(html.contains("needs glibc ≥ 2.28 (the newest glibc symbol version it uses; built against"));
         assert!(html.contains("<b>win64</b>") && html.contains("not this one's") && !html.contains("No win64 binary"));
@@ -333,7 +336,7 @@ mod tests {
     /// The page describes what it should: the coupling, the equations, the sources.
     #[test]
     fn the_page_names_the_coupling_the_equations_and_the_sources() {
-        let html = index_html(&[BinaryNote::Win64]);
+        let html = index_html(&[BinaryNote::Win64 { linked_by_zig: true }]);
         for text in [
             "systems/wheelset_on_track/SystemStructure.ssd",
             "scripts/ssp_master.py",
