@@ -412,6 +412,39 @@ impl WheelOnRail {
         self.candidates_at(&minima, barriers, &position)
     }
 
+    /// The pose in the right side's frame at z_ws = 0, checked: what the non-Hertzian normal
+    /// problem ([`super::non_hertzian`]) evaluates its strips in.
+    pub(super) fn right_pose(&self, position: &WheelsetPosition) -> Result<WheelsetPosition, ProfileError> {
+        check_position(position)?;
+        Ok(WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) })
+    }
+
+    /// The side this wheel is on.
+    pub(super) fn side(&self) -> WheelSide {
+        self.side
+    }
+
+    /// E* = G/(1 − ν) \[Pa\] of the wheel and rail.
+    pub(super) fn contact_modulus(&self) -> f64 {
+        self.contact_modulus
+    }
+
+    /// The undeformed vertical gap of the right-side pose `right` (z_ws = 0) as a function of the
+    /// wheel profile's y, read from the sampled profiles as the contact search reads it (+∞ off
+    /// the profiles), and the wheel profile's y range that lies over the rail (the full scan's).
+    pub(super) fn gap_function(&self, right: &WheelsetPosition) -> (impl Fn(f64) -> f64 + '_, (f64, f64)) {
+        let search = GapSearch::new(self, right);
+        let range = search.range_over_rail();
+        (move |profile_y| search.gap(profile_y), range)
+    }
+
+    /// The exact (spline) geometry at wheel profile y of the right-side pose `right`, as a
+    /// candidate contact point there: track and profile positions, the rail's slope (its
+    /// `contact_angle`), the rolling radius, the gap at z_ws = 0 and the curvatures.
+    pub(super) fn surface_point(&self, profile_y: f64, right: &WheelsetPosition) -> Result<ContactPoint, ProfileError> {
+        Ok(self.candidate(profile_y, right)?.point)
+    }
+
     fn candidates_at(
         &self,
         minima: &[f64],
@@ -660,22 +693,25 @@ impl<'a> GapSearch<'a> {
         found.minima.iter().map(|&(low, high)| brent_minimum(|y| self.gap(y), low, high)).collect()
     }
 
-    /// The full scan: the gap every [`SAMPLE_STEP`] over the rail's extent, each local minimum
-    /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
-    /// sampled gap between neighbours.
-    fn scan(&self) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+    /// The wheel profile's y range over the rail: track y ≈ y_ws + (profile y + offset) cos φ
+    /// − r0 sin φ (yaw moves it by less than a millimetre), with 5 mm to spare.
+    fn range_over_rail(&self) -> (f64, f64) {
         let (wheel, position) = (self.wheel, &self.position);
-        // Only the wheel samples over the rail: track y ≈ y_ws + (profile y + offset) cos φ
-        // − r0 sin φ (yaw moves it by less than a millimetre), with 5 mm to spare.
         let (rail_first, rail_last) = wheel.rail.lateral_range();
         let profile_y_at = |track_y: f64| {
             (track_y - position.lateral + wheel.dimensions.nominal_radius * self.locus.sin_roll) / self.locus.cos_roll
                 - wheel.wheel_offset
         };
-        let found = self.minima_between(
-            profile_y_at(rail_first + wheel.rail_offset) - 5e-3,
-            profile_y_at(rail_last + wheel.rail_offset) + 5e-3,
-        );
+        (profile_y_at(rail_first + wheel.rail_offset) - 5e-3, profile_y_at(rail_last + wheel.rail_offset) + 5e-3)
+    }
+
+    /// The full scan: the gap every [`SAMPLE_STEP`] over the rail's extent, each local minimum
+    /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
+    /// sampled gap between neighbours.
+    fn scan(&self) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+        let position = &self.position;
+        let (from, to) = self.range_over_rail();
+        let found = self.minima_between(from, to);
         if found.samples < 3 {
             return Err(ProfileError::whole(format!(
                 "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",

@@ -11,6 +11,8 @@
 //! - [`contact`]: a wheel placed on its rail, right or left (gauge, cant, flange back, roll, yaw), its
 //!   contact points (tread and flange), the normal problem in both modes (prescribed vertical
 //!   position or force) with a Hertz ellipse per patch;
+//! - [`non_hertzian`]: the normal problem per contact region instead of per gap minimum
+//!   (Kik–Piotrowski's virtual penetration, strip by strip), both modes;
 //! - [`conicity`]: the wheelset's rolling-radius difference Δr(y) and its equivalent conicity
 //!   tan γ_e(A) by EN 15302's principle (the kinematic wavelength of the nonlinear motion);
 //! - `patch`: what the search and the normal problem find: the side, a contact point, a
@@ -25,6 +27,7 @@
 pub mod builtin;
 pub mod conicity;
 pub mod contact;
+pub mod non_hertzian;
 pub mod normal_problem;
 mod patch;
 pub mod profile_file;
@@ -34,6 +37,7 @@ pub mod smooth_profile;
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};
 pub use contact::{TrackDimensions, WheelOnRail, WheelsetPosition};
+pub use non_hertzian::{NonHertzianContact, NonHertzianPatch, Strip};
 pub use normal_problem::{ContactCandidates, MAX_PENETRATION};
 pub use patch::{ContactPatch, ContactPoint, WheelSide};
 pub use profile_file::{

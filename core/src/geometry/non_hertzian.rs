@@ -1,0 +1,739 @@
+//! Non-Hertzian normal contact of one wheel: the patches from the interpenetration of the two
+//! profiles, strip by strip in y, one patch per contact region instead of one Hertz ellipse per
+//! minimum of the gap ([`super::normal_problem`]).
+//!
+//! Method: Kik and Piotrowski's virtual penetration (W. Kik, J. Piotrowski, "A fast, approximate
+//! method to calculate normal load at contact between wheel and rail and creep forces during
+//! rolling", 2nd TrC Mini Conference, Budapest, 1996; J. Piotrowski, W. Kik, "A simplified model
+//! of wheel/rail contact mechanics for non-Hertzian problems and its application in rail vehicle
+//! dynamic simulations", Vehicle System Dynamics 46 (2008) 27–48; below "KP"). Chosen over
+//! ANALYN (Sichani, Enblom, Berg, 2014/2016), whose strip pressures follow from the gap's local
+//! curvatures, and over STRIPES (Ayasse, Chollet, 2005), whose strips are Hertz contacts of the
+//! local curvatures too, because KP needs only the gap's values: where the S1002/UIC60 gap is
+//! flat within microns over 10 mm (the centred wheelset) or conformal (worn profiles) the
+//! curvatures are near zero or change sign within the patch, and curvature-based methods are
+//! ill-conditioned there; KP's region, shape and load follow from the gap itself. CONTACT's fast
+//! normal solver (KPEC) is a KP variant as well. (KP's numbered equations are cited below by
+//! their content; the derivation of each step is given here so that it can be checked without
+//! the paper.)
+//!
+//! 1. Strips. The wheel profile's y is cut into strips every [`STRIP_WIDTH`] on a fixed grid
+//!    (multiples of the width, so that a strip does not move with the wheelset); per strip the
+//!    exact geometry at its centre (the wheel's contact locus, as for a candidate point of
+//!    [`WheelOnRail::candidates`]): the undeformed vertical gap g(y) at z_ws = 0, the rail's
+//!    slope angle γ(y), the wheel's rolling radius R(y), the strip's position s and width ds
+//!    along the rail's surface. Only the stretch where the gap lies within reach of its minimum
+//!    is cut (a coarse scan of the sampled gap finds it first).
+//! 2. Virtual penetration (KP, the virtual interpenetration): the rigid approach is scaled by
+//!    ε = 0.55 ([`VIRTUAL_PENETRATION_SCALE`]), because the elastic surfaces sink around the
+//!    contact: the region where the undeformed gap lies less than ε δ above its minimum
+//!    approximates the real contact area (for Hertz's circle, ε = 1/2 gives it exactly). The
+//!    minimum is taken locally, the lowest gap m(y) within [`REFERENCE_REACH`] of the strip (KP
+//!    take the region's deepest point; the running minimum gives the same for a single minimum
+//!    and refers two distant interpenetrations — tread and flange — each to its own depth,
+//!    continuously as they approach). A strip at z_ws penetrates virtually by
+//!    v(y) = ε (z_ws − m(y)) − (g(y) − m(y)).
+//! 3. Half-length along x (KP, the contact area's boundary): the wheel's circle adds x²/(2R) to
+//!    the gap along the rail, so the strip is in contact for |x| < L(y) = √(2 R v).
+//! 4. Pressure (KP's assumed distribution): semi-elliptic along each strip with its height
+//!    proportional to the strip's half-length, p(x, y) = k √(L(y)² − x²) — Hertz's own
+//!    distribution when the region is an ellipse. A region is a run of consecutive strips with
+//!    v > 0. Its scale k follows from the elastic approach at its reference point (KP: the
+//!    point of deepest virtual penetration; here the vertex of the parabola through the deepest
+//!    strip and its neighbours, so that it moves continuously from strip to strip):
+//!    Boussinesq's displacement of the two half-spaces under the pressure (Johnson, *Contact
+//!    Mechanics*, 1985, eq. 3.20 per body; both of one material: 1/(π E*), E* = G/(1 − ν))
+//!    equals the real normal approach there, (z_ws − g) cos γ. The inner integral over a strip
+//!    is ∫ √(L² − x²)/√(x² + η²) dx = 2c (K(m) − E(m)) with c² = L² + η², m = L²/c² (x = L sin t),
+//!    and K − E = (m/3) R_D(0, 1 − m, 1) (Carlson; DLMF 19.25.1); it is log-singular at η = 0,
+//!    where its asymptote 2L (ln(4L/|η|) − 1) is integrated in closed form. Several regions
+//!    press on each other: the displacement at each reference point sums every region's
+//!    pressure, a small linear system for their scales (KP solve each region alone); a region
+//!    the others would lift (k ≤ 0) is dropped.
+//! 5. A strip's normal force is k (π/2) L² ds (p integrated over x).
+//! 6. Patches: regions whose real interpenetrations (g < z_ws) lie within [`JOIN_DISTANCE`] of
+//!    each other along the surface are one patch — where the tread's and the flange root's
+//!    regions come near, one patch, as CONTACT solves them; apart, two. Per patch: the contact
+//!    point at the pressure centroid (the strips' forces' mean of the wheel profile's y, and the
+//!    exact geometry there: rail and track position, rolling radius) with the rail's slope there
+//!    as its contact angle δ; its normal force N such that N cos δ is the vertical force its
+//!    strips carry (Σ F_j cos γ_j: the vertical balance holds exactly; the strips' lateral sum
+//!    differs from N sin δ where the patch is curved, as CONTACT's planar patch does); an
+//!    equivalent ellipse for the creep-force models: b half the patch's width along the
+//!    surface, a from the same area (π a b = Σ 2 L ds), the peak pressure its highest, the
+//!    approach at its deepest region's reference point.
+//!
+//! Prescribed vertical position: the above at z_ws. Prescribed vertical force (frictionless,
+//! Σ N cos δ = F_z): z_ws by bracketing and the Illinois variant of regula falsi on the carried
+//! vertical force, which grows with z_ws.
+//!
+//! Cost: fixed by the strip width (40–220 strips on S1002/UIC60 at 10–100 kN): one exact spline
+//! point per strip per lateral position, then per z_ws one R_D per strip in contact and region.
+//! Not yet fast: a force solve takes 0.1–0.45 ms in release (the Hertz normal problem 2–4 µs);
+//! the strips' geometry is what a precomputed table would hold.
+//!
+//! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
+//! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
+//! 0.01 rad on the tread and 2 mm / 0.05 rad on the flange, one patch each as CONTACT; the other
+//! (y_ws = 5 mm, 10 kN, tread and flange root in one patch) 1.37 mm and 0.014 rad off.
+
+use super::contact::{WheelOnRail, WheelsetPosition};
+use super::normal_problem::MAX_PENETRATION;
+use super::patch::{ContactPatch, WheelSide};
+use super::profile_file::ProfileError;
+use crate::hertz::HertzContact;
+use std::f64::consts::PI;
+
+/// KP's scale of the virtual penetration, ε (Piotrowski & Kik 2008, §3).
+pub const VIRTUAL_PENETRATION_SCALE: f64 = 0.55;
+
+/// The strips' width in the wheel profile's y \[m\].
+pub const STRIP_WIDTH: f64 = 1e-4;
+
+/// How far from a strip its reference depth, the lowest gap, is sought \[m\] (module doc, 2):
+/// wider than a tread patch's half-width at 100 kN (≈ 8 mm on a flat gap), narrower than the
+/// 14 mm or more between the tread's and the flange root's interpenetrations.
+pub const REFERENCE_REACH: f64 = 10e-3;
+
+/// Regions whose real interpenetrations (the gap below z_ws) lie closer than this along the
+/// surface are one patch \[m\] (module doc, 6): CONTACT's separation distance D_SEP in its
+/// Manchester A-2.2 decks, below which it solves neighbouring interpenetrations as one patch.
+pub const JOIN_DISTANCE: f64 = 8e-3;
+
+/// The coarse scan's step \[m\] that finds the stretch to cut into strips.
+const SCAN_STEP: f64 = 2e-4;
+
+/// How far above the gap's minimum the strips reach at least \[m\]; a deeper approach cuts
+/// them again, reaching twice as far as often as needed ([`reach_for`]).
+const FIRST_REACH: f64 = 1e-3;
+
+/// The strips' reach for an approach `depth` below the touch: [`FIRST_REACH`] doubled until it
+/// exceeds the depth, a function of the depth alone so that both modes cut the same strips.
+fn reach_for(depth: f64) -> f64 {
+    let mut reach = FIRST_REACH;
+    while reach <= depth {
+        reach *= 2.0;
+    }
+    reach
+}
+
+/// One strip of a patch, on the wheel's side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Strip {
+    /// Track y of the strip's centre \[m\].
+    pub track_lateral: f64,
+    /// y in the rail profile's coordinates \[m\].
+    pub rail_lateral: f64,
+    /// y in the wheel profile's coordinates \[m\].
+    pub wheel_lateral: f64,
+    /// Width along the rail's surface \[m\].
+    pub width: f64,
+    /// Half-length along x, L \[m\].
+    pub half_length: f64,
+    /// The pressure at x = 0, k L \[Pa\] (semi-elliptic along x).
+    pub max_pressure: f64,
+    /// The rail's slope angle there \[rad\] (the strip's normal).
+    pub contact_angle: f64,
+    /// The strip's normal force \[N\].
+    pub normal_force: f64,
+}
+
+/// One patch: its strips and its summary (contact point at the pressure centroid, normal force,
+/// equivalent ellipse).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NonHertzianPatch {
+    /// The strips in contact, from the rail's field side to its gauge side.
+    pub strips: Vec<Strip>,
+    /// Contact point, normal approach at the deepest strip, normal force and equivalent ellipse.
+    pub patch: ContactPatch,
+}
+
+/// The non-Hertzian normal problem's answer for one wheel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NonHertzianContact {
+    /// The wheelset's vertical position z_ws \[m\].
+    pub vertical: f64,
+    /// The patches, tread first.
+    pub patches: Vec<NonHertzianPatch>,
+}
+
+/// The exact geometry of one strip (right side).
+#[derive(Debug, Clone, Copy)]
+struct StripGeometry {
+    wheel_lateral: f64,
+    gap: f64,
+    /// The lowest gap within [`REFERENCE_REACH`].
+    reference_gap: f64,
+    /// Position along the rail's surface \[m\].
+    arc: f64,
+    width: f64,
+    rolling_radius: f64,
+    track_lateral: f64,
+    rail_lateral: f64,
+    slope: f64,
+    sin_cos: (f64, f64),
+}
+
+/// The strips of one pose (right side).
+struct Strips<'a> {
+    wheel: &'a WheelOnRail,
+    right: WheelsetPosition,
+    strips: Vec<StripGeometry>,
+    /// The lowest gap: z_ws where the wheel touches.
+    touch: f64,
+    /// The strips cover every y where the gap lies less than this above `touch`.
+    reach: f64,
+}
+
+/// A region in contact at z_ws: its strips [first, end), its deepest strip, its reference
+/// point (the peak of the virtual penetration between strips) and the real normal approach
+/// there, and its pressure scale k.
+#[derive(Clone, Copy)]
+struct Region {
+    first: usize,
+    end: usize,
+    deepest: usize,
+    reference_arc: f64,
+    approach: f64,
+    scale: f64,
+}
+
+impl<'a> Strips<'a> {
+    /// Cuts the strips of the pose `right` over the stretch where the gap lies within `reach`
+    /// of its minimum.
+    fn new(wheel: &'a WheelOnRail, right: WheelsetPosition, reach: f64) -> Result<Self, ProfileError> {
+        let (gap, (from, to)) = wheel.gap_function(&right);
+        let count = ((to - from) / SCAN_STEP).floor() as usize + 1;
+        let at = |i: usize| from + i as f64 * SCAN_STEP;
+        let touch = (0..count).map(|i| gap(at(i))).fold(f64::INFINITY, f64::min);
+        if !touch.is_finite() {
+            return Err(ProfileError::whole(format!(
+                "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
+                right.lateral
+            )));
+        }
+        let near: Vec<usize> = (0..count).filter(|&i| gap(at(i)) < touch + reach).collect();
+        // One step beyond the first and last scanned sample within reach: the stretch's ends.
+        let (first, last) = (at(near[0]) - SCAN_STEP, at(near[near.len() - 1]) + SCAN_STEP);
+        let (k_first, k_last) = ((first / STRIP_WIDTH).ceil() as i64, (last / STRIP_WIDTH).floor() as i64);
+        let mut strips: Vec<StripGeometry> = Vec::with_capacity((k_last - k_first + 1).max(0) as usize);
+        let mut track_vertical = Vec::with_capacity(strips.capacity());
+        for k in k_first..=k_last {
+            let wheel_lateral = k as f64 * STRIP_WIDTH;
+            let geometry = match wheel.surface_point(wheel_lateral, &right) {
+                Ok(point) => {
+                    track_vertical.push(point.track_vertical);
+                    StripGeometry {
+                        wheel_lateral,
+                        gap: point.gap_at_zero,
+                        reference_gap: 0.0,
+                        arc: 0.0,
+                        width: 0.0,
+                        rolling_radius: point.rolling_radius,
+                        track_lateral: point.track_lateral,
+                        rail_lateral: point.rail_lateral,
+                        slope: point.contact_angle,
+                        sin_cos: point.contact_angle_sin_cos(),
+                    }
+                }
+                // Off a profile: no contact there (the stretch lies within reach of the
+                // minimum, so this is at most its end).
+                Err(_) => {
+                    let before = strips.last().map_or((0.0, 0.0), |s| (s.track_lateral, s.rail_lateral));
+                    track_vertical.push(track_vertical.last().copied().unwrap_or(0.0));
+                    StripGeometry {
+                        wheel_lateral,
+                        gap: f64::INFINITY,
+                        reference_gap: f64::INFINITY,
+                        arc: 0.0,
+                        width: 0.0,
+                        rolling_radius: 0.0,
+                        track_lateral: before.0 + STRIP_WIDTH,
+                        rail_lateral: before.1 + STRIP_WIDTH,
+                        slope: 0.0,
+                        sin_cos: (0.0, 1.0),
+                    }
+                }
+            };
+            strips.push(geometry);
+        }
+        // Arc length along the rail's surface through the strips' centres, and each strip's
+        // width: half the distance between its neighbours.
+        for i in 1..strips.len() {
+            let step = (strips[i].track_lateral - strips[i - 1].track_lateral)
+                .hypot(track_vertical[i] - track_vertical[i - 1]);
+            strips[i].arc = strips[i - 1].arc + step;
+        }
+        let n = strips.len();
+        for i in 0..n {
+            let (before, after) = (strips[i.saturating_sub(1)].arc, strips[(i + 1).min(n - 1)].arc);
+            strips[i].width =
+                if n == 1 { STRIP_WIDTH } else { (after - before) / ((i + 1).min(n - 1) - i.saturating_sub(1)) as f64 };
+        }
+        // The running minimum of the gap within REFERENCE_REACH (in the wheel's y).
+        let reach_strips = (REFERENCE_REACH / STRIP_WIDTH).round() as usize;
+        for i in 0..n {
+            let (low, high) = (i.saturating_sub(reach_strips), (i + reach_strips).min(n - 1));
+            strips[i].reference_gap = strips[low..=high].iter().map(|s| s.gap).fold(f64::INFINITY, f64::min);
+        }
+        Ok(Self { wheel, right, strips, touch, reach })
+    }
+
+    /// The virtual penetration of strip i at z_ws (module doc, 2).
+    fn virtual_penetration(&self, i: usize, vertical: f64) -> f64 {
+        let s = &self.strips[i];
+        VIRTUAL_PENETRATION_SCALE * (vertical - s.reference_gap) - (s.gap - s.reference_gap)
+    }
+
+    /// The half-length of strip i at z_ws (module doc, 3), 0 out of contact.
+    fn half_length(&self, i: usize, vertical: f64) -> f64 {
+        let v = self.virtual_penetration(i, vertical);
+        if v > 0.0 {
+            (2.0 * self.strips[i].rolling_radius * v).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// The regions in contact at z_ws with their loads (module doc, 4–5), field side first;
+    /// a region whose scale the others' pressure would make negative is left out.
+    fn regions(&self, vertical: f64) -> Vec<Region> {
+        let n = self.strips.len();
+        let mut regions = Vec::new();
+        let mut i = 0;
+        while i < n {
+            if self.virtual_penetration(i, vertical) <= 0.0 {
+                i += 1;
+                continue;
+            }
+            let first = i;
+            let mut reference = i;
+            while i < n && self.virtual_penetration(i, vertical) > 0.0 {
+                if self.virtual_penetration(i, vertical) > self.virtual_penetration(reference, vertical) {
+                    reference = i;
+                }
+                i += 1;
+            }
+            let (reference_arc, approach) = self.reference_point(first, i, reference, vertical);
+            regions.push(Region { first, end: i, deepest: reference, reference_arc, approach, scale: 0.0 });
+        }
+        // The approach at each reference point equals the displacement under every region's
+        // pressure there: Σ_b k_b I_ab = π E* δ_a, a small dense system; a region whose k comes
+        // out ≤ 0 is lifted by the others' pressure and dropped, and the rest solved again.
+        let count = regions.len();
+        let modulus = self.wheel.contact_modulus();
+        let mut influence = vec![0.0; count * count];
+        for (a, region) in regions.iter().enumerate() {
+            for (b, other) in regions.iter().enumerate() {
+                influence[a * count + b] = self.influence(other.first, other.end, region.reference_arc, vertical);
+            }
+        }
+        let mut active = vec![true; count];
+        loop {
+            let members: Vec<usize> = (0..count).filter(|&a| active[a]).collect();
+            let m = members.len();
+            let mut matrix: Vec<f64> = members
+                .iter()
+                .flat_map(|&a| members.iter().map(move |&b| (a, b)))
+                .map(|(a, b)| influence[a * count + b])
+                .collect();
+            let mut scales: Vec<f64> = members.iter().map(|&a| PI * modulus * regions[a].approach).collect();
+            solve_dense(&mut matrix, &mut scales, m);
+            match (0..m).filter(|&i| scales[i] <= 0.0).min_by(|&i, &j| scales[i].total_cmp(&scales[j])) {
+                Some(lifted) => active[members[lifted]] = false,
+                None => {
+                    for (i, &a) in members.iter().enumerate() {
+                        regions[a].scale = scales[i];
+                    }
+                    break;
+                }
+            }
+        }
+        regions.retain(|region| region.scale > 0.0);
+        regions
+    }
+
+    /// The reference point of the region [first, end) whose deepest strip is `deepest`: the
+    /// vertex of the parabola through the virtual penetrations of it and its neighbours (so that
+    /// the point moves continuously as the peak passes from strip to strip), as its position
+    /// along the surface and the real normal approach there, (z_ws − g) cos γ interpolated.
+    fn reference_point(&self, first: usize, end: usize, deepest: usize, vertical: f64) -> (f64, f64) {
+        let approach = |i: usize| (vertical - self.strips[i].gap) * self.strips[i].sin_cos.1;
+        let at = &self.strips[deepest];
+        if deepest == first || deepest + 1 == end {
+            return (at.arc, approach(deepest));
+        }
+        let (before, peak, after) = (
+            self.virtual_penetration(deepest - 1, vertical),
+            self.virtual_penetration(deepest, vertical),
+            self.virtual_penetration(deepest + 1, vertical),
+        );
+        let curvature = before - 2.0 * peak + after;
+        let offset = if curvature < 0.0 { (0.5 * (before - after) / curvature).clamp(-0.5, 0.5) } else { 0.0 };
+        let next = if offset > 0.0 { deepest + 1 } else { deepest - 1 };
+        let t = offset.abs();
+        let arc = at.arc + t * (self.strips[next].arc - at.arc);
+        (arc, (1.0 - t) * approach(deepest) + t * approach(next))
+    }
+
+    /// The displacement at x = 0 and the surface position `at` under the pressure √(L² − x²)
+    /// (k = 1) on strips [first, end), times π E* (module doc, 4).
+    fn influence(&self, first: usize, end: usize, at: f64, vertical: f64) -> f64 {
+        let mut influence = 0.0;
+        for j in first..end {
+            let s = &self.strips[j];
+            let length = self.half_length(j, vertical);
+            let distance = s.arc - at;
+            // Sub-strips where the kernel is steep, near the reference point; the one holding
+            // it integrated in closed form with the kernel's logarithmic asymptote.
+            let parts: u32 = if distance.abs() < 1.5 * s.width { 16 } else { 1 };
+            let part = s.width / f64::from(parts);
+            for q in 0..parts {
+                let low = distance - 0.5 * s.width + f64::from(q) * part;
+                let high = low + part;
+                influence += if low < 0.0 && high > 0.0 {
+                    singular_part(length, low, high)
+                } else {
+                    part * strip_kernel(length, 0.5 * (low + high))
+                };
+            }
+        }
+        influence
+    }
+
+    /// Strip j's normal force in a region of scale k.
+    fn strip_force(&self, j: usize, scale: f64, vertical: f64) -> f64 {
+        let length = self.half_length(j, vertical);
+        scale * 0.5 * PI * length * length * self.strips[j].width
+    }
+
+    /// The vertical force the patches carry at z_ws, Σ N cos γ over the strips.
+    fn carried(&self, vertical: f64) -> f64 {
+        let mut force = 0.0;
+        for region in self.regions(vertical) {
+            for j in region.first..region.end {
+                force += self.strip_force(j, region.scale, vertical) * self.strips[j].sin_cos.1;
+            }
+        }
+        force
+    }
+
+    /// The real interpenetration's extent along the surface around the region [first, end):
+    /// the strips next to it where the gap lies below z_ws, to the outer edges of the last ones.
+    fn interpenetration_extent(&self, first: usize, end: usize, vertical: f64) -> (f64, f64) {
+        let strips = &self.strips;
+        let mut low = first;
+        while low > 0 && strips[low - 1].gap < vertical {
+            low -= 1;
+        }
+        let mut high = end - 1;
+        while high + 1 < strips.len() && strips[high + 1].gap < vertical {
+            high += 1;
+        }
+        (strips[low].arc - 0.5 * strips[low].width, strips[high].arc + 0.5 * strips[high].width)
+    }
+
+    /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6).
+    fn patches(&self, vertical: f64) -> Result<Vec<NonHertzianPatch>, ProfileError> {
+        let mut groups: Vec<(Vec<Region>, f64)> = Vec::new();
+        for region in self.regions(vertical) {
+            let (low, high) = self.interpenetration_extent(region.first, region.end, vertical);
+            match groups.last_mut() {
+                Some((regions, end)) if low - *end <= JOIN_DISTANCE => {
+                    regions.push(region);
+                    *end = end.max(high);
+                }
+                _ => groups.push((vec![region], high)),
+            }
+        }
+        groups.iter().map(|(regions, _)| self.patch(regions, vertical)).collect()
+    }
+
+    /// One patch from its regions at z_ws, on the wheel's side.
+    fn patch(&self, regions: &[Region], vertical: f64) -> Result<NonHertzianPatch, ProfileError> {
+        let side = self.wheel.side();
+        let (mut normal, mut centroid, mut area, mut peak) = (0.0, 0.0, 0.0, 0.0f64);
+        let mut strips = Vec::new();
+        let mut deepest = regions[0];
+        for region in regions {
+            if self.virtual_penetration(region.deepest, vertical) > self.virtual_penetration(deepest.deepest, vertical)
+            {
+                deepest = *region;
+            }
+            for j in region.first..region.end {
+                let s = &self.strips[j];
+                let length = self.half_length(j, vertical);
+                let force = self.strip_force(j, region.scale, vertical);
+                normal += force * s.sin_cos.1;
+                centroid += force * s.wheel_lateral;
+                area += 2.0 * length * s.width;
+                peak = peak.max(region.scale * length);
+                let strip = Strip {
+                    track_lateral: s.track_lateral,
+                    rail_lateral: s.rail_lateral,
+                    wheel_lateral: s.wheel_lateral,
+                    width: s.width,
+                    half_length: length,
+                    max_pressure: region.scale * length,
+                    contact_angle: s.slope,
+                    normal_force: force,
+                };
+                strips.push(match side {
+                    WheelSide::Right => strip,
+                    WheelSide::Left => Strip {
+                        track_lateral: -strip.track_lateral,
+                        rail_lateral: -strip.rail_lateral,
+                        wheel_lateral: -strip.wheel_lateral,
+                        contact_angle: -strip.contact_angle,
+                        ..strip
+                    },
+                });
+            }
+        }
+        let total: f64 = strips.iter().map(|s| s.normal_force).sum();
+        // The contact point at the pressure centroid, with the rail's slope there as the
+        // patch's contact angle; the normal force such that the patch carries the strips'
+        // vertical force, N cos δ = Σ F_j cos γ_j.
+        let point = self.wheel.surface_point(centroid / total, &self.right)?;
+        let force = normal / point.contact_angle_sin_cos().1;
+        let (first, last) = (&self.strips[regions[0].first], &self.strips[regions[regions.len() - 1].end - 1]);
+        let semi_axis_b = 0.5 * (last.arc - first.arc + 0.5 * (first.width + last.width));
+        let approach = deepest.approach;
+        let ellipse =
+            HertzContact { semi_axis_a: area / (PI * semi_axis_b), semi_axis_b, max_pressure: peak, approach };
+        Ok(NonHertzianPatch {
+            strips,
+            patch: ContactPatch {
+                point: side.mirror_point(&point),
+                penetration: approach,
+                normal_force: force,
+                ellipse,
+            },
+        })
+    }
+}
+
+/// Solves the n × n system `matrix` x = `rhs` (row-major) in place by Gaussian elimination with
+/// partial pivoting; x is left in `rhs`.
+fn solve_dense(matrix: &mut [f64], rhs: &mut [f64], n: usize) {
+    for column in 0..n {
+        let pivot = (column..n).max_by(|&i, &j| matrix[i * n + column].abs().total_cmp(&matrix[j * n + column].abs()));
+        let pivot = pivot.unwrap_or(column);
+        if pivot != column {
+            for k in 0..n {
+                matrix.swap(pivot * n + k, column * n + k);
+            }
+            rhs.swap(pivot, column);
+        }
+        for row in column + 1..n {
+            let factor = matrix[row * n + column] / matrix[column * n + column];
+            for k in column..n {
+                matrix[row * n + k] -= factor * matrix[column * n + k];
+            }
+            rhs[row] -= factor * rhs[column];
+        }
+    }
+    for row in (0..n).rev() {
+        let known: f64 = (row + 1..n).map(|k| matrix[row * n + k] * rhs[k]).sum();
+        rhs[row] = (rhs[row] - known) / matrix[row * n + row];
+    }
+}
+
+/// [`strip_kernel`] integrated over η in [low, high] around its singularity at 0, by its
+/// asymptote 2L (ln(4L/|η|) − 1) for |η| ≪ L (K(m) ≈ ln(4/√(1 − m)), E ≈ 1), whose integral
+/// is 2L η ln(4L/|η|); for L → 0 it vanishes as the kernel does.
+fn singular_part(length: f64, low: f64, high: f64) -> f64 {
+    if length <= 0.0 {
+        return 0.0;
+    }
+    let primitive = |eta: f64| if eta == 0.0 { 0.0 } else { 2.0 * length * eta * (4.0 * length / eta.abs()).ln() };
+    primitive(high) - primitive(low)
+}
+
+/// ∫ √(L² − x²)/√(x² + η²) dx over |x| < L: 2c (K(m) − E(m)), c² = L² + η², m = L²/c²
+/// (module doc, 4), with K − E = (m/3) R_D(0, 1 − m, 1).
+fn strip_kernel(length: f64, eta: f64) -> f64 {
+    if length <= 0.0 {
+        return 0.0;
+    }
+    let c2 = length * length + eta * eta;
+    let m = length * length / c2;
+    let rd = ellip::elliprd(0.0, eta * eta / c2, 1.0).unwrap_or(f64::NAN);
+    2.0 * c2.sqrt() * m / 3.0 * rd
+}
+
+impl WheelOnRail {
+    /// The non-Hertzian patches (module doc) at the wheelset's vertical position (prescribed
+    /// position), tread first. A z_ws more than [`MAX_PENETRATION`] below the touch is refused.
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+    ///
+    /// let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    /// let at = |vertical| placed.non_hertzian_patches_at(&WheelsetPosition { vertical, ..Default::default() }).unwrap();
+    /// let light = at(0.19e-3);
+    /// let heavy = at(0.23e-3);
+    /// assert_eq!((light.patches.len(), heavy.patches.len()), (1, 1));
+    /// // Deeper: more load, on more strips.
+    /// assert!(heavy.patches[0].patch.normal_force > light.patches[0].patch.normal_force);
+    /// assert!(heavy.patches[0].strips.len() > light.patches[0].strips.len());
+    /// ```
+    pub fn non_hertzian_patches_at(&self, position: &WheelsetPosition) -> Result<NonHertzianContact, ProfileError> {
+        let right = self.right_pose(position)?;
+        let mut strips = Strips::new(self, right, FIRST_REACH)?;
+        let depth = position.vertical - strips.touch;
+        // (NaN, from a NaN height, is refused too.)
+        if !(..=MAX_PENETRATION).contains(&depth) {
+            return Err(ProfileError::whole(format!(
+                "wheelset_vertical_position = {} m puts the wheel {depth:e} m into the rail (it touches at {} m): \
+                 more than {MAX_PENETRATION} m of penetration is a wheel inside its rail, not a contact",
+                position.vertical, strips.touch
+            )));
+        }
+        if reach_for(depth) != strips.reach {
+            strips = Strips::new(self, right, reach_for(depth))?;
+        }
+        Ok(NonHertzianContact { vertical: position.vertical, patches: strips.patches(position.vertical)? })
+    }
+
+    /// The non-Hertzian patches (module doc) carrying the vertical force F_z \[N\] on the wheel
+    /// (frictionless: Σ N cos δ = F_z), with the wheelset's vertical position that carries it
+    /// (`position.vertical` is not used). F_z ≤ 0 is lift-off: no patch, at the touch.
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+    ///
+    /// let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    /// // The centred wheelset at 10 kN: one wide tread patch, its pressure centroid at −8.49 mm
+    /// // on the rail, where CONTACT's contact reference is (−8.66 mm; the gap's minimum, the Hertz
+    /// // patch's point, lies at −7.28 mm).
+    /// let contact = placed.non_hertzian_patches_for_force(10e3, &WheelsetPosition::default()).unwrap();
+    /// assert_eq!(contact.patches.len(), 1);
+    /// let patch = &contact.patches[0].patch;
+    /// assert!((patch.point.rail_lateral + 8.66e-3).abs() < 0.2e-3, "{}", patch.point.rail_lateral);
+    /// assert!((patch.normal_force * patch.point.contact_angle.cos() - 10e3).abs() < 1e-6);
+    /// // Both modes agree.
+    /// let at = placed.non_hertzian_patches_at(&WheelsetPosition { vertical: contact.vertical, ..Default::default() });
+    /// assert_eq!(at.unwrap(), contact);
+    /// ```
+    pub fn non_hertzian_patches_for_force(
+        &self,
+        vertical_force: f64,
+        position: &WheelsetPosition,
+    ) -> Result<NonHertzianContact, ProfileError> {
+        if !vertical_force.is_finite() {
+            return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
+        }
+        let right = self.right_pose(position)?;
+        let mut strips = Strips::new(self, right, FIRST_REACH)?;
+        let touch = strips.touch;
+        if vertical_force <= 0.0 {
+            return Ok(NonHertzianContact { vertical: touch, patches: Vec::new() });
+        }
+        // A bracket [low, high] of the root, growing from the touch (carried(touch) = 0); the
+        // strips cut deeper when the bracket reaches beyond them.
+        let (mut low, mut high) = (touch, touch + 1e-5);
+        loop {
+            if high - touch >= strips.reach {
+                strips = Strips::new(self, right, reach_for(high - touch))?;
+            }
+            if strips.carried(high) >= vertical_force {
+                break;
+            }
+            low = high;
+            high = touch + 2.0 * (high - touch);
+            if high - touch > MAX_PENETRATION {
+                return Err(ProfileError::whole(format!(
+                    "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
+                )));
+            }
+        }
+        // Regula falsi, Illinois variant (the retained end's residual halved when it is kept
+        // twice), until the force is met to 1e-12 or the bracket can be halved no more.
+        let (mut f_low, mut f_high) = (strips.carried(low) - vertical_force, strips.carried(high) - vertical_force);
+        let mut kept = 0i8;
+        for _ in 0..200 {
+            let z = (low * f_high - high * f_low) / (f_high - f_low);
+            let z = if z > low && z < high { z } else { 0.5 * (low + high) };
+            let f = strips.carried(z) - vertical_force;
+            if f.abs() <= 1e-12 * vertical_force || z <= low || z >= high {
+                low = z;
+                high = z;
+                break;
+            }
+            if f < 0.0 {
+                (low, f_low) = (z, f);
+                if kept == 1 {
+                    f_high *= 0.5;
+                }
+                kept = 1;
+            } else {
+                (high, f_high) = (z, f);
+                if kept == -1 {
+                    f_low *= 0.5;
+                }
+                kept = -1;
+            }
+        }
+        let vertical = if f_high.abs() < f_low.abs() { high } else { low };
+        let vertical = if low == high { low } else { vertical };
+        if reach_for(vertical - touch) != strips.reach {
+            strips = Strips::new(self, right, reach_for(vertical - touch))?;
+        }
+        Ok(NonHertzianContact { vertical, patches: strips.patches(vertical)? })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{singular_part, strip_kernel};
+    use std::f64::consts::PI;
+
+    /// The strip integral against Hertz's circle: under p = k √(a² − r²) the centre sinks by
+    /// k/(π E*) ∫∫ √(a² − r²)/r dA = k/(π E*) · π² a²/2 (polar coordinates), Hertz's
+    /// δ = π a p₀/(2 E*) with p₀ = k a (Johnson 1985, eq. 3.41). Strips of L(y) = √(a² − y²)
+    /// summed as the normal problem sums them (the strip at the centre by the kernel's
+    /// asymptote in closed form, sub-strips near it): within 0.3 % at 0.1 mm strips on a = 5 mm.
+    #[test]
+    fn strips_give_hertzs_approach_on_a_circle() {
+        let (a, width): (f64, f64) = (5e-3, 1e-4);
+        let strips = (a / width).round() as i32;
+        let mut sum = 0.0;
+        for j in -strips..=strips {
+            let centre = f64::from(j) * width;
+            let length = (a * a - centre * centre).max(0.0).sqrt();
+            let parts = if j.abs() <= 1 { 16 } else { 1 };
+            let part = width / f64::from(parts);
+            for q in 0..parts {
+                let low = centre - 0.5 * width + f64::from(q) * part;
+                let high = low + part;
+                sum += if low < 0.0 && high > 0.0 {
+                    singular_part(length, low, high)
+                } else {
+                    part * strip_kernel(length, 0.5 * (low + high))
+                };
+            }
+        }
+        let exact = PI * PI * a * a / 2.0;
+        assert!((sum / exact - 1.0).abs() < 3e-3, "{} against {}", sum, exact);
+    }
+
+    /// The kernel's closed form 2c (K − E) against the integral it stands for, by the midpoint
+    /// rule over x on a fine grid, near (η = L/10), at (η = L) and far from the strip (η = 20 L).
+    #[test]
+    fn the_strip_kernel_is_its_integral() {
+        let length = 2e-3;
+        for eta in [2e-4, 2e-3, 4e-2] {
+            let n = 200_000;
+            let dx = 2.0 * length / f64::from(n);
+            let numeric: f64 = (0..n)
+                .map(|i| {
+                    let x = -length + (f64::from(i) + 0.5) * dx;
+                    (length * length - x * x).sqrt() / (x * x + eta * eta).sqrt() * dx
+                })
+                .sum();
+            let closed = strip_kernel(length, eta);
+            assert!((closed / numeric - 1.0).abs() < 1e-6, "η {eta}: {closed} against {numeric}");
+        }
+    }
+}
