@@ -65,12 +65,21 @@
 //! patches, until they carry F_z within [`BALANCE_TOLERANCE`], by secant steps on z_ws (three
 //! rounds on the tread, four or five on the flange on A-2.2; [`VERTICAL_ROUNDS`] at most).
 //!
+//! Contact method ([`ContactMethod`]). The patches above are Hertz ellipses, one per minimum of
+//! the undeformed gap ([`ContactCandidates`]). With [`ContactMethod::NonHertzian`] they are the
+//! contact regions of the two profiles' interpenetration instead (Kik–Piotrowski,
+//! [`crate::geometry::non_hertzian`]), each with its pressure centroid as the contact point and an
+//! equivalent ellipse for the creep-force models; a prescribed vertical force is balanced in
+//! rounds as above, each round the frictionless non-Hertzian problem for a load corrected by the
+//! creep forces' vertical part (secant steps on that load).
+//!
 //! Creep relaxation and the exact theory's warm start carry over per patch: a patch takes the
 //! state of the last evaluation's patch nearest to it on the rail within [`PATCH_MATCH_DISTANCE`];
 //! a new patch (a flange that comes into contact) starts from rest.
 
 use std::fmt;
 
+use crate::geometry::non_hertzian::NonHertzianContact;
 use crate::geometry::{ContactCandidates, ContactPatch, ContactPoint, ProfileError, WheelOnRail, WheelsetPosition};
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
@@ -88,6 +97,17 @@ pub const BALANCE_TOLERANCE: f64 = 1e-10;
 /// A patch inherits the state of the last evaluation's patch within this distance on the rail
 /// \[m\]: beyond a patch's half-width, closer than tread and flange are to each other.
 pub const PATCH_MATCH_DISTANCE: f64 = 5e-3;
+
+/// How the normal problem finds the patches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ContactMethod {
+    /// One Hertz ellipse per minimum of the undeformed gap (2–4 µs a wheel step).
+    #[default]
+    Hertz,
+    /// One patch per contact region of the profiles' virtual interpenetration (Kik–Piotrowski;
+    /// CONTACT's accuracy where the gap is flat or conformal, 0.1–0.5 ms a normal problem).
+    NonHertzian,
+}
 
 /// The wheelset's velocities in track axes.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -283,6 +303,7 @@ impl From<InvalidInput> for WheelContactError {
 pub struct WheelRailContact {
     geometry: WheelOnRail,
     scene: Scene,
+    method: ContactMethod,
 }
 
 impl WheelRailContact {
@@ -299,7 +320,39 @@ impl WheelRailContact {
             ellipse: EllipseSource::Inputs,
             ..scene
         };
-        Self { geometry, scene }
+        Self { geometry, scene, method: ContactMethod::Hertz }
+    }
+
+    /// The same contact with its patches found by `method` (Hertz unless told).
+    ///
+    /// The centred wheelset of the Manchester benchmark (A-2.2 case 1, 10 kN): the Hertz ellipse
+    /// sits at the gap's minimum, 1.4 mm from the middle of CONTACT's wide patch (rail
+    /// y = −8.66 mm); the non-Hertzian patch's pressure centroid within 0.2 mm of it.
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide};
+    /// use wheel_rail_contact::scene::{Evaluation, Scene};
+    /// use wheel_rail_contact::wheel::{ContactMethod, VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity};
+    /// use wheel_rail_contact::{ModelChoice, Polach};
+    ///
+    /// let rail_y = |method| {
+    ///     let scene = Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28);
+    ///     let contact = WheelRailContact::new(WheelOnRail::manchester_benchmark(WheelSide::Right), scene).with_method(method);
+    ///     let input = WheelInput {
+    ///         position: Default::default(),
+    ///         velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3478, ..Default::default() },
+    ///         vertical: VerticalContact::PrescribedForce(10e3),
+    ///         friction_coefficient: 0.3,
+    ///     };
+    ///     let (output, _) =
+    ///         contact.evaluate(&input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise).unwrap();
+    ///     output.patches[0].patch.point.rail_lateral
+    /// };
+    /// assert!((rail_y(ContactMethod::Hertz) + 8.66e-3).abs() > 1e-3);
+    /// assert!((rail_y(ContactMethod::NonHertzian) + 8.66e-3).abs() < 0.2e-3);
+    /// ```
+    pub fn with_method(self, method: ContactMethod) -> Self {
+        Self { method, ..self }
     }
 
     /// The wheel's placed profiles.
@@ -319,15 +372,21 @@ impl WheelRailContact {
         check_velocity(&input.velocity)?;
         let (vertical, patches, states) = match input.vertical {
             VerticalContact::PrescribedPosition => {
-                let patches = self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?;
+                let patches = match self.method {
+                    ContactMethod::Hertz => {
+                        self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?
+                    }
+                    ContactMethod::NonHertzian => summaries(self.geometry.non_hertzian_patches_at(&input.position)?),
+                };
                 let no_hints = WheelState::default();
                 let (forces, states) =
                     self.patch_forces(input, &input.position, &patches, state, &no_hints, cache, evaluation)?;
                 (input.position.vertical, forces, states)
             }
-            VerticalContact::PrescribedForce(force) => {
-                self.balance_vertical_force(force, input, state, cache, evaluation)?
-            }
+            VerticalContact::PrescribedForce(force) => match self.method {
+                ContactMethod::Hertz => self.balance_vertical_force(force, input, state, cache, evaluation)?,
+                ContactMethod::NonHertzian => self.balance_non_hertzian(force, input, state, cache, evaluation)?,
+            },
         };
         let centre = self.geometry.wheelset_centre(&WheelsetPosition { vertical, ..input.position });
         let mut track_force = [0.0; 3];
@@ -446,6 +505,44 @@ impl WheelRailContact {
         best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(unsettled)
     }
 
+    /// Prescribed vertical force with non-Hertzian patches: rounds of the frictionless
+    /// non-Hertzian problem for a load L and the creep forces on its patches, until the rail
+    /// carries F_z through both within [`BALANCE_TOLERANCE`] (module doc). The first round takes
+    /// L = F_z; the residual r(L) = carried − F_z is nearly linear in L (the creep forces' share
+    /// of the load changes slowly), so the next L is the secant root of r through the last two
+    /// rounds (from the first alone, L − r).
+    fn balance_non_hertzian(
+        &self,
+        force: f64,
+        input: &WheelInput,
+        state: &WheelState,
+        cache: &mut WheelCache,
+        evaluation: Evaluation,
+    ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
+        let mut load = force;
+        let mut hints = WheelState::default();
+        let mut last: Option<(f64, f64)> = None;
+        for _ in 0..VERTICAL_ROUNDS {
+            let contact = self.geometry.non_hertzian_patches_for_force(load, &input.position)?;
+            let vertical = contact.vertical;
+            let patches = summaries(contact);
+            let position = WheelsetPosition { vertical, ..input.position };
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
+            let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
+            let residual = carried - force;
+            if forces.is_empty() || residual.abs() <= BALANCE_TOLERANCE * force {
+                return Ok((vertical, forces, states));
+            }
+            let next = last.and_then(|last| secant_root(last, (load, residual))).unwrap_or(load - residual);
+            last = Some((load, residual));
+            (load, hints) = (next, states);
+        }
+        Err(ProfileError::whole(format!(
+            "vertical_force = {force} N: the vertical balance with the creep forces did not settle in              {VERTICAL_ROUNDS} rounds (contact_method = non_hertzian)"
+        ))
+        .into())
+    }
+
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep
     /// forces, the force the rail carries through them, and, unless these settle the balance
     /// (the rail carries F_z within [`BALANCE_TOLERANCE`]), the normal problem's z_ws (with its
@@ -532,6 +629,12 @@ struct Round {
     carried: f64,
     /// G(z_ws) and its patches; `None` when `forces` settle the balance.
     next: Option<(f64, Vec<ContactPatch>)>,
+}
+
+/// The patches' summaries (contact point, normal force, equivalent ellipse) of a non-Hertzian
+/// solution: what the creep forces are computed on.
+fn summaries(contact: NonHertzianContact) -> Vec<ContactPatch> {
+    contact.patches.into_iter().map(|patch| patch.patch).collect()
 }
 
 /// The secant step on a residual r(z): the root of the line through (z₀, r₀) and (z₁, r₁), if

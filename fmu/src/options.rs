@@ -136,6 +136,7 @@ const OPTIONS: &[OptionUse] = &[
             "flange_back_position",
             "wheel_nominal_radius",
             "vertical_contact",
+            "contact_method",
             "regularisation_speed",
         ],
         outputs: &[

@@ -13,7 +13,8 @@
 
 use super::files::read_regular_file;
 use super::model_description::{
-    enumeration, Inputs, Parameters, Strings, VerticalContact as VerticalChoice, WheelSide as SideChoice,
+    enumeration, ContactMethod as MethodChoice, Inputs, Parameters, Strings, VerticalContact as VerticalChoice,
+    WheelSide as SideChoice,
 };
 use super::resources::file_path;
 use serde::{Deserialize, Serialize};
@@ -25,7 +26,8 @@ use wheel_rail_contact::geometry::{
 };
 use wheel_rail_contact::scene::Scene;
 use wheel_rail_contact::wheel::{
-    PatchForces, VerticalContact, WheelContactError, WheelInput, WheelOutput, WheelRailContact, WheelsetVelocity,
+    ContactMethod, PatchForces, VerticalContact, WheelContactError, WheelInput, WheelOutput, WheelRailContact,
+    WheelsetVelocity,
 };
 
 /// How many patches have their own outputs (`patch1_*`, `patch2_*`).
@@ -144,6 +146,15 @@ impl ProfileContact {
             SideChoice::Right => WheelSide::Right,
             SideChoice::Left => WheelSide::Left,
         };
+        let method = match enumeration(
+            "contact_method",
+            parameters.contact_method,
+            MethodChoice::from_value,
+            MethodChoice::ITEMS,
+        )? {
+            MethodChoice::Hertz => ContactMethod::Hertz,
+            MethodChoice::NonHertzian => ContactMethod::NonHertzian,
+        };
         let vertical = enumeration(
             "vertical_contact",
             parameters.vertical_contact,
@@ -168,7 +179,7 @@ impl ProfileContact {
         let geometry = WheelOnRail::new(wheel, rail, dimensions, side, scene.shear_modulus, scene.poisson_ratio)
             .map_err(|e| format!("{e} ({sources})"))?;
         Ok(Self {
-            contact: WheelRailContact::new(geometry, scene),
+            contact: WheelRailContact::new(geometry, scene).with_method(method),
             vertical,
             sources,
             digest: ProfileDigest { wheel: wheel_digest, rail: rail_digest },

@@ -193,6 +193,7 @@ pub fn scene_of(parameters: &Parameters, resources: Option<&Path>) -> Result<Sce
         flange_back_position: _,
         wheel_nominal_radius: _,
         vertical_contact: _,
+        contact_method: _,
     } = *parameters;
     let selected = enumeration("creep_force_model", creep_force_model, Model::from_value, Model::ITEMS)?;
     let stiffness =

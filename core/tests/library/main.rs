@@ -31,3 +31,4 @@ mod polach_worked_cases;
 mod public_api_examples;
 mod scene_exact_warm_start;
 mod scene_sequences;
+mod wheel_non_hertzian;

@@ -550,3 +550,44 @@ fn a_prescribed_position_inside_the_rail_is_refused() {
     assert_eq!(fmu.set_real(&[vr::WHEELSET_VERTICAL_POSITION], &[0.0]), OK);
     assert_eq!(fmu.do_step(0.0, 1e-3), OK, "{:?}", log.last());
 }
+
+/// `contact_method = non_hertzian` through the C ABI: the centred wheelset (Manchester
+/// case 1, 10 kN) has its one wide patch where CONTACT's full solution has it, rail y = −8.66 mm
+/// and δ = −0.0290 rad (CONTACT rev. 2707, `core/tests/data/mbench_a22_contact_ref_out.csv`),
+/// within the 1 mm and 0.01 rad of CONTACT's fast methods; `hertz` (the default) puts its ellipse
+/// at the gap's minimum, 1.4 mm off. Case 11 (5 mm, yawed: Hertz finds a tread and a flange
+/// patch) gives CONTACT's one patch at −33.45 mm, δ = −0.2905 rad, within 2 mm and 0.05 rad.
+#[test]
+fn non_hertzian_patches_are_where_contact_finds_them() {
+    use wheel_rail_contact_fmu::model_description::ContactMethod;
+    let centred = [0.0, 0.0, 0.0, 0.0, 10e3, 2.0, 4.3478, 0.0, 0.0];
+    let case_11 = [5e-3, 0.0, -3.554e-4, 0.012, 10e3, 2.0, 4.3353637, 0.0, 0.0];
+    let patches = |inputs: &[f64; 9], method: ContactMethod| {
+        let log = MessageLog::default();
+        let fmu = Fmu::instantiate_logged("contact method", &log);
+        let integers = [ContactGeometry::Profiles as i32, method as i32];
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::CONTACT_METHOD], &integers), OK);
+        assert_eq!(fmu.set_real(&WHEELSET, inputs), OK);
+        fmu.initialise(0.0);
+        let [count, angle, rail_y, force_z] = fmu
+            .get_real(&[
+                vr::CONTACT_PATCH_COUNT,
+                vr::PATCH1_CONTACT_ANGLE,
+                vr::PATCH1_RAIL_LATERAL_POSITION,
+                vr::TRACK_FORCE_Z,
+            ])
+            .try_into()
+            .unwrap();
+        assert!((force_z + 10e3).abs() < 1e-6 * 10e3, "{method:?}: F_z {force_z}");
+        (count, angle, rail_y)
+    };
+    let (count, angle, rail_y) = patches(&centred, ContactMethod::NonHertzian);
+    assert_eq!(count, 1.0);
+    assert!((rail_y + 8.66e-3).abs() < 1e-3 && (angle + 0.0290).abs() < 0.01, "rail y {rail_y}, δ {angle}");
+    let (_, _, hertz_rail_y) = patches(&centred, ContactMethod::Hertz);
+    assert!((hertz_rail_y + 8.66e-3).abs() > 1e-3, "Hertz at the gap's minimum: {hertz_rail_y}");
+    let (count, angle, rail_y) = patches(&case_11, ContactMethod::NonHertzian);
+    assert_eq!(count, 1.0);
+    assert!((rail_y + 33.447e-3).abs() < 2e-3 && (angle + 0.2905).abs() < 0.05, "rail y {rail_y}, δ {angle}");
+    assert_eq!(patches(&case_11, ContactMethod::Hertz).0, 2.0, "Hertz: tread and flange");
+}
