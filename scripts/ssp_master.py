@@ -14,7 +14,7 @@ rest itself:
 
 - parameters: every ParameterBinding of each component in document order, then the extra
   parameter sets and values given to `simulate` (names `component.variable`), set after
-  instantiation, before initialisation; Enumerations by their item names;
+  instantiation, before initialisation; Enumerations by their item names or values (ssv:Integer);
 - coupling: explicit (Jacobi) with a fixed communication step h; at each communication point the
   components are visited in an order in which every unit with direct feedthrough (an output that
   depends on an input, by its modelDescription's ModelStructure) comes after the units that feed
@@ -42,10 +42,12 @@ from fmpy.logging import addLoggerProxy
 from fmpy.ssp.ssd import find_components, ns, read_ssd, read_ssv
 from lxml import etree
 
-# The annotation of the SSD's DefaultExperiment that carries the communication step (SSP 1.0 has
-# no element for it).
-STEP_ANNOTATION = "org.wheel-rail-contact.fixed-step-master"
-STEP_NAMESPACE = "urn:wheel-rail-contact:fixed-step-master"
+# Where the SSD carries the communication step (SSP 1.0 has no element for it): OMSimulator's
+# annotation of the system, ssd:System/ssd:Annotations/ssc:Annotation type="org.openmodelica" ->
+# oms:Annotations/oms:SimulationInformation/oms:FixedStepMaster stepSize="…" (as OMSimulator writes
+# and reads it: src/OMSimulatorLib/SystemWC.cpp, ssd/Tags.cpp), so that one number serves both masters.
+STEP_ANNOTATION = "org.openmodelica"
+STEP_NAMESPACE = "https://raw.githubusercontent.com/OpenModelica/OMSimulator/master/schema/oms.xsd"
 LOG_STATUS = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"]
 
 
@@ -73,15 +75,18 @@ def assemble(source_directory, fmus, ssp_path):
 
 
 def default_experiment(ssp_path):
-    """(start time, stop time, communication step) [s] of the SSD's DefaultExperiment."""
+    """(start time, stop time, communication step) [s]: the SSD's DefaultExperiment and the step of
+    its system's fixed-step-master annotation (STEP_ANNOTATION; None without one)."""
     with zipfile.ZipFile(ssp_path) as archive, archive.open("SystemStructure.ssd") as file:
         root = etree.parse(file).getroot()
     experiment = root.find("ssd:DefaultExperiment", namespaces=ns)
     step = None
-    if experiment is not None:
-        for annotation in experiment.findall("ssd:Annotations/ssc:Annotation", namespaces=ns):
-            if annotation.get("type") == STEP_ANNOTATION:
-                step = float(annotation.find(f"{{{STEP_NAMESPACE}}}FixedStepMaster").get("communicationStepSize"))
+    oms = {"oms": STEP_NAMESPACE}
+    for annotation in root.findall("ssd:System/ssd:Annotations/ssc:Annotation", namespaces=ns):
+        if annotation.get("type") == STEP_ANNOTATION:
+            master = annotation.find("oms:Annotations/oms:SimulationInformation/oms:FixedStepMaster", namespaces=oms)
+            if master is not None:
+                step = float(master.get("stepSize"))
     start = float(experiment.get("startTime", 0.0)) if experiment is not None else 0.0
     stop = float(experiment.get("stopTime")) if experiment is not None and experiment.get("stopTime") else None
     return start, stop, step
@@ -197,7 +202,8 @@ def _parameter_values(components, ssp_path, parameter_sets, parameters):
 
 def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_size=None):
     """Runs the SSP `ssp_path` from its DefaultExperiment's start to `stop_time` (default: its
-    stopTime) with communication step `step_size` [s] (default: its annotation's).
+    stopTime) with communication step `step_size` [s] (default: the step of its system's
+    oms:FixedStepMaster annotation, STEP_ANNOTATION).
 
     `parameter_sets`: paths inside the SSP of further .ssv files (names `component.variable`),
     applied after the SSD's bindings; `parameters`: {"component.variable": value} applied last.

@@ -6,6 +6,7 @@ bad input ending the run with a message naming the unit, the time and the variab
 
 Needs the packaged FMUs (`cargo fmu package`, run first by scripts/test-all; built if missing)."""
 
+import io
 import pathlib
 import re
 import sys
@@ -13,8 +14,10 @@ import zipfile
 
 import numpy as np
 import pytest
+from fmpy import read_model_description
 from fmpy.ssp.simulation import simulate_ssp
-from fmpy.ssp.ssd import find_components, read_ssd, read_ssv
+from fmpy.ssp.ssd import find_components, ns, read_ssd, read_ssv
+from lxml import etree
 
 import linear_stability as ls
 
@@ -95,10 +98,84 @@ def test_the_parameter_sets_are_the_parameter_files(ssp):
     contact = _values(ssp, "resources/contact_unit.ssv")
     data = ls.load_contact_data()
     assert float(contact["vertical_force"]) == pytest.approx(parameters["wheelset"]["axle_load"] / 2, rel=1e-12)
-    assert (contact["wheel_profile"], contact["rail_profile"]) == (data["wheel_profile"], data["rail_profile"])
+    # The profiles the units use: the .ssv's if it sets them, else the packaged FMU's start values.
+    starts = {v.name: v.start for v in _model_description(ssp, "wheel_rail_contact.fmu").modelVariables}
+    profiles = tuple(contact.get(name, starts[name]) for name in ("wheel_profile", "rail_profile"))
+    assert profiles == (data["wheel_profile"], data["rail_profile"])
     assert float(contact["track_gauge"]) == data["track_gauge"]
     assert float(contact["wheel_nominal_radius"]) == data["nominal_radius"]
     assert float(wheelset["centred_rolling_radius"]) == pytest.approx(data["centred_radius"], abs=1e-10)
+
+
+def _model_description(ssp, fmu):
+    """The modelDescription of resources/`fmu` in the SSP."""
+    with zipfile.ZipFile(ssp) as archive:
+        return read_model_description(io.BytesIO(archive.read(f"resources/{fmu}")))
+
+
+def _bound_parameters(ssp):
+    """[(component, FMU, ssv:Parameter element)] of every ParameterBinding of the SSD in document
+    order: the .ssv files it names and its inline sets (lxml elements, comments kept)."""
+    with zipfile.ZipFile(ssp) as archive:
+        ssd = etree.fromstring(archive.read("SystemStructure.ssd"))
+        bound = []
+        for component in ssd.iterfind("ssd:System/ssd:Elements/ssd:Component", namespaces=ns):
+            fmu = component.get("source").removeprefix("resources/")
+            for binding in component.iterfind("ssd:ParameterBindings/ssd:ParameterBinding", namespaces=ns):
+                source = binding.get("source")
+                root = etree.fromstring(archive.read(source)) if source else binding
+                bound += [(component.get("name"), fmu, p) for p in root.iter(f"{{{ns['ssv']}}}Parameter")]
+    return bound
+
+
+def test_enumerations_are_integers_named_in_a_comment_and_strings_only_set_where_they_differ(ssp):
+    """For masters that apply only ssv:Integer (OMSimulator drops ssv:Enumeration values) and do not
+    deliver String values set before instantiation (OMSimulator again): every Enumeration variable
+    that the SSD's bindings set is an ssv:Integer whose value is an item of the FMU's
+    modelDescription.xml, with a comment beside it naming that item; a String parameter is set only
+    where the value differs from the FMU's start value."""
+    descriptions = {fmu: {v.name: v for v in _model_description(ssp, fmu).modelVariables}
+                    for fmu in ("wheelset.fmu", "wheel_rail_contact.fmu")}
+    enumerations = set()
+    for component, fmu, parameter in _bound_parameters(ssp):
+        variable = descriptions[fmu][parameter.get("name")]
+        value = parameter.find("*")
+        if variable.type == "Enumeration":
+            items = {int(item.value): item.name for item in variable.declaredType.items}
+            assert etree.QName(value).localname == "Integer", (component, variable.name)
+            comments = [c.text.strip() for c in parameter.iter(etree.Comment)]
+            assert comments == [items[int(value.get("value"))]], (component, variable.name, comments)
+            enumerations.add((component, variable.name, comments[0]))
+        assert etree.QName(value).localname != "Enumeration", (component, variable.name)
+        if variable.type == "String":
+            assert value.get("value") != variable.start, (component, variable.name)
+    assert {("left_wheel", "wheel_side", "left"), ("right_wheel", "wheel_side", "right"),
+            ("left_wheel", "contact_geometry", "profiles"), ("right_wheel", "creep_force_model", "kalker_linear"),
+            ("right_wheel", "vertical_contact", "prescribed_force")} <= enumerations
+
+
+def test_the_step_is_where_omsimulator_reads_it_and_the_master_takes_it_from_there(ssp):
+    """The communication step sits in OMSimulator's annotation of the system, spelt with the
+    prefixes OMSimulator matches literally (it reads the SSD without namespaces, only the first
+    ssc:Annotation of ssd:Annotations, and only with description="oms-ma" as a fixed-step master);
+    scripts/ssp_master.py reads the same number, and DefaultExperiment gives start and stop."""
+    with zipfile.ZipFile(ssp) as archive:
+        ssd = etree.fromstring(archive.read("SystemStructure.ssd"))
+    system = ssd.find("ssd:System", namespaces=ns)
+    annotations = [e for e in system if isinstance(e.tag, str)][-1]
+    assert annotations.prefix == "ssd" and etree.QName(annotations).localname == "Annotations"
+    first = annotations.find("*")
+    assert (first.prefix, etree.QName(first).localname, first.get("type")) == ("ssc", "Annotation", "org.openmodelica")
+    path = ["Annotations", "SimulationInformation", "FixedStepMaster"]
+    element = first
+    for name in path:
+        element = element.find(f"{{{ssp_master.STEP_NAMESPACE}}}{name}")
+        assert element is not None and element.prefix == "oms", name
+    assert element.get("description") == "oms-ma"
+    assert float(element.get("stepSize")) == 2e-4
+    experiment = ssd.find("ssd:DefaultExperiment", namespaces=ns)
+    assert (float(experiment.get("startTime")), float(experiment.get("stopTime"))) == (0.0, 1.0)
+    assert ssp_master.default_experiment(ssp) == (0.0, 1.0, 2e-4)
 
 
 def test_fmpys_own_ssp_simulation_cannot_run_this_system(ssp):
