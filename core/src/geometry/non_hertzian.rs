@@ -265,11 +265,11 @@ impl<'a> Strips<'a> {
                 .hypot(track_vertical[i] - track_vertical[i - 1]);
             strips[i].arc = strips[i - 1].arc + step;
         }
+        // (The stretch spans at least two scan steps, 0.4 mm: four strips or more.)
         let n = strips.len();
         for i in 0..n {
-            let (before, after) = (strips[i.saturating_sub(1)].arc, strips[(i + 1).min(n - 1)].arc);
-            strips[i].width =
-                if n == 1 { STRIP_WIDTH } else { (after - before) / ((i + 1).min(n - 1) - i.saturating_sub(1)) as f64 };
+            let (before, after) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            strips[i].width = (strips[after].arc - strips[before].arc) / (after - before) as f64;
         }
         // The running minimum of the gap within REFERENCE_REACH (in the wheel's y).
         let reach_strips = (REFERENCE_REACH / STRIP_WIDTH).round() as usize;
