@@ -245,7 +245,7 @@ impl<'a> Strips<'a> {
                     StripGeometry {
                         wheel_lateral,
                         gap: f64::INFINITY,
-                        reference_gap: f64::INFINITY,
+                        reference_gap: 0.0,
                         arc: 0.0,
                         width: 0.0,
                         rolling_radius: 0.0,
@@ -280,9 +280,13 @@ impl<'a> Strips<'a> {
         Ok(Self { wheel, right, strips, touch, reach })
     }
 
-    /// The virtual penetration of strip i at z_ws (module doc, 2).
+    /// The virtual penetration of strip i at z_ws (module doc, 2); −∞ off the profiles (where
+    /// the gap is +∞ and its running minimum may be too).
     fn virtual_penetration(&self, i: usize, vertical: f64) -> f64 {
         let s = &self.strips[i];
+        if s.gap == f64::INFINITY {
+            return f64::NEG_INFINITY;
+        }
         VIRTUAL_PENETRATION_SCALE * (vertical - s.reference_gap) - (s.gap - s.reference_gap)
     }
 

@@ -351,3 +351,38 @@ fn left_and_right_are_mirror_images() {
         }
     }
 }
+
+/// Across the whole lateral range (y_ws −16…16 mm every 0.5 mm, where the contact reaches the
+/// profiles' ends: the wheel's field side, the flange's top), with roll and yaw: every answer
+/// is an error or finite, and carries its load.
+#[test]
+fn every_answer_is_finite_or_an_error() {
+    let pair = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    let (mut answered, mut refused) = (0, 0);
+    for step in -32..=32 {
+        for (roll, yaw) in [(0.0, 0.0), (0.004, 0.01), (-0.004, -0.02)] {
+            let position = WheelsetPosition { lateral: f64::from(step) * 0.5e-3, roll, yaw, vertical: 0.0 };
+            match pair.non_hertzian_patches_for_force(20e3, &position) {
+                Ok(contact) => {
+                    answered += 1;
+                    assert!(contact.vertical.is_finite(), "{position:?}");
+                    let carried: f64 =
+                        contact.patches.iter().map(|p| p.patch.normal_force * p.patch.point.contact_angle.cos()).sum();
+                    assert!((carried / 20e3 - 1.0).abs() < 1e-9, "{position:?}: {carried}");
+                    for p in &contact.patches {
+                        let q = &p.patch;
+                        let values =
+                            [q.point.rail_lateral, q.normal_force, q.ellipse.semi_axis_a, q.ellipse.semi_axis_b];
+                        assert!(values.iter().all(|v| v.is_finite()), "{position:?}: {values:?}");
+                    }
+                }
+                Err(error) => {
+                    refused += 1;
+                    println!("{position:?}: {error}");
+                }
+            }
+        }
+    }
+    println!("{answered} answered, {refused} refused");
+    assert!(answered >= 150, "{answered}");
+}
