@@ -176,8 +176,8 @@ fn the_combined_tread_and_flange_root_patch_matches_contact() {
 /// The Manchester cases (with roll and yaw, through the wheel's contact locus), both
 /// wheels: contact point and angle against CONTACT's published solution (frictional there: its
 /// normal forces include the creep forces' vertical share, so only the geometry is compared).
-/// Measured: within 0.79 mm (right case 2, next to the flat gap) and 0.0004 rad on the tread,
-/// 0.48 mm and 0.041 rad on the flange (right case 11, y_ws = 5 mm: one patch at the flange
+/// Measured: within 0.79 mm (right case 2, next to the flat gap) and 0.0007 rad on the tread,
+/// 0.50 mm and 0.041 rad on the flange (right case 11, y_ws = 5 mm: one patch at the flange
 /// root where the Hertz patches found two, 1.47 and 8.17 kN).
 #[test]
 fn a22_contact_points_match_contact() {
