@@ -1,9 +1,13 @@
 //! CONTACT's published reference cases as data, in SI units, to check a model choice against:
 //! the one definition the tests, the benchmarks and the lab's trade report use (and, not published,
-//! the scene two benchmarks share, [`BENCHMARK_WITH_SPIN`]).
+//! the scene two benchmarks share, [`BENCHMARK_WITH_SPIN`]); and the Manchester contact
+//! benchmark's case A-2.2 with CONTACT's full solution for a wheel from profiles
+//! ([`manchester_a22`]).
 //! Source and the full tables: `core/tests/data/contact_published_cases.md` (open-source CONTACT, <https://github.com/eve70a/CONTACT>, `examples/tractcurv`
 //! and `examples/fastsim`, Apache-2.0).
 
+use crate::geometry::{WheelSide, WheelsetPosition};
+use crate::wheel::{VerticalContact, WheelInput, WheelsetVelocity};
 use crate::{ContactInput, TractionBound};
 
 /// Case 1 (`examples/tractcurv`, Eurosprinter): a/b = 0.5, N = 106.7 kN, μ = 0.33; pure ξ, which
@@ -119,3 +123,82 @@ pub const BENCHMARK_WITH_SPIN: ContactInput = ContactInput {
     shear_modulus: 82e9,
     poisson_ratio: 0.28,
 };
+
+/// One case of the Manchester contact benchmark A-2.2 (S1002 on UIC60 1:40 on the benchmark's
+/// track, 10 kN per wheel, V = 2 m/s, μ = 0.3; both wheels, 21 cases each) with CONTACT's
+/// published full solution (rev. 2707, `examples/mbench_a22_{right,left}.ref_out`, Apache-2.0;
+/// `core/tests/data/mbench_a22_contact_ref_out.csv` and `manchester_a22_inputs.csv`), in this
+/// crate's terms: SI units, forces on the wheel (the negatives of CONTACT's on the rail).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ManchesterA22 {
+    pub side: WheelSide,
+    /// The case number, 1–21.
+    pub case: u32,
+    /// The wheelset's pose and motion, the prescribed 10 kN and μ.
+    pub input: WheelInput,
+    /// CONTACT's contact reference point on the rail (rail profile y) \[m\].
+    pub rail_lateral: f64,
+    /// CONTACT's contact angle there \[rad\].
+    pub contact_angle: f64,
+    /// CONTACT's normal force \[N\].
+    pub normal_force: f64,
+    /// CONTACT's creep forces on the wheel in the patch's tangent plane, F_x and F_s \[N\].
+    pub creep_forces: [f64; 2],
+    /// CONTACT's total force on the wheel in track axes \[N\].
+    pub track_force: [f64; 3],
+}
+
+/// Every A-2.2 case, the right wheel's first.
+///
+/// ```
+/// use wheel_rail_contact::geometry::WheelSide;
+/// use wheel_rail_contact::reference_cases::manchester_a22;
+///
+/// let cases = manchester_a22();
+/// assert_eq!(cases.len(), 42);
+/// // Right wheel, case 3: y_ws = 1 mm, CONTACT's patch at rail y = −18.54 mm carrying 9827 N.
+/// let case = cases.iter().find(|c| c.side == WheelSide::Right && c.case == 3).unwrap();
+/// assert_eq!(case.input.position.lateral, 1e-3);
+/// assert!((case.rail_lateral + 18.5418e-3).abs() < 1e-9 && case.normal_force == 9827.0);
+/// ```
+pub fn manchester_a22() -> Vec<ManchesterA22> {
+    let numbers = |line: &str| -> Vec<f64> { line.split(',').skip(1).map(|v| v.parse().expect("a number")).collect() };
+    let inputs = include_str!("../tests/data/manchester_a22_inputs.csv");
+    let outputs = include_str!("../tests/data/mbench_a22_contact_ref_out.csv");
+    let mut cases = Vec::new();
+    for (name, side) in [("right", WheelSide::Right), ("left", WheelSide::Left)] {
+        let prefix = format!("{name},");
+        for line in outputs.lines().filter(|l| l.starts_with(&prefix)) {
+            // case, y_ws, z_ws, roll, yaw, fx_tr … fz_tr, xcp … deltcp_tr, ycp_r, …, fn, fx, fs (CONTACT's units: mm, N).
+            let f = numbers(line);
+            let case = f[0] as u32;
+            let pitch = inputs
+                .lines()
+                .find(|l| l.starts_with(&format!("{prefix}{case},")))
+                .and_then(|l| l.rsplit(',').next())
+                .and_then(|v| v.parse::<f64>().ok())
+                .expect("the case's inputs");
+            cases.push(ManchesterA22 {
+                side,
+                case,
+                input: WheelInput {
+                    position: WheelsetPosition { lateral: f[1] * 1e-3, vertical: 0.0, roll: f[3], yaw: f[4] },
+                    // CONTACT's VPITCH is −Ω.
+                    velocity: WheelsetVelocity {
+                        rolling_speed: 2.0,
+                        wheel_angular_speed: -pitch,
+                        ..Default::default()
+                    },
+                    vertical: VerticalContact::PrescribedForce(10e3),
+                    friction_coefficient: 0.3,
+                },
+                rail_lateral: f[12] * 1e-3,
+                contact_angle: f[11],
+                normal_force: f[21],
+                creep_forces: [-f[22], -f[23]],
+                track_force: [-f[5], -f[6], -f[7]],
+            });
+        }
+    }
+    cases
+}

@@ -508,9 +508,15 @@ impl WheelRailContact {
     /// Prescribed vertical force with non-Hertzian patches: rounds of the frictionless
     /// non-Hertzian problem for a load L and the creep forces on its patches, until the rail
     /// carries F_z through both within [`BALANCE_TOLERANCE`] (module doc). The first round takes
-    /// L = F_z; the residual r(L) = carried − F_z is nearly linear in L (the creep forces' share
-    /// of the load changes slowly), so the next L is the secant root of r through the last two
-    /// rounds (from the first alone, L − r).
+    /// L = F_z; the residual r(L) = carried − F_z rises with L and is nearly linear in it (the
+    /// creep forces' share of the load changes slowly), so the next L is the secant root of r
+    /// through the last two rounds (from the first alone, L − r).
+    ///
+    /// Where r is not smooth the rounds do not settle: on a narrow flange patch the equivalent
+    /// ellipse's width moves by a strip (0.1 mm of some 0.5 mm) as a strip enters, and with it
+    /// the creep forces' share by some 100 N. Then a bisection of r between the rounds that
+    /// bracket its sign change closes in on the step, and the round that carries F_z most
+    /// closely is the answer (as the Hertz balance does where patches join).
     fn balance_non_hertzian(
         &self,
         force: f64,
@@ -519,28 +525,74 @@ impl WheelRailContact {
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
-        let mut load = force;
         let mut hints = WheelState::default();
-        let mut last: Option<(f64, f64)> = None;
-        for _ in 0..VERTICAL_ROUNDS {
+        let round = |load: f64, hints: &WheelState, cache: &mut WheelCache| {
             let contact = self.geometry.non_hertzian_patches_for_force(load, &input.position)?;
             let vertical = contact.vertical;
             let patches = summaries(contact);
             let position = WheelsetPosition { vertical, ..input.position };
-            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, hints, cache, evaluation)?;
             let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
-            let residual = carried - force;
-            if forces.is_empty() || residual.abs() <= BALANCE_TOLERANCE * force {
+            Ok::<_, WheelContactError>((vertical, forces, states, carried - force))
+        };
+        let settled =
+            |forces: &[PatchForces], residual: f64| forces.is_empty() || residual.abs() <= BALANCE_TOLERANCE * force;
+        // The loads below and above the root seen so far, and the round nearest to carrying F_z.
+        let (mut low, mut high): (Option<f64>, Option<f64>) = (None, None);
+        let mut best: Option<(f64, f64, Vec<PatchForces>, WheelState)> = None;
+        let mut keep = |load: f64,
+                        round: (f64, Vec<PatchForces>, WheelState, f64),
+                        low: &mut Option<f64>,
+                        high: &mut Option<f64>| {
+            let (vertical, forces, states, residual) = round;
+            if residual < 0.0 {
+                *low = Some(low.map_or(load, |l: f64| l.max(load)));
+            } else {
+                *high = Some(high.map_or(load, |h: f64| h.min(load)));
+            }
+            if best.as_ref().is_none_or(|(_, best_residual, _, _)| residual.abs() < best_residual.abs()) {
+                best = Some((vertical, residual, forces, states));
+            }
+        };
+        let mut load = force;
+        let mut last: Option<(f64, f64)> = None;
+        for _ in 0..VERTICAL_ROUNDS {
+            let (vertical, forces, states, residual) = round(load, &hints, cache)?;
+            if settled(&forces, residual) {
                 return Ok((vertical, forces, states));
             }
             let next = last.and_then(|last| secant_root(last, (load, residual))).unwrap_or(load - residual);
             last = Some((load, residual));
-            (load, hints) = (next, states);
+            hints = states.clone();
+            keep(load, (vertical, forces, states, residual), &mut low, &mut high);
+            load = next;
         }
-        Err(ProfileError::whole(format!(
-            "vertical_force = {force} N: the vertical balance with the creep forces did not settle in              {VERTICAL_ROUNDS} rounds (contact_method = non_hertzian)"
-        ))
-        .into())
+        if let (Some(mut below), Some(mut above)) = (low, high) {
+            // r's sign changes between them: halve to the load's rounding (≤ 64 halvings).
+            for _ in 0..64 {
+                let middle = 0.5 * (below + above);
+                if middle <= below || middle >= above {
+                    break;
+                }
+                let (vertical, forces, states, residual) = round(middle, &hints, cache)?;
+                if settled(&forces, residual) {
+                    return Ok((vertical, forces, states));
+                }
+                if residual < 0.0 {
+                    below = middle;
+                } else {
+                    above = middle;
+                }
+                keep(middle, (vertical, forces, states, residual), &mut low, &mut high);
+            }
+        }
+        best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(|| {
+            ProfileError::whole(format!(
+                "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
+                 {VERTICAL_ROUNDS} rounds (contact_method = non_hertzian)"
+            ))
+            .into()
+        })
     }
 
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep

@@ -6,76 +6,21 @@
 //! the vertical balance with the creep forces; mirror symmetry; continuity in y_ws.
 
 use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+use wheel_rail_contact::reference_cases::manchester_a22;
 use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::wheel::{
-    ContactMethod, VerticalContact, WheelCache, WheelInput, WheelOutput, WheelRailContact, WheelState, WheelsetVelocity,
+    ContactMethod, VerticalContact, WheelCache, WheelInput, WheelOutput, WheelRailContact, WheelState,
 };
 use wheel_rail_contact::{ExactTable, ModelChoice};
-
-/// CONTACT's values of one case (its units and signs: mm, N; forces on the rail).
-struct Reference {
-    case: u32,
-    y_ws: f64,
-    roll: f64,
-    yaw: f64,
-    total: [f64; 3],
-    rail_lateral: f64,
-    contact_angle: f64,
-    normal: f64,
-    tangential: [f64; 2],
-}
-
-fn references(side: &str) -> Vec<Reference> {
-    include_str!("../data/mbench_a22_contact_ref_out.csv")
-        .lines()
-        .filter(|l| l.starts_with(&format!("{side},")))
-        .map(|l| {
-            let f: Vec<f64> = l.split(',').skip(1).map(|v| v.parse().unwrap()).collect();
-            Reference {
-                case: f[0] as u32,
-                y_ws: f[1],
-                roll: f[3],
-                yaw: f[4],
-                total: [f[5], f[6], f[7]],
-                rail_lateral: f[12],
-                contact_angle: f[11],
-                normal: f[21],
-                tangential: [f[22], f[23]],
-            }
-        })
-        .collect()
-}
-
-/// Ω of each case: CONTACT's VPITCH, negated (`core/tests/data/manchester_a22_inputs.csv`).
-fn angular_speed(side: &str, case: u32) -> f64 {
-    include_str!("../data/manchester_a22_inputs.csv")
-        .lines()
-        .find(|l| l.starts_with(&format!("{side},{case},")))
-        .map(|l| -l.rsplit(',').next().unwrap().parse::<f64>().unwrap())
-        .unwrap()
-}
 
 fn wheel(side: WheelSide) -> WheelRailContact {
     let scene = Scene::of_model(ModelChoice::ExactTable(ExactTable::new().unwrap()), 82e9, 0.28);
     WheelRailContact::new(WheelOnRail::manchester_benchmark(side), scene).with_method(ContactMethod::NonHertzian)
 }
 
-fn input(side: &str, reference: &Reference) -> WheelInput {
-    WheelInput {
-        position: WheelsetPosition {
-            lateral: reference.y_ws * 1e-3,
-            vertical: 0.0,
-            roll: reference.roll,
-            yaw: reference.yaw,
-        },
-        velocity: WheelsetVelocity {
-            rolling_speed: 2.0,
-            wheel_angular_speed: angular_speed(side, reference.case),
-            ..WheelsetVelocity::default()
-        },
-        vertical: VerticalContact::PrescribedForce(10e3),
-        friction_coefficient: 0.3,
-    }
+/// The right wheel's case 1 (the centred wheelset) as a template.
+fn centred() -> WheelInput {
+    manchester_a22()[0].input
 }
 
 fn evaluate(contact: &WheelRailContact, input: &WheelInput) -> WheelOutput {
@@ -105,55 +50,47 @@ const KNOWN_GAPS: [(&str, u32, f64); 3] = [("right", 1, 0.13), ("left", 1, 0.13)
 
 #[test]
 fn every_a22_case_matches_contact() {
+    let (right, left) = (wheel(WheelSide::Right), wheel(WheelSide::Left));
     let mut checked = 0;
-    for (side, wheel_side) in [("right", WheelSide::Right), ("left", WheelSide::Left)] {
-        let contact = wheel(wheel_side);
-        for reference in references(side) {
-            let output = evaluate(&contact, &input(side, &reference));
-            let case = reference.case;
-            // One patch, as CONTACT finds on every case (the tread and flange root of
-            // case 11 in one).
-            assert_eq!(output.patches.len(), 1, "{side} {case}");
-            let patch = &output.patches[0];
-            let on_flange = reference.contact_angle.abs() > 0.2;
-            let (position, angle, normal, force) = tolerances(on_flange);
-            let limit = 0.3 * reference.normal;
-            let creep = [
-                (patch.output.force_longitudinal + reference.tangential[0]).abs() / limit,
-                (patch.output.force_lateral + reference.tangential[1]).abs() / limit,
-            ];
-            let totals = [0, 1, 2].map(|i| (output.track_force[i] + reference.total[i]).abs() / 3e3);
-            let worst = creep.iter().chain(&totals).fold(0.0f64, |m, x| m.max(*x));
-            println!(
-                "{side} {case:2}: rail y {:.3}/{:.3} mm, angle {:.4}/{:.4}, N {:.0}/{:.0}, creep {:.3} {:.3} μN, totals {:.3} μF_z",
-                patch.patch.point.rail_lateral * 1e3,
-                reference.rail_lateral,
-                patch.patch.point.contact_angle,
-                reference.contact_angle,
-                patch.patch.normal_force,
-                reference.normal,
-                creep[0],
-                creep[1],
-                totals.iter().fold(0.0f64, |m, x| m.max(*x)),
-            );
-            assert!(
-                (patch.patch.point.rail_lateral - reference.rail_lateral * 1e-3).abs() < position,
-                "{side} {case}: rail y"
-            );
-            assert!((patch.patch.point.contact_angle - reference.contact_angle).abs() < angle, "{side} {case}: angle");
-            assert!((patch.patch.normal_force / reference.normal - 1.0).abs() < normal, "{side} {case}: N");
-            match KNOWN_GAPS.iter().find(|(s, c, _)| *s == side && *c == case) {
-                Some((.., bound)) => assert!(worst < *bound, "{side} {case}: {worst} μN, beyond its known gap {bound}"),
-                None => assert!(worst < force, "{side} {case}: forces within {worst} μN"),
-            }
-            // The rail carries the prescribed 10 kN through normal and creep forces.
-            assert!(
-                (output.track_force[2] / -10e3 - 1.0).abs() <= 1e-10,
-                "{side} {case}: F_z {}",
-                output.track_force[2]
-            );
-            checked += 1;
+    for reference in manchester_a22() {
+        let (side, case) = (if reference.side == WheelSide::Right { "right" } else { "left" }, reference.case);
+        let contact = if reference.side == WheelSide::Right { &right } else { &left };
+        let output = evaluate(contact, &reference.input);
+        // One patch, as CONTACT finds on every case (the tread and flange root of case 11
+        // in one).
+        assert_eq!(output.patches.len(), 1, "{side} {case}");
+        let patch = &output.patches[0];
+        let on_flange = reference.contact_angle.abs() > 0.2;
+        let (position, angle, normal, force) = tolerances(on_flange);
+        let limit = 0.3 * reference.normal_force;
+        let creep = [
+            (patch.output.force_longitudinal - reference.creep_forces[0]).abs() / limit,
+            (patch.output.force_lateral - reference.creep_forces[1]).abs() / limit,
+        ];
+        let totals = [0, 1, 2].map(|i| (output.track_force[i] - reference.track_force[i]).abs() / 3e3);
+        let worst = creep.iter().chain(&totals).fold(0.0f64, |m, x| m.max(*x));
+        println!(
+            "{side} {case:2}: rail y {:.3}/{:.3} mm, angle {:.4}/{:.4}, N {:.0}/{:.0}, creep {:.3} {:.3} μN, totals {:.3} μF_z",
+            patch.patch.point.rail_lateral * 1e3,
+            reference.rail_lateral * 1e3,
+            patch.patch.point.contact_angle,
+            reference.contact_angle,
+            patch.patch.normal_force,
+            reference.normal_force,
+            creep[0],
+            creep[1],
+            totals.iter().fold(0.0f64, |m, x| m.max(*x)),
+        );
+        assert!((patch.patch.point.rail_lateral - reference.rail_lateral).abs() < position, "{side} {case}: rail y");
+        assert!((patch.patch.point.contact_angle - reference.contact_angle).abs() < angle, "{side} {case}: angle");
+        assert!((patch.patch.normal_force / reference.normal_force - 1.0).abs() < normal, "{side} {case}: N");
+        match KNOWN_GAPS.iter().find(|(s, c, _)| *s == side && *c == case) {
+            Some((.., bound)) => assert!(worst < *bound, "{side} {case}: {worst} μN, beyond its known gap {bound}"),
+            None => assert!(worst < force, "{side} {case}: forces within {worst} μN"),
         }
+        // The rail carries the prescribed 10 kN through normal and creep forces.
+        assert!((output.track_force[2] / -10e3 - 1.0).abs() <= 1e-10, "{side} {case}: F_z {}", output.track_force[2]);
+        checked += 1;
     }
     assert_eq!(checked, 42, "both wheels' 21 cases, none left out");
 }
@@ -164,7 +101,7 @@ fn every_a22_case_matches_contact() {
 fn both_vertical_modes_agree() {
     let contact = wheel(WheelSide::Right);
     for lateral in [0.0, 3e-3, 6.5e-3] {
-        let mut by_force = input("right", &references("right")[0]);
+        let mut by_force = centred();
         by_force.position.lateral = lateral;
         let forced = evaluate(&contact, &by_force);
         let by_position = WheelInput {
@@ -186,7 +123,7 @@ fn both_vertical_modes_agree() {
 fn the_left_wheel_mirrors_the_right() {
     let (right, left) = (wheel(WheelSide::Right), wheel(WheelSide::Left));
     for (lateral, yaw) in [(2e-3, 1e-3), (5e-3, 0.0), (7e-3, -2e-3)] {
-        let mut on_right = input("right", &references("right")[0]);
+        let mut on_right = centred();
         on_right.position = WheelsetPosition { lateral, vertical: 0.0, roll: 0.0, yaw };
         let mut on_left = on_right;
         on_left.position = WheelsetPosition { lateral: -lateral, vertical: 0.0, roll: 0.0, yaw: -yaw };
@@ -213,7 +150,7 @@ fn the_left_wheel_mirrors_the_right() {
 fn forces_move_continuously_through_the_transition() {
     let contact = wheel(WheelSide::Right);
     let lateral_force = |lateral: f64| {
-        let mut rolling = input("right", &references("right")[0]);
+        let mut rolling = centred();
         rolling.position.lateral = lateral;
         let output = evaluate(&contact, &rolling);
         assert_eq!(output.patches.len(), 1, "y {lateral}");
