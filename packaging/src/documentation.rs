@@ -339,8 +339,11 @@ inputs at the current values — exact (forward-mode dual numbers) for Polach, K
 Shen–Hedrick–Elkins (one-sided at kinks: Kalker's table rows in a/b, Φ = 0, aΦ = −2η) and exact_table (the
 interpolant's, one-sided on its cell edges); a central difference for
 FASTSIM and the exact theory (tolerance 1e-2 relative). A parameter as a known is fmi2Error naming it. With
-hertz_contact, creepages_from_kinematics, creep_relaxation or a Polach 2005 traction law on, or with
-contact_geometry = profiles, the call is fmi2Error (“directional derivatives are not available with …”).</li>
+hertz_contact, creepages_from_kinematics, creep_relaxation or a Polach 2005 traction law on (one patch), the call
+is fmi2Error (“directional derivatives are not available with …”). With contact_geometry = profiles: the
+central difference of the wheel's outputs over a step of 10 µm, 10 µrad, 10 µm/s, 10 N of the inputs (one-sided
+where the patches change within it), within 0.1 % of the outputs' own differences on the tread and the
+flange.</li>
 <li>Not supported (declared false; the functions return fmi2Error saying so): input interpolation, output
 derivatives, asynchronous steps.</li>
 <li>Logging: messages go to the master's logger as "%s" plus text, with its componentEnvironment. With debug

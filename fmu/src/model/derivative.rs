@@ -49,7 +49,7 @@ pub(super) fn directional_derivative(
             None => format!("unknown value reference {value_reference}"),
         });
     }
-    let outputs = scene_derivative(&state.values, &state.strings, cache, &rates.inputs)?;
+    let outputs = scene_derivative(&state.values, &state.strings, cache, &state.wheel, &rates.inputs)?;
     finite(&outputs)?;
     let derivative = Values { outputs, ..rates };
     for (&value_reference, slot) in unknowns.iter().zip(unknown_rates.iter_mut()) {

@@ -348,17 +348,54 @@ fn the_left_wheel_is_the_right_one_mirrored() {
     }
 }
 
+/// Directional derivatives with profiles (central differences of the core's wheel, one-sided
+/// where the patches change), against the FMU's own outputs read back after moving an input
+/// (direct feedthrough) by a step of its own (30 µm, 30 µrad, 30 N), on the tread (y_ws =
+/// 2 mm: one patch), on the flange (7 mm) and with tread and flange in contact (case 11). Two
+/// rates known without differences: the rail carries the prescribed force whatever the pose,
+/// so ∂F_z/∂y_ws = 0 and ∂F_z/∂(vertical_force) = −1.
 #[test]
-fn no_directional_derivatives_with_profiles() {
-    let log = MessageLog::default();
-    let fmu = profiles(SideChoice::Right, &CASE_11, &log);
-    let (status, _) = fmu.directional_derivative(&[vr::TRACK_FORCE_Y], &[vr::WHEELSET_LATERAL_DISPLACEMENT], &[1.0]);
-    assert_eq!(status, ERROR);
-    let (_, message) = log.last().unwrap();
-    assert_eq!(
-        message,
-        "fmi2GetDirectionalDerivative: directional derivatives are not available with contact_geometry = 2 (profiles)"
-    );
+fn directional_derivatives_with_profiles_are_the_outputs_differences() {
+    let unknowns =
+        [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::TRACK_FORCE_Z, vr::TRACK_MOMENT_Z, vr::PATCH1_NORMAL_FORCE];
+    let knowns =
+        [(vr::WHEELSET_LATERAL_DISPLACEMENT, 3e-5), (vr::WHEELSET_YAW_ANGLE, 3e-5), (vr::VERTICAL_FORCE, 30.0)];
+    // The differences at 3× the derivative's own step differ from it by their truncation: within
+    // 0.1 % on the tread and the flange; 1.1 % where tread and flange share the load at 5 mm,
+    // where the forces bend sharply with y_ws.
+    for (lateral, tolerance) in [(2e-3, 2e-3), (7e-3, 2e-3), (5e-3, 2e-2)] {
+        let log = MessageLog::default();
+        let mut inputs = CASE_11;
+        inputs[0] = lateral;
+        let fmu = profiles(SideChoice::Right, &inputs, &log);
+        let base = fmu.get_real(&unknowns);
+        for (known, step) in knowns {
+            let (status, rates) = fmu.directional_derivative(&unknowns, &[known], &[1.0]);
+            assert_eq!(status, OK, "{:?}", log.last());
+            let value = fmu.get_real(&[known])[0];
+            let mut at = |x: f64| {
+                assert_eq!(fmu.set_real(&[known], &[x]), OK);
+                fmu.get_real(&unknowns)
+            };
+            let (ahead, behind) = (at(value + step), at(value - step));
+            assert_eq!(at(value), base, "back at the input, the outputs are the same");
+            for (i, rate) in rates.iter().enumerate() {
+                let difference = (ahead[i] - behind[i]) / (2.0 * step);
+                let scale = rates.iter().chain([&difference]).fold(0.0f64, |m, r| m.max(r.abs()));
+                assert!(
+                    (rate - difference).abs() <= tolerance * scale,
+                    "y {lateral}: d(output {i})/d({known}) = {rate}, differences {difference}"
+                );
+            }
+            if known == vr::WHEELSET_LATERAL_DISPLACEMENT {
+                assert!(rates[0].abs() > 1e3 || rates[1].abs() > 1e3, "y {lateral}: the forces move with y_ws");
+                assert!(rates[2].abs() <= 1e-3 * rates[1].abs().max(1.0), "y {lateral}: ∂F_z/∂y = {}", rates[2]);
+            }
+            if known == vr::VERTICAL_FORCE {
+                assert!((rates[2] + 1.0).abs() < 1e-4, "y {lateral}: ∂F_z/∂(vertical_force) = {}", rates[2]);
+            }
+        }
+    }
 }
 
 #[test]
@@ -590,4 +627,35 @@ fn non_hertzian_patches_are_where_contact_finds_them() {
     assert_eq!(count, 1.0);
     assert!((rail_y + 33.447e-3).abs() < 2e-3 && (angle + 0.2905).abs() < 0.05, "rail y {rail_y}, δ {angle}");
     assert_eq!(patches(&case_11, ContactMethod::Hertz).0, 2.0, "Hertz: tread and flange");
+}
+
+/// At a change of the patches (case 11's pose at y_ws = 4.7395 mm: one patch, a second within
+/// 0.5 µm further out; found by a 1 µm sweep), the derivative along y_ws is the one-sided
+/// difference on the side with the patches of the inputs themselves (over the derivative's step,
+/// 10 µm), not a central one across the change.
+#[test]
+fn at_a_change_of_the_patches_the_derivative_is_one_sided() {
+    let log = MessageLog::default();
+    let mut inputs = CASE_11;
+    inputs[0] = 4.7395e-3;
+    let fmu = profiles(SideChoice::Right, &inputs, &log);
+    let forces = [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::TRACK_MOMENT_Z];
+    let (status, rates) = fmu.directional_derivative(&forces, &[vr::WHEELSET_LATERAL_DISPLACEMENT], &[1.0]);
+    assert_eq!(status, OK);
+    let step = 1e-5;
+    let mut at = |y: f64| {
+        assert_eq!(fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[y]), OK);
+        let count = fmu.get_real(&[vr::CONTACT_PATCH_COUNT])[0];
+        (count, fmu.get_real(&forces))
+    };
+    let (y, (here, base), (ahead, f_ahead), (behind, f_behind)) =
+        (inputs[0], at(inputs[0]), at(inputs[0] + step), at(inputs[0] - step));
+    assert_eq!((here, behind), (1.0, 1.0));
+    assert_eq!(ahead, 2.0, "the flange comes into contact within the step");
+    for i in 0..3 {
+        let one_sided = (base[i] - f_behind[i]) / step;
+        let central = (f_ahead[i] - f_behind[i]) / (2.0 * step);
+        assert!((rates[i] - one_sided).abs() <= 1e-9 * one_sided.abs(), "y {y}: {} vs {one_sided}", rates[i]);
+        assert!((rates[i] - central).abs() > 1e-3 * one_sided.abs(), "the central difference would straddle the jump");
+    }
 }
