@@ -373,7 +373,7 @@ fn directional_derivatives_with_profiles_are_the_outputs_differences() {
             let (status, rates) = fmu.directional_derivative(&unknowns, &[known], &[1.0]);
             assert_eq!(status, OK, "{:?}", log.last());
             let value = fmu.get_real(&[known])[0];
-            let mut at = |x: f64| {
+            let at = |x: f64| {
                 assert_eq!(fmu.set_real(&[known], &[x]), OK);
                 fmu.get_real(&unknowns)
             };
@@ -643,7 +643,7 @@ fn at_a_change_of_the_patches_the_derivative_is_one_sided() {
     let (status, rates) = fmu.directional_derivative(&forces, &[vr::WHEELSET_LATERAL_DISPLACEMENT], &[1.0]);
     assert_eq!(status, OK);
     let step = 1e-5;
-    let mut at = |y: f64| {
+    let at = |y: f64| {
         assert_eq!(fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[y]), OK);
         let count = fmu.get_real(&[vr::CONTACT_PATCH_COUNT])[0];
         (count, fmu.get_real(&forces))
