@@ -6,8 +6,11 @@
 //! - [`builtin`]: the Manchester contact benchmark's S1002 wheel and UIC60 rail profiles, compiled
 //!   in and selectable by name (`MBench_S1002`, `MBench_UIC60`; `data/profiles/README.md` gives
 //!   their provenance);
-//! - [`smooth_profile`]: a profile's smooth representation (parametric cubic spline) with its
-//!   slope and curvature;
+//! - [`measured_profile`]: measured, worn profiles (MiniProf, SIMPACK) read and cleaned into
+//!   their running surface: header forms, zig-zags, back-steps and overhangs, either side, z up
+//!   or down;
+//! - [`smooth_profile`]: a profile's smooth representation (parametric cubic spline, interpolating
+//!   or smoothing) with its slope and curvature;
 //! - [`contact`]: a wheel placed on its rail, right or left (gauge, cant, flange back, roll, yaw), its
 //!   contact points (tread and flange), the normal problem in both modes (prescribed vertical
 //!   position or force) with a Hertz ellipse per patch;
@@ -27,6 +30,7 @@
 pub mod builtin;
 pub mod conicity;
 pub mod contact;
+pub mod measured_profile;
 pub mod non_hertzian;
 pub mod normal_problem;
 mod patch;
@@ -37,6 +41,9 @@ pub mod smooth_profile;
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};
 pub use contact::{TrackDimensions, WheelOnRail, WheelsetPosition};
+pub use measured_profile::{
+    read_measured_profile, MeasuredOptions, MeasuredProfile, Orientation, MEASURED_FILTER_WAVELENGTH,
+};
 pub use non_hertzian::{NonHertzianContact, NonHertzianPatch, Strip};
 pub use normal_problem::{ContactCandidates, MAX_PENETRATION};
 pub use patch::{ContactPatch, ContactPoint, WheelSide};

@@ -16,10 +16,16 @@
 //! is a comment. The optional third column (a smoothing weight) is read and not used: the
 //! smooth representation interpolates.
 //!
-//! MiniProf: `Key=Value` header lines, then one point per line, columns as `ColumnDef` names
-//! them (`X,Y` when absent: X lateral, Y vertical, both in mm); everything after `"`, `!` or `%`
-//! is a comment (MiniProf comments out points with a leading `"`, as CONTACT's
-//! `read_miniprof.m` reads them).
+//! MiniProf: a header in any of the forms MiniProf and its tools write (`Key=Value` lines, or
+//! the old style's plain lines such as `#MINIWHEELPROF` and `MINIPROF 101 148 1994 3 24`, ended
+//! by a blank line: [`miniprof_points`]), then one point per line, columns as `ColumnDef` names
+//! them (`X,Y` when absent: X lateral, Y vertical, both in mm), moved by the header's `Xoffset`
+//! and `Yoffset`; everything after `"`, `!` or `%` is a comment (MiniProf comments out points
+//! with a leading `"`, as CONTACT's `read_miniprof.m` reads them).
+//!
+//! These readers take the points as the file gives them and refuse what is not a clean profile;
+//! measured, noisy, overhanging or left-side profiles are read by
+//! [`super::measured_profile`], on the same lexical readers.
 
 use std::fmt;
 
@@ -130,7 +136,7 @@ pub struct ProfilePoints {
 }
 
 /// The fewest points the smooth representation (a cubic spline) accepts.
-const MIN_POINTS: usize = 4;
+pub(crate) const MIN_POINTS: usize = 4;
 
 /// Reads a profile file's text in the given format.
 ///
@@ -182,10 +188,10 @@ pub fn parse_profile_as(text: &str, format: ProfileFormat, kind: ProfileKind) ->
 
 /// A point as read, with its line for the errors found later.
 #[derive(Debug, Clone, Copy)]
-struct RawPoint {
-    y: f64,
-    z: f64,
-    line: usize,
+pub(crate) struct RawPoint {
+    pub(crate) y: f64,
+    pub(crate) z: f64,
+    pub(crate) line: usize,
 }
 
 /// SIMPACK's processing options (see the module doc), with SIMPACK's defaults.
@@ -218,6 +224,13 @@ impl Default for SimpackOptions {
 }
 
 fn parse_simpack(text: &str, kind: Option<ProfileKind>) -> Result<ProfilePoints, ProfileError> {
+    let (points, units) = simpack_points(text, kind)?;
+    finish(points, &units)
+}
+
+/// A SIMPACK file's points in metres in the file's order, its options applied (module doc), and
+/// how its lengths were read (for the messages).
+pub(crate) fn simpack_points(text: &str, kind: Option<ProfileKind>) -> Result<(Vec<RawPoint>, String), ProfileError> {
     let mut options = SimpackOptions::default();
     let mut points = Vec::new();
     let mut in_points = false;
@@ -270,7 +283,7 @@ fn parse_simpack(text: &str, kind: Option<ProfileKind>) -> Result<ProfilePoints,
     }
     let points = process_simpack(points, &options);
     let units = format!(" (units.len.f = {} file units per metre: millimetres need 1000)", options.length_per_metre);
-    finish(points, &units)
+    Ok((points, units))
 }
 
 /// A SIMPACK header's `type` against the kind the file is read as.
@@ -369,27 +382,83 @@ fn process_simpack(mut points: Vec<RawPoint>, options: &SimpackOptions) -> Vec<R
 }
 
 fn parse_miniprof(text: &str) -> Result<ProfilePoints, ProfileError> {
+    finish(miniprof_points(text)?, MINIPROF_UNITS)
+}
+
+/// How MiniProf's lengths are read, for the messages.
+pub(crate) const MINIPROF_UNITS: &str = " (MiniProf files are in millimetres)";
+
+/// A MiniProf file's points in metres, in the file's order, moved by the header's `Xoffset`
+/// and `Yoffset` (added, as CONTACT's reader does). The header forms MiniProf and the tools around it
+/// write, as CONTACT's `read_miniprof_profile` (m_profile.f90) tells them apart: `Key=Value`
+/// lines; the old style's plain lines (`#MINIWHEELPROF`, `MINIPROF 101 148 1994 3 24`, the file
+/// name, `Stock.......:`, `32.58 37.11 14.71  (Sd/Sh/qR)`), after which numbers belong to the
+/// header until its blank line; a blank line ends a header. Without an old-style line, the first
+/// line of numbers starts the points. A `Key=` line among the points, or a point that is not
+/// numbers, is refused with its line.
+pub(crate) fn miniprof_points(text: &str) -> Result<Vec<RawPoint>, ProfileError> {
     let mut columns = (0, 1);
     let mut points = Vec::new();
+    let mut offset = (0.0, 0.0);
+    let (mut in_header, mut old_style, mut header_seen) = (true, false, false);
     for (index, raw_line) in text.lines().enumerate() {
         let line = index + 1;
-        let content = raw_line.split(['"', '!', '%']).next().unwrap_or("").trim();
-        if content.is_empty() {
+        let trimmed = raw_line.trim();
+        if trimmed.is_empty() {
+            in_header &= !header_seen;
             continue;
         }
-        if let Some((key, value)) = content.split_once('=') {
-            if key.trim() == "ColumnDef" {
-                columns = miniprof_columns(value, line)?;
+        // A whole line commented out (a point MiniProf dropped, a quoted header line).
+        if trimmed.starts_with(['"', '!', '%']) {
+            continue;
+        }
+        if let Some((key, value)) = trimmed.split_once('=') {
+            if !in_header {
+                return Err(ProfileError::at(line, format!("a header line `{trimmed}` among the points")));
+            }
+            header_seen = true;
+            // MiniProf marks a text value with `%` (`Side=%L`).
+            let value = value.trim().trim_start_matches('%');
+            match key.trim() {
+                "ColumnDef" => columns = miniprof_columns(value, line)?,
+                "Xoffset" | "XOffset" => offset.0 = miniprof_header_number(key, value, line)? * 1e-3,
+                "Yoffset" | "YOffset" => offset.1 = miniprof_header_number(key, value, line)? * 1e-3,
+                _ => {}
             }
             continue;
         }
-        let mut point = parse_point(content, line, columns)?;
+        let content = trimmed.split(['"', '!', '%']).next().unwrap_or("").trim();
+        let numeric = content
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|f| !f.is_empty())
+            .all(|f| f.parse::<f64>().is_ok());
+        if in_header {
+            if trimmed.starts_with('#') || !numeric {
+                (old_style, header_seen) = (true, true);
+                continue;
+            }
+            if old_style {
+                continue;
+            }
+            in_header = false;
+        }
+        let point = parse_point(content, line, columns)?;
         // MiniProf writes millimetres.
-        point.y *= 1e-3;
-        point.z *= 1e-3;
-        points.push(point);
+        points.push(RawPoint { y: point.y * 1e-3 + offset.0, z: point.z * 1e-3 + offset.1, line });
     }
-    finish(points, " (MiniProf files are in millimetres)")
+    Ok(points)
+}
+
+/// A MiniProf header's number (empty: 0, as MiniProf leaves unused offsets blank).
+fn miniprof_header_number(key: &str, value: &str, line: usize) -> Result<f64, ProfileError> {
+    if value.is_empty() {
+        return Ok(0.0);
+    }
+    value
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| ProfileError::at(line, format!("`{}` must be a finite number, found `{value}`", key.trim())))
 }
 
 /// The positions of the X (lateral) and Y (vertical) columns in a MiniProf `ColumnDef`.
@@ -424,7 +493,7 @@ fn parse_point(content: &str, line: usize, columns: (usize, usize)) -> Result<Ra
 /// Checks that every point lies within [`MAX_COORDINATE`] of the origin (`units` says how the
 /// file's lengths were read, for the message), orders the points by increasing y and checks
 /// that y is strictly monotonic.
-fn finish(mut points: Vec<RawPoint>, units: &str) -> Result<ProfilePoints, ProfileError> {
+pub(crate) fn finish(mut points: Vec<RawPoint>, units: &str) -> Result<ProfilePoints, ProfileError> {
     if let Some(far) = points.iter().find(|p| p.y.abs().max(p.z.abs()) > MAX_COORDINATE) {
         return Err(ProfileError::at(
             far.line,

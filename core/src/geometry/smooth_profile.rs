@@ -8,8 +8,20 @@
 //! and no well-kept Rust crate gives a parametric cubic spline with its second derivatives
 //! (`splines` has no derivatives, `bspline` no fitting); the spline is thirty lines (the
 //! tridiagonal system of de Boor, "A Practical Guide to Splines", ch. IV, with natural ends).
-//! A smoothing spline for measured, noisy profiles (CONTACT's `smooth_profile.m`) is not here
-//! yet.
+//!
+//! Smoothing ([`SmoothProfile::smoothed`]), for measured, noisy profiles: CONTACT's weighted
+//! smoothing spline with a second-order penalty (its `ISMOOTH = 1`, user guide §"Profile
+//! smoothing"; E.A.H. Vollebregt, "Detailed wheel/rail geometry processing with the conformal
+//! contact approach", Multibody System Dynamics 52, 2021, and CM2022). Each coordinate f ∈ {y, z}
+//! of the profile over its chord length s minimises Σ wᵢ (fᵢ − f(sᵢ))² + λ ∫ f″(s)² ds with
+//! weights wᵢ = (sᵢ₊₁ − sᵢ₋₁)/2 (half the chords at the ends) and λ = (L/2π)⁴ from the filter
+//! wavelength L: a low-pass filter that roughly halves undulations of wavelength L, damps shorter
+//! ones more and keeps longer ones. The minimiser is the natural cubic spline on the same knots
+//! whose values g and second derivatives γ solve Reinsch's system (R + λ QᵀW⁻¹Q) γ = Qᵀf,
+//! g = f − λ W⁻¹Q γ (P.J. Green, B.W. Silverman, "Nonparametric regression and generalized
+//! linear models", 1994, §2.3.3): a symmetric positive definite five-band system, solved here by
+//! its LDLᵀ factors. L = 0 is interpolation, exactly [`SmoothProfile::new`]. Written from the
+//! method's description, not from CONTACT's code.
 //!
 //! Accuracy (core/tests/library/geometry_profiles.rs): on points of a 300 mm circle every 0.5 mm the slope is
 //! within 1e-7 rad and κ within 1e-4 of 1/R more than 20 points inside the ends (the natural
@@ -30,6 +42,16 @@ pub const PROFILE_WIDTH: (f64, f64) = (0.01, 0.5);
 /// The tallest profile placed \[m\]: a whole rail with its foot is 0.17 m tall, a wheel profile
 /// with its flange some 0.04 m.
 pub const PROFILE_HEIGHT: f64 = 0.25;
+
+/// The chord lengths s of the points (y, z): the splines' knots, from 0.
+fn chord_lengths(y: &[f64], z: &[f64]) -> Vec<f64> {
+    let mut knots = Vec::with_capacity(y.len());
+    knots.push(0.0);
+    for i in 1..y.len() {
+        knots.push(knots[i - 1] + (y[i] - y[i - 1]).hypot(z[i] - z[i - 1]));
+    }
+    knots
+}
 
 /// One coordinate's cubic spline on the shared knots: values and second derivatives at the knots.
 #[derive(Debug, Clone)]
@@ -60,6 +82,77 @@ impl CubicSpline {
             second[i] = rhs[i] - upper[i] * second[i + 1];
         }
         Self { values: values.to_vec(), second }
+    }
+
+    /// The smoothing splines' values g of y and z at `knots` with λ (module doc, "Smoothing"):
+    /// Reinsch's system for the interior second derivatives γ, one LDLᵀ factorisation for both
+    /// coordinates.
+    fn smoothed_values(knots: &[f64], lateral: &[f64], vertical: &[f64], lambda: f64) -> (Vec<f64>, Vec<f64>) {
+        let n = knots.len();
+        let h: Vec<f64> = knots.windows(2).map(|k| k[1] - k[0]).collect();
+        let weight = |i: usize| 0.5 * (knots[(i + 1).min(n - 1)] - knots[i.saturating_sub(1)]);
+        // Column j (knot j, 1 ≤ j ≤ n−2) of Q: rows j−1, j, j+1 hold (1/h[j−1], −1/h[j−1] − 1/h[j], 1/h[j]).
+        let q = |j: usize| (1.0 / h[j - 1], -1.0 / h[j - 1] - 1.0 / h[j], 1.0 / h[j]);
+        let m = n - 2;
+        // The matrix's three bands (diagonal, first and second off-diagonal), row r = knot r + 1.
+        let mut band = vec![[0.0; 3]; m];
+        for (r, row) in band.iter_mut().enumerate() {
+            let j = r + 1;
+            let (a, b, c) = q(j);
+            row[0] =
+                (h[j - 1] + h[j]) / 3.0 + lambda * (a * a / weight(j - 1) + b * b / weight(j) + c * c / weight(j + 1));
+            if r + 1 < m {
+                let (a1, b1, _) = q(j + 1);
+                row[1] = h[j] / 6.0 + lambda * (b * a1 / weight(j) + c * b1 / weight(j + 1));
+            }
+            if r + 2 < m {
+                row[2] = lambda * c * q(j + 2).0 / weight(j + 1);
+            }
+        }
+        // LDLᵀ: l1[r] = L[r][r−1], l2[r] = L[r][r−2].
+        let (mut d, mut l1, mut l2) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        for r in 0..m {
+            if r >= 2 {
+                l2[r] = band[r - 2][2] / d[r - 2];
+            }
+            if r >= 1 {
+                let across = if r >= 2 { l2[r] * l1[r - 1] * d[r - 2] } else { 0.0 };
+                l1[r] = (band[r - 1][1] - across) / d[r - 1];
+            }
+            d[r] = band[r][0]
+                - if r >= 1 { l1[r] * l1[r] * d[r - 1] } else { 0.0 }
+                - if r >= 2 { l2[r] * l2[r] * d[r - 2] } else { 0.0 };
+        }
+        let solve = |values: &[f64]| -> Vec<f64> {
+            let mut x: Vec<f64> =
+                (1..=m).map(|j| (values[j + 1] - values[j]) / h[j] - (values[j] - values[j - 1]) / h[j - 1]).collect();
+            for r in 0..m {
+                x[r] -= if r >= 1 { l1[r] * x[r - 1] } else { 0.0 } + if r >= 2 { l2[r] * x[r - 2] } else { 0.0 };
+            }
+            for r in 0..m {
+                x[r] /= d[r];
+            }
+            for r in (0..m).rev() {
+                x[r] -= if r + 1 < m { l1[r + 1] * x[r + 1] } else { 0.0 }
+                    + if r + 2 < m { l2[r + 2] * x[r + 2] } else { 0.0 };
+            }
+            let mut second = vec![0.0; n];
+            second[1..=m].copy_from_slice(&x);
+            // g = f − λ W⁻¹ Q γ, (Qγ)ᵢ = γᵢ₋₁/h[i−1] − γᵢ (1/h[i−1] + 1/h[i]) + γᵢ₊₁/h[i] (γ = 0 at the ends).
+            (0..n)
+                .map(|i| {
+                    let mut q_gamma = 0.0;
+                    if i >= 1 {
+                        q_gamma += (second[i - 1] - second[i]) / h[i - 1];
+                    }
+                    if i + 1 < n {
+                        q_gamma += (second[i + 1] - second[i]) / h[i];
+                    }
+                    values[i] - lambda * q_gamma / weight(i)
+                })
+                .collect()
+        };
+        (solve(lateral), solve(vertical))
     }
 
     /// Value, first and second derivative on segment `i` at `t` = s − s_i, segment length `h`.
@@ -150,12 +243,61 @@ impl SmoothProfile {
         if y.iter().chain(z).any(|v| !v.is_finite()) || y.windows(2).any(|w| w[1] <= w[0]) {
             return Err(ProfileError::whole("profile points must be finite with y strictly increasing"));
         }
-        let mut knots = Vec::with_capacity(y.len());
-        knots.push(0.0);
-        for i in 1..y.len() {
-            knots.push(knots[i - 1] + (y[i] - y[i - 1]).hypot(z[i] - z[i - 1]));
-        }
+        let knots = chord_lengths(y, z);
         Ok(Self { lateral: CubicSpline::natural(&knots, y), vertical: CubicSpline::natural(&knots, z), knots })
+    }
+
+    /// The profile smoothed with filter wavelength `wavelength` \[m\] (module doc, "Smoothing";
+    /// CONTACT's L_filt of its `ISMOOTH = 1`): undulations of about that wavelength are halved,
+    /// shorter ones damped more, longer ones kept. The smoothing spline's values at the points are
+    /// interpolated as by [`Self::new`] — on the same knots that is the smoothing spline itself,
+    /// the unique natural cubic spline through its values — except that a point whose smoothed y
+    /// no longer advances (on a near-vertical face, where the measured y wanders and the smoothing
+    /// averages it) is left out, so that y still increases along the profile. 0 interpolates the
+    /// points themselves ([`Self::new`], bit for bit).
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{ProfilePoints, SmoothProfile};
+    ///
+    /// // A straight tread every 0.2 mm with a ±0.02 mm zig-zag in z (wavelength 0.4 mm).
+    /// let lateral: Vec<f64> = (0..300).map(|i| f64::from(i) * 0.2e-3).collect();
+    /// let vertical = (0..300).map(|i| if i % 2 == 0 { 0.02e-3 } else { -0.02e-3 }).collect();
+    /// let points = ProfilePoints { lateral, vertical };
+    /// let raw = SmoothProfile::new(&points).unwrap();
+    /// let smooth = SmoothProfile::smoothed(&points, 5e-3).unwrap();
+    /// // Interpolated, the zig-zag stays; with L = 5 mm it is gone (< 0.1 µm) away from the ends.
+    /// assert!(raw.at_lateral(30e-3).unwrap().vertical > 0.019e-3);
+    /// for k in 50..250 {
+    ///     let y = f64::from(k) * 0.2e-3;
+    ///     assert!(smooth.at_lateral(y).unwrap().vertical.abs() < 1e-7, "z({y})");
+    /// }
+    /// // L = 0 is the interpolation itself.
+    /// let same = SmoothProfile::smoothed(&points, 0.0).unwrap();
+    /// assert_eq!(same.at_lateral(30e-3), raw.at_lateral(30e-3));
+    /// assert!(SmoothProfile::smoothed(&points, -1.0).is_err());
+    /// ```
+    pub fn smoothed(points: &ProfilePoints, wavelength: f64) -> Result<Self, ProfileError> {
+        if !(wavelength >= 0.0 && wavelength.is_finite()) {
+            return Err(ProfileError::whole(format!(
+                "the smoothing's filter wavelength must be finite and ≥ 0 m, found {wavelength}"
+            )));
+        }
+        let interpolated = Self::new(points)?;
+        if wavelength == 0.0 {
+            return Ok(interpolated);
+        }
+        let lambda = (wavelength / std::f64::consts::TAU).powi(4);
+        let (lateral, vertical) =
+            CubicSpline::smoothed_values(&interpolated.knots, &points.lateral, &points.vertical, lambda);
+        let mut kept =
+            ProfilePoints { lateral: Vec::with_capacity(lateral.len()), vertical: Vec::with_capacity(lateral.len()) };
+        for (y, z) in lateral.into_iter().zip(vertical) {
+            if kept.lateral.last().is_none_or(|&last| y > last) {
+                kept.lateral.push(y);
+                kept.vertical.push(z);
+            }
+        }
+        Self::new(&kept)
     }
 
     /// The profile turned by `angle` \[rad\] about its origin, about the x axis: (y, z) →

@@ -12,6 +12,7 @@ mod floors;
 mod geometry_benchmark;
 mod geometry_conicity;
 mod geometry_invariants;
+mod geometry_measured;
 mod geometry_non_hertzian;
 mod geometry_profiles;
 mod geometry_wheel_forces;
