@@ -137,6 +137,7 @@ const OPTIONS: &[OptionUse] = &[
             "wheel_nominal_radius",
             "vertical_contact",
             "contact_method",
+            "profile_filter_wavelength",
             "regularisation_speed",
         ],
         outputs: &[

@@ -21,8 +21,8 @@ use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
 use std::path::Path;
 use wheel_rail_contact::geometry::{
-    builtin_profile, parse_profile_as, ProfileFormat, ProfileKind, ProfilePoints, SmoothProfile, TrackDimensions,
-    WheelOnRail, WheelSide, WheelsetPosition, BUILTIN_PROFILE_NAMES,
+    builtin_profile, parse_profile_as, read_measured_profile, MeasuredOptions, ProfileFormat, ProfileKind,
+    ProfilePoints, SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition, BUILTIN_PROFILE_NAMES,
 };
 use wheel_rail_contact::scene::Scene;
 use wheel_rail_contact::wheel::{
@@ -57,6 +57,10 @@ pub struct ProfileDigest {
 /// points (MiniProf's 50–200 kB); a file beyond 16 MiB is not a profile, and reading it whole
 /// would size the FMU's memory by a user's file.
 pub const MAX_PROFILE_FILE_SIZE: u64 = 16 << 20;
+
+/// The longest filter wavelength for measured profiles \[m\]: 0.1 m smooths a rail head's whole
+/// width into one arc.
+const MAX_FILTER_WAVELENGTH: f64 = 0.1;
 
 /// The longest path a profile parameter may hold \[bytes\] (PATH_MAX on Linux; Windows' is shorter).
 const MAX_PATH_LENGTH: usize = 4096;
@@ -120,14 +124,32 @@ fn profile_points(kind: ProfileKind, value: &str, resources: Option<&Path>) -> R
     // Only the numbers matter: a comment or header in Windows-1252 or Latin-1 (MiniProf's
     // `Chars=Win`) is read with its other bytes replaced.
     let text = String::from_utf8_lossy(&bytes);
-    let points = parse_profile_as(&text, format, kind).map_err(|e| format!("{}: {e}", named(kind, value)))?;
+    let points = match format {
+        // What instruments write: read and cleaned as measured points (every header form,
+        // zig-zags, back-steps, overhangs, side and z direction detected).
+        ProfileFormat::MiniProf => {
+            read_measured_profile(&text, format, kind, &MeasuredOptions::default()).map(|measured| measured.points)
+        }
+        ProfileFormat::Simpack => parse_profile_as(&text, format, kind),
+    }
+    .map_err(|e| format!("{}: {e}", named(kind, value)))?;
     Ok((points, crc32fast::hash(&bytes)))
 }
 
-/// [`profile_points`] as a smooth profile of a wheel's or rail's extent.
-fn smooth_profile(kind: ProfileKind, value: &str, resources: Option<&Path>) -> Result<(SmoothProfile, u32), String> {
+/// [`profile_points`] as a smooth profile of a wheel's or rail's extent: a measured (MiniProf)
+/// one smoothed with filter wavelength `wavelength` (CONTACT's weighted smoothing spline;
+/// 0 interpolates), the others interpolated.
+fn smooth_profile(
+    kind: ProfileKind,
+    value: &str,
+    resources: Option<&Path>,
+    wavelength: f64,
+) -> Result<(SmoothProfile, u32), String> {
     let (points, digest) = profile_points(kind, value, resources)?;
-    let profile = SmoothProfile::new(&points)
+    let measured = ProfileFormat::from_file_name(value) == Some(ProfileFormat::MiniProf)
+        && !BUILTIN_PROFILE_NAMES.contains(&value);
+    let profile = if measured { SmoothProfile::smoothed(&points, wavelength) } else { SmoothProfile::new(&points) };
+    let profile = profile
         .and_then(|profile| profile.check_extent(kind.name()).map(|()| profile))
         .map_err(|e| format!("{}: {e}", named(kind, value)))?;
     Ok((profile, digest))
@@ -169,8 +191,14 @@ impl ProfileContact {
             nominal_radius: parameters.wheel_nominal_radius,
             rail_cant: parameters.rail_cant,
         };
-        let (wheel, wheel_digest) = smooth_profile(ProfileKind::Wheel, &strings.wheel_profile, resources)?;
-        let (rail, rail_digest) = smooth_profile(ProfileKind::Rail, &strings.rail_profile, resources)?;
+        let wavelength = parameters.profile_filter_wavelength;
+        if !(0.0..=MAX_FILTER_WAVELENGTH).contains(&wavelength) {
+            return Err(format!(
+                "profile_filter_wavelength = {wavelength} is invalid: must lie in [0, {MAX_FILTER_WAVELENGTH}] m"
+            ));
+        }
+        let (wheel, wheel_digest) = smooth_profile(ProfileKind::Wheel, &strings.wheel_profile, resources, wavelength)?;
+        let (rail, rail_digest) = smooth_profile(ProfileKind::Rail, &strings.rail_profile, resources, wavelength)?;
         let sources = format!(
             "wheel_profile = \"{}\", rail_profile = \"{}\"",
             shown(&strings.wheel_profile),

@@ -194,6 +194,7 @@ pub fn scene_of(parameters: &Parameters, resources: Option<&Path>) -> Result<Sce
         wheel_nominal_radius: _,
         vertical_contact: _,
         contact_method: _,
+        profile_filter_wavelength: _,
     } = *parameters;
     let selected = enumeration("creep_force_model", creep_force_model, Model::from_value, Model::ITEMS)?;
     let stiffness =

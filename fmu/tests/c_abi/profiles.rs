@@ -659,3 +659,50 @@ fn at_a_change_of_the_patches_the_derivative_is_one_sided() {
         assert!((rates[i] - central).abs() > 1e-3 * one_sided.abs(), "the central difference would straddle the jump");
     }
 }
+
+/// Measured MiniProf profiles through the FMU (issue 39): a measured wheel and high rail from
+/// CONTACT's test bank (`core/tests/data/profiles/measured/`, its README) read, cleaned and
+/// smoothed (`profile_filter_wavelength`, 5 mm by default); the MiniProf wheel's y runs from its
+/// flange back (`flange_back_position = 0`) and the rail is measured in its own axes (1:40
+/// inclination by `rail_cant`). Centred, with 10 kN: the wheel carries the load on one patch on
+/// its tread (CONTACT's own search on these files smooths them too); interpolated (wavelength 0)
+/// the noise's minima give more candidates, and the answer still carries the load. A negative
+/// wavelength is refused naming it.
+#[test]
+fn measured_miniprof_profiles_are_read_cleaned_and_smoothed() {
+    let measured = concat!(env!("CARGO_MANIFEST_DIR"), "/../core/tests/data/profiles/measured/");
+    let wheel = format!("{measured}right-wheel-v1-pre-dry.whl");
+    let rail = format!("{measured}avg_HR.BAN");
+    let run = |wavelength: f64| {
+        let log = MessageLog::default();
+        let fmu = Fmu::instantiate_logged("measured", &log);
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+        assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE, vr::RAIL_PROFILE], &[&wheel, &rail]), OK);
+        let reals = [0.0, (1.0f64 / 40.0).atan(), wavelength];
+        assert_eq!(fmu.set_real(&[vr::FLANGE_BACK_POSITION, vr::RAIL_CANT, vr::PROFILE_FILTER_WAVELENGTH], &reals), OK);
+        assert_eq!(fmu.set_real(&WHEELSET, &[0.0, 0.0, 0.0, 0.0, 10e3, 2.0, 4.3478, 0.0, 0.0]), OK);
+        let status = exit_initialisation(&fmu);
+        (status, fmu, log)
+    };
+    let (status, fmu, log) = run(5e-3);
+    assert_eq!(status, OK, "{:?}", log.last());
+    let [count, force_z, angle, rail_y] = fmu
+        .get_real(&[
+            vr::CONTACT_PATCH_COUNT,
+            vr::TRACK_FORCE_Z,
+            vr::PATCH1_CONTACT_ANGLE,
+            vr::PATCH1_RAIL_LATERAL_POSITION,
+        ])
+        .try_into()
+        .unwrap();
+    assert_eq!(count, 1.0);
+    assert!((force_z + 10e3).abs() < 1e-6 * 10e3, "F_z {force_z}");
+    assert!(angle.abs() < 0.1 && rail_y.abs() < 20e-3, "on the tread: δ {angle}, rail y {rail_y}");
+    let (status, fmu, log) = run(0.0);
+    assert_eq!(status, OK, "{:?}", log.last());
+    assert!((fmu.get_real(&[vr::TRACK_FORCE_Z])[0] + 10e3).abs() < 1e-6 * 10e3);
+    let (status, _, log) = run(-1e-3);
+    assert_eq!(status, ERROR);
+    let (_, message) = log.last().unwrap();
+    assert!(message.contains("profile_filter_wavelength = -0.001 is invalid"), "{message}");
+}
