@@ -79,9 +79,13 @@ pub enum Master {
     /// units' outputs after a doStep from t_k with inputs x, and the wheelset's x_(k+1) =
     /// P + S (u − G(x_k)) for loads u (P its step under G(x_k)), the master solves
     /// (I − S J) Δx = P − x_k with J = ∂G/∂x, and steps the wheelset with u = G(x_k) + J Δx.
-    /// J by finite differences over fmi2GetFMUstate/SetFMUstate (the contact unit has no
-    /// directional derivatives in `profiles` mode), S once per run likewise.
+    /// J by finite differences over fmi2GetFMUstate/SetFMUstate, S once per run likewise.
     LinearlyImplicit,
+    /// [`Master::LinearlyImplicit`] with J from the contact units' fmi2GetDirectionalDerivative
+    /// at the inputs x_k (the outputs' derivative at the inputs, as a feedthrough read: with
+    /// creep relaxation off that is ∂G/∂x; with it on, the relaxed forces' lag over the step is
+    /// not in it): one call per unit and moving quantity instead of a probing step each.
+    LinearlyImplicitDerivatives,
 }
 
 impl Master {
@@ -92,6 +96,7 @@ impl Master {
             Master::Jacobi => "jacobi",
             Master::GaussSeidel => "gauss_seidel",
             Master::LinearlyImplicit => "linearly_implicit",
+            Master::LinearlyImplicitDerivatives => "linearly_implicit_derivatives",
         }
     }
 }
@@ -263,6 +268,27 @@ impl<'a> System<'a> {
         Ok(loads)
     }
 
+    /// ∂(loads)/∂x at the inputs x from the contact units' directional derivatives, one column
+    /// per moving kinematic quantity (the units' inputs set to x, their states unmoved).
+    fn contact_derivatives(&self, x: &[f64]) -> Result<Vec<Vec<f64>>, String> {
+        for unit in &self.contacts {
+            ok("contact kinematics", unit.set_real(&self.contact_kinematics, x), unit)?;
+        }
+        MOVING
+            .iter()
+            .map(|&i| {
+                let mut column = Vec::with_capacity(LOAD_COUNT);
+                for unit in &self.contacts {
+                    let (status, rates) =
+                        unit.directional_derivative(&self.contact_loads, &[self.contact_kinematics[i]], &[1.0]);
+                    ok("fmi2GetDirectionalDerivative", status, unit)?;
+                    column.extend(rates);
+                }
+                Ok(column)
+            })
+            .collect()
+    }
+
     /// S = ∂x(t + h)/∂u of the wheelset's step from its current state (finite differences, the
     /// state restored), one column per load. The wheelset is linear in its held loads over a
     /// step (docs/wheelset.md, "Integration"), so one S serves a whole run of fixed h.
@@ -340,7 +366,9 @@ pub fn run(wheelset: &Fmu, contact: &Fmu, case: &Case, wheel_load: f64) -> Resul
     let centred_radius = get(&system.wheelset, &names(&["centred_rolling_radius"], &wheelset.description)?)?[0];
     let mut x = system.kinematics()?;
     let sensitivity = match case.master {
-        Master::LinearlyImplicit => Some(system.wheelset_sensitivity(&system.loads()?, h)?),
+        Master::LinearlyImplicit | Master::LinearlyImplicitDerivatives => {
+            Some(system.wheelset_sensitivity(&system.loads()?, h)?)
+        }
         _ => None,
     };
     let mut displacements = Vec::with_capacity(steps / per_sample);
@@ -355,8 +383,13 @@ pub fn run(wheelset: &Fmu, contact: &Fmu, case: &Case, wheel_load: f64) -> Resul
             (Master::GaussSeidel, _) => {
                 system.step_contacts(&x, t, h).and_then(|_| system.step_wheelset(&system.loads()?, t, h))
             }
-            (Master::LinearlyImplicit, Some(s)) => linearly_implicit_step(&system, s, &x, t, h),
-            (Master::LinearlyImplicit, None) => unreachable!("the sensitivity is computed for this master"),
+            (Master::LinearlyImplicit, Some(s)) => linearly_implicit_step(&system, s, &x, t, h, Jacobian::Probed),
+            (Master::LinearlyImplicitDerivatives, Some(s)) => {
+                linearly_implicit_step(&system, s, &x, t, h, Jacobian::Derivatives)
+            }
+            (Master::LinearlyImplicit | Master::LinearlyImplicitDerivatives, None) => {
+                unreachable!("the sensitivity is computed for this master")
+            }
         };
         let time = t + h;
         let unbounded = match stepped {
@@ -388,28 +421,41 @@ pub fn run(wheelset: &Fmu, contact: &Fmu, case: &Case, wheel_load: f64) -> Resul
     Ok(Run { displacements, unbounded: None, peak_spin_creepage })
 }
 
-/// One step of [`Master::LinearlyImplicit`] from kinematics x at t: the wheelset's kinematics
-/// at t + h, the contact units stepped with them.
+/// Where [`linearly_implicit_step`] takes J from.
+#[derive(Clone, Copy)]
+enum Jacobian {
+    /// Finite differences of probing steps over FMU states.
+    Probed,
+    /// The contact units' directional derivatives.
+    Derivatives,
+}
+
+/// One step of [`Master::LinearlyImplicit`] (or its variant with derivatives) from kinematics x
+/// at t: the wheelset's kinematics at t + h, the contact units stepped with them.
 fn linearly_implicit_step(
     system: &System,
     sensitivity: &[Vec<f64>],
     x: &[f64],
     t: f64,
     h: f64,
+    source: Jacobian,
 ) -> Result<Vec<f64>, String> {
     let states = [system.contacts[0].state()?, system.contacts[1].state()?];
     let loads = system.probe_contacts(&states, x, t, h)?;
     // J = ∂G/∂x, one column per moving kinematic quantity.
-    let jacobian: Vec<Vec<f64>> = MOVING
-        .iter()
-        .zip(increments(x[ROLLING_SPEED], x[ANGULAR_SPEED]))
-        .map(|(&i, increment)| {
-            let mut perturbed = x.to_vec();
-            perturbed[i] += increment;
-            let probed = system.probe_contacts(&states, &perturbed, t, h)?;
-            Ok(probed.iter().zip(&loads).map(|(a, b)| (a - b) / increment).collect())
-        })
-        .collect::<Result<_, String>>()?;
+    let jacobian: Vec<Vec<f64>> = match source {
+        Jacobian::Probed => MOVING
+            .iter()
+            .zip(increments(x[ROLLING_SPEED], x[ANGULAR_SPEED]))
+            .map(|(&i, increment)| {
+                let mut perturbed = x.to_vec();
+                perturbed[i] += increment;
+                let probed = system.probe_contacts(&states, &perturbed, t, h)?;
+                Ok(probed.iter().zip(&loads).map(|(a, b)| (a - b) / increment).collect())
+            })
+            .collect::<Result<_, String>>()?,
+        Jacobian::Derivatives => system.contact_derivatives(x)?,
+    };
     let wheelset_state = system.wheelset.state()?;
     let predicted = system.step_wheelset(&loads, t, h)?;
     wheelset_state.restore()?;

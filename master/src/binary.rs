@@ -122,6 +122,7 @@ functions! {
     fmi2SerializedFMUstateSize: fn(Component, FmuState, *mut usize) -> c_int;
     fmi2SerializeFMUstate: fn(Component, FmuState, *mut u8, usize) -> c_int;
     fmi2DeSerializeFMUstate: fn(Component, *const u8, usize, *mut FmuState) -> c_int;
+    fmi2GetDirectionalDerivative: fn(Component, *const c_uint, usize, *const c_uint, usize, *const f64, *mut f64) -> c_int;
 }
 
 impl Functions {
@@ -217,6 +218,25 @@ impl<'a> Instance<'a> {
             (self.functions.fmi2GetReal)(self.component, references.as_ptr(), references.len(), values.as_mut_ptr())
         };
         (Status::from(status), values)
+    }
+
+    /// fmi2GetDirectionalDerivative: J·`seed` for the `unknowns` with respect to the `knowns`.
+    pub fn directional_derivative(&self, unknowns: &[u32], knowns: &[u32], seed: &[f64]) -> (Status, Vec<f64>) {
+        assert_eq!(knowns.len(), seed.len());
+        let mut rates = vec![f64::NAN; unknowns.len()];
+        // SAFETY: live instance, arrays of the given lengths.
+        let status = unsafe {
+            (self.functions.fmi2GetDirectionalDerivative)(
+                self.component,
+                unknowns.as_ptr(),
+                unknowns.len(),
+                knowns.as_ptr(),
+                knowns.len(),
+                seed.as_ptr(),
+                rates.as_mut_ptr(),
+            )
+        };
+        (Status::from(status), rates)
     }
 
     pub fn set_integer(&self, references: &[u32], values: &[i32]) -> Status {
