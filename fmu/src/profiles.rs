@@ -146,8 +146,8 @@ fn smooth_profile(
     wavelength: f64,
 ) -> Result<(SmoothProfile, u32), String> {
     let (points, digest) = profile_points(kind, value, resources)?;
-    let measured = ProfileFormat::from_file_name(value) == Some(ProfileFormat::MiniProf)
-        && !BUILTIN_PROFILE_NAMES.contains(&value);
+    // (A built-in name has no file extension.)
+    let measured = ProfileFormat::from_file_name(value) == Some(ProfileFormat::MiniProf);
     let profile = if measured { SmoothProfile::smoothed(&points, wavelength) } else { SmoothProfile::new(&points) };
     let profile = profile
         .and_then(|profile| profile.check_extent(kind.name()).map(|()| profile))
