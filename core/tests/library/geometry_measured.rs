@@ -246,7 +246,12 @@ fn the_contact_search_on_measured_profiles_finds_the_contact_not_the_noise() {
 fn bad_measured_files_are_refused_with_the_line_and_the_reason() {
     let wheel = |text: &str| read_as(text, "bad.whl").unwrap_err();
     let points = "0 -10\n1 10\n3 26\n5 28\n8 26\n12 18\n20 6\n40 1\n70 0\n100 -1\n130 -3\n131 -20\n";
-    assert!(read_as(&format!("#MINIWHEELPROF\nwheel\n\n{points}"), "good.whl").is_ok());
+    let good = read_as(&format!("#MINIWHEELPROF\nwheel\n\n{points}"), "good.whl").unwrap();
+    assert_eq!(good.points.lateral.len(), 12);
+    // A `=` in a point's comment is no header line; `Xoffset` moves the points (mm).
+    let shifted = read_as(&format!("Xoffset=1.5\n\n0 -10 ! x=0\n{}", &points[6..]), "good.whl").unwrap();
+    assert_eq!(shifted.points.lateral.len(), 12);
+    assert!((shifted.points.lateral[11] - 132.5e-3).abs() < 1e-15);
     let e = wheel(&format!("ColumnDef=X,Y\n\n{points}XYPoints=12\n"));
     assert_eq!(e.to_string(), "line 15: a header line `XYPoints=12` among the points");
     let e = wheel(&format!("ColumnDef=X,Y\n\n0 -10\n1 1O\n{points}"));
