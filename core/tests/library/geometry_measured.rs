@@ -248,6 +248,11 @@ fn bad_measured_files_are_refused_with_the_line_and_the_reason() {
     let points = "0 -10\n1 10\n3 26\n5 28\n8 26\n12 18\n20 6\n40 1\n70 0\n100 -1\n130 -3\n131 -20\n";
     let good = read_as(&format!("#MINIWHEELPROF\nwheel\n\n{points}"), "good.whl").unwrap();
     assert_eq!(good.points.lateral.len(), 12);
+    // A point repeated, and one 0.05 µm from it, are one point (CONTACT's 0.1 µm); 0.2 µm
+    // apart they are two.
+    let close = points.replace("5 28\n", "5 28\n5 28\n5.00005 28\n5.0002 28\n");
+    let close = read_as(&format!("ColumnDef=X,Y\n\n{close}"), "good.whl").unwrap();
+    assert_eq!((close.points_read, close.close_points, close.points.lateral.len()), (15, 2, 13));
     // A `=` in a point's comment is no header line; `Xoffset` moves the points (mm).
     let shifted = read_as(&format!("Xoffset=1.5\n\n0 -10 ! x=0\n{}", &points[6..]), "good.whl").unwrap();
     assert_eq!(shifted.points.lateral.len(), 12);
