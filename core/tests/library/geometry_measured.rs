@@ -120,6 +120,17 @@ fn a_left_measurement_is_mirrored_into_the_right_one() {
     }
     let right = read("right-wheel-v1-pre-dry.whl");
     let left = read_as(&left_text, "left.whl").unwrap();
+    // Written with z upward, the same wheel is turned back to the same points.
+    let upward: String = left_text
+        .lines()
+        .map(|line| match line.split_whitespace().collect::<Vec<_>>().as_slice() {
+            [y, z] if z.parse::<f64>().is_ok() => format!("{y} {}\n", -z.parse::<f64>().unwrap()),
+            _ => format!("{line}\n"),
+        })
+        .collect();
+    let upward = read_as(&upward, "upward.whl").unwrap();
+    assert!(upward.vertical_mirrored && upward.lateral_mirrored && !left.vertical_mirrored);
+    assert_eq!(upward.points, right.points);
     assert!(left.lateral_mirrored && !right.lateral_mirrored);
     assert_eq!(left.points, right.points);
     // The UIC60 rail as CONTACT writes it in MiniProf's frame (track centre at +y, z downward) is
@@ -253,6 +264,23 @@ fn bad_measured_files_are_refused_with_the_line_and_the_reason() {
     let close = points.replace("5 28\n", "5 28\n5 28\n5.00005 28\n5.0002 28\n");
     let close = read_as(&format!("ColumnDef=X,Y\n\n{close}"), "good.whl").unwrap();
     assert_eq!((close.points_read, close.close_points, close.points.lateral.len()), (15, 2, 13));
+    // A stitched joint on the tread (41 then back to 40.5 mm): the zig-zag's two points become
+    // their mean, 40.75 mm.
+    let stitched = points.replace("40 1\n", "40 1\n41 1\n40.5 1\n");
+    let stitched = read_as(&format!("ColumnDef=X,Y\n\n{stitched}"), "good.whl").unwrap();
+    assert_eq!((stitched.zigzags, stitched.back_steps, stitched.points.lateral.len()), (1, 0, 13));
+    assert!(stitched
+        .points
+        .lateral
+        .iter()
+        .zip(&stitched.points.vertical)
+        .any(|(&y, &z)| (y - 40.75e-3).abs() < 1e-15 && z == 1e-3));
+    // The z direction does not depend on where the file puts z = 0 (`Yoffset`, mm).
+    for offset in [-40.0, 40.0] {
+        let moved = read_as(&format!("Yoffset={offset}\n\n{points}"), "good.whl").unwrap();
+        assert!(!moved.vertical_mirrored, "Yoffset {offset}");
+        assert_eq!(moved.points.lateral, good.points.lateral);
+    }
     // A `=` in a point's comment is no header line; `Xoffset` moves the points (mm).
     let shifted = read_as(&format!("Xoffset=1.5\n\n0 -10 ! x=0\n{}", &points[6..]), "good.whl").unwrap();
     assert_eq!(shifted.points.lateral.len(), 12);
