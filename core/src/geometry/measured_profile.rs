@@ -47,7 +47,7 @@
 //! [`SmoothProfile::smoothed`]); [`MEASURED_FILTER_WAVELENGTH`] is the default for measured
 //! profiles.
 
-use super::profile_file::{finish, miniprof_points, simpack_points, RawPoint, MINIPROF_UNITS};
+use super::profile_file::{finish, miniprof_points, simpack_points, RawPoint, MINIPROF_UNITS, MIN_POINTS};
 use super::profile_file::{ProfileError, ProfileFormat, ProfileKind, ProfilePoints};
 use super::smooth_profile::SmoothProfile;
 use std::f64::consts::PI;
@@ -171,8 +171,10 @@ pub fn read_measured_profile(
         ProfileFormat::Simpack => simpack_points(text, Some(kind))?,
     };
     let points_read = points.len();
-    if points_read < 4 {
-        return Err(ProfileError::whole(format!("{points_read} profile points; a profile needs at least 4")));
+    if points_read < MIN_POINTS {
+        return Err(ProfileError::whole(format!(
+            "{points_read} profile points; a profile needs at least {MIN_POINTS}"
+        )));
     }
     let mut points = drop_close_points(points);
     let close_points = points_read - points.len();
@@ -204,7 +206,7 @@ pub fn read_measured_profile(
     }
     let surface = running_surface(&points, kind, options.turn_back_tolerance);
     let kept = surface.points.len();
-    if kept < 4 {
+    if kept < MIN_POINTS {
         return Err(ProfileError::whole(format!(
             "only {kept} points keep advancing in y around the {}'s {}{}: not a profile's running surface",
             kind.name(),

@@ -412,7 +412,9 @@ pub(crate) fn miniprof_points(text: &str) -> Result<Vec<RawPoint>, ProfileError>
         if trimmed.starts_with(['"', '!', '%']) {
             continue;
         }
-        if let Some((key, value)) = trimmed.split_once('=') {
+        // A comment may hold a `=` (`0.5 1.2 ! x=3`); a header value may start with `%`.
+        let content = trimmed.split(['"', '!', '%']).next().unwrap_or("").trim();
+        if let Some((key, value)) = trimmed.split_once('=').filter(|_| content.contains('=')) {
             if !in_header {
                 return Err(ProfileError::at(line, format!("a header line `{trimmed}` among the points")));
             }
@@ -427,7 +429,6 @@ pub(crate) fn miniprof_points(text: &str) -> Result<Vec<RawPoint>, ProfileError>
             }
             continue;
         }
-        let content = trimmed.split(['"', '!', '%']).next().unwrap_or("").trim();
         let numeric = content
             .split(|c: char| c.is_whitespace() || c == ',')
             .filter(|f| !f.is_empty())

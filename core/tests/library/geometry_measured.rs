@@ -120,6 +120,17 @@ fn a_left_measurement_is_mirrored_into_the_right_one() {
     }
     let right = read("right-wheel-v1-pre-dry.whl");
     let left = read_as(&left_text, "left.whl").unwrap();
+    // Written with z upward, the same wheel is turned back to the same points.
+    let upward: String = left_text
+        .lines()
+        .map(|line| match line.split_whitespace().collect::<Vec<_>>().as_slice() {
+            [y, z] if z.parse::<f64>().is_ok() => format!("{y} {}\n", -z.parse::<f64>().unwrap()),
+            _ => format!("{line}\n"),
+        })
+        .collect();
+    let upward = read_as(&upward, "upward.whl").unwrap();
+    assert!(upward.vertical_mirrored && upward.lateral_mirrored && !left.vertical_mirrored);
+    assert_eq!(upward.points, right.points);
     assert!(left.lateral_mirrored && !right.lateral_mirrored);
     assert_eq!(left.points, right.points);
     // The UIC60 rail as CONTACT writes it in MiniProf's frame (track centre at +y, z downward) is
@@ -246,7 +257,34 @@ fn the_contact_search_on_measured_profiles_finds_the_contact_not_the_noise() {
 fn bad_measured_files_are_refused_with_the_line_and_the_reason() {
     let wheel = |text: &str| read_as(text, "bad.whl").unwrap_err();
     let points = "0 -10\n1 10\n3 26\n5 28\n8 26\n12 18\n20 6\n40 1\n70 0\n100 -1\n130 -3\n131 -20\n";
-    assert!(read_as(&format!("#MINIWHEELPROF\nwheel\n\n{points}"), "good.whl").is_ok());
+    let good = read_as(&format!("#MINIWHEELPROF\nwheel\n\n{points}"), "good.whl").unwrap();
+    assert_eq!(good.points.lateral.len(), 12);
+    // A point repeated, and one 0.05 µm from it, are one point (CONTACT's 0.1 µm); 0.2 µm
+    // apart they are two.
+    let close = points.replace("5 28\n", "5 28\n5 28\n5.00005 28\n5.0002 28\n");
+    let close = read_as(&format!("ColumnDef=X,Y\n\n{close}"), "good.whl").unwrap();
+    assert_eq!((close.points_read, close.close_points, close.points.lateral.len()), (15, 2, 13));
+    // A stitched joint on the tread (41 then back to 40.5 mm): the zig-zag's two points become
+    // their mean, 40.75 mm.
+    let stitched = points.replace("40 1\n", "40 1\n41 1\n40.5 1\n");
+    let stitched = read_as(&format!("ColumnDef=X,Y\n\n{stitched}"), "good.whl").unwrap();
+    assert_eq!((stitched.zigzags, stitched.back_steps, stitched.points.lateral.len()), (1, 0, 13));
+    assert!(stitched
+        .points
+        .lateral
+        .iter()
+        .zip(&stitched.points.vertical)
+        .any(|(&y, &z)| (y - 40.75e-3).abs() < 1e-15 && z == 1e-3));
+    // The z direction does not depend on where the file puts z = 0 (`Yoffset`, mm).
+    for offset in [-40.0, 40.0] {
+        let moved = read_as(&format!("Yoffset={offset}\n\n{points}"), "good.whl").unwrap();
+        assert!(!moved.vertical_mirrored, "Yoffset {offset}");
+        assert_eq!(moved.points.lateral, good.points.lateral);
+    }
+    // A `=` in a point's comment is no header line; `Xoffset` moves the points (mm).
+    let shifted = read_as(&format!("Xoffset=1.5\n\n0 -10 ! x=0\n{}", &points[6..]), "good.whl").unwrap();
+    assert_eq!(shifted.points.lateral.len(), 12);
+    assert!((shifted.points.lateral[11] - 132.5e-3).abs() < 1e-15);
     let e = wheel(&format!("ColumnDef=X,Y\n\n{points}XYPoints=12\n"));
     assert_eq!(e.to_string(), "line 15: a header line `XYPoints=12` among the points");
     let e = wheel(&format!("ColumnDef=X,Y\n\n0 -10\n1 1O\n{points}"));
