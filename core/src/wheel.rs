@@ -519,12 +519,17 @@ impl WheelRailContact {
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
+        // The rounds share the pose: its strips are cut once, and each round's root search
+        // starts from the last round's z_ws (the loads differ by the creep forces' small share).
+        let mut pose = self.geometry.non_hertzian_pose(&input.position)?;
         let mut load = force;
         let mut hints = WheelState::default();
         let mut last: Option<(f64, f64)> = None;
+        let mut near = None;
         for _ in 0..VERTICAL_ROUNDS {
-            let contact = self.geometry.non_hertzian_patches_for_force(load, &input.position)?;
+            let contact = pose.patches_for_force(load, near)?;
             let vertical = contact.vertical;
+            near = Some(vertical);
             let patches = summaries(contact);
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;

@@ -37,7 +37,7 @@ pub mod smooth_profile;
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};
 pub use contact::{TrackDimensions, WheelOnRail, WheelsetPosition};
-pub use non_hertzian::{NonHertzianContact, NonHertzianPatch, Strip};
+pub use non_hertzian::{NonHertzianContact, NonHertzianPatch, NonHertzianPose, Strip};
 pub use normal_problem::{ContactCandidates, MAX_PENETRATION};
 pub use patch::{ContactPatch, ContactPoint, WheelSide};
 pub use profile_file::{

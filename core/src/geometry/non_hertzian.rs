@@ -83,6 +83,7 @@ use super::normal_problem::MAX_PENETRATION;
 use super::patch::{ContactPatch, WheelSide};
 use super::profile_file::ProfileError;
 use crate::hertz::HertzContact;
+use std::collections::VecDeque;
 use std::f64::consts::PI;
 
 /// KP's scale of the virtual penetration, ε (Piotrowski & Kik 2008, §3).
@@ -175,14 +176,37 @@ struct StripGeometry {
     sin_cos: (f64, f64),
 }
 
+/// The coarse scan of one pose's gap (right side), every [`SCAN_STEP`] of the wheel profile's y
+/// from `from`: what every cut of the pose's strips starts from.
+struct Scan {
+    from: f64,
+    gaps: Vec<f64>,
+    /// The lowest gap: z_ws where the wheel touches.
+    touch: f64,
+}
+
+impl Scan {
+    fn new(wheel: &WheelOnRail, right: &WheelsetPosition) -> Result<Self, ProfileError> {
+        let (gap, (from, to)) = wheel.gap_function(right);
+        let count = ((to - from) / SCAN_STEP).floor() as usize + 1;
+        let gaps: Vec<f64> = (0..count).map(|i| gap(from + i as f64 * SCAN_STEP)).collect();
+        let touch = gaps.iter().copied().fold(f64::INFINITY, f64::min);
+        if !touch.is_finite() {
+            return Err(ProfileError::whole(format!(
+                "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
+                right.lateral
+            )));
+        }
+        Ok(Self { from, gaps, touch })
+    }
+}
+
 /// The strips of one pose (right side).
 struct Strips<'a> {
     wheel: &'a WheelOnRail,
     right: WheelsetPosition,
     strips: Vec<StripGeometry>,
-    /// The lowest gap: z_ws where the wheel touches.
-    touch: f64,
-    /// The strips cover every y where the gap lies less than this above `touch`.
+    /// The strips cover every y where the gap lies less than this above the touch.
     reach: f64,
 }
 
@@ -202,18 +226,9 @@ struct Region {
 impl<'a> Strips<'a> {
     /// Cuts the strips of the pose `right` over the stretch where the gap lies within `reach`
     /// of its minimum.
-    fn new(wheel: &'a WheelOnRail, right: WheelsetPosition, reach: f64) -> Result<Self, ProfileError> {
-        let (gap, (from, to)) = wheel.gap_function(&right);
-        let count = ((to - from) / SCAN_STEP).floor() as usize + 1;
-        let at = |i: usize| from + i as f64 * SCAN_STEP;
-        let touch = (0..count).map(|i| gap(at(i))).fold(f64::INFINITY, f64::min);
-        if !touch.is_finite() {
-            return Err(ProfileError::whole(format!(
-                "the wheel and the rail profile do not overlap laterally at wheelset_lateral_displacement = {} m",
-                right.lateral
-            )));
-        }
-        let near: Vec<usize> = (0..count).filter(|&i| gap(at(i)) < touch + reach).collect();
+    fn new(wheel: &'a WheelOnRail, right: WheelsetPosition, scan: &Scan, reach: f64) -> Self {
+        let at = |i: usize| scan.from + i as f64 * SCAN_STEP;
+        let near: Vec<usize> = (0..scan.gaps.len()).filter(|&i| scan.gaps[i] < scan.touch + reach).collect();
         // One step beyond the first and last scanned sample within reach: the stretch's ends.
         let (first, last) = (at(near[0]) - SCAN_STEP, at(near[near.len() - 1]) + SCAN_STEP);
         let (k_first, k_last) = ((first / STRIP_WIDTH).ceil() as i64, (last / STRIP_WIDTH).floor() as i64);
@@ -271,13 +286,26 @@ impl<'a> Strips<'a> {
             let (before, after) = (i.saturating_sub(1), (i + 1).min(n - 1));
             strips[i].width = (strips[after].arc - strips[before].arc) / (after - before) as f64;
         }
-        // The running minimum of the gap within REFERENCE_REACH (in the wheel's y).
+        // The running minimum of the gap within REFERENCE_REACH (in the wheel's y), strip i's
+        // over [i − w, i + w]: a sliding-window minimum (a queue of the strips whose gap no later
+        // strip in the window undercuts, lowest first), O(n) instead of O(n w) with w = 100.
         let reach_strips = (REFERENCE_REACH / STRIP_WIDTH).round() as usize;
-        for i in 0..n {
-            let (low, high) = (i.saturating_sub(reach_strips), (i + reach_strips).min(n - 1));
-            strips[i].reference_gap = strips[low..=high].iter().map(|s| s.gap).fold(f64::INFINITY, f64::min);
+        let mut window = VecDeque::with_capacity(n);
+        for i in 0..n + reach_strips {
+            if i < n {
+                while window.back().is_some_and(|&j: &usize| strips[j].gap >= strips[i].gap) {
+                    window.pop_back();
+                }
+                window.push_back(i);
+            }
+            if let Some(centre) = i.checked_sub(reach_strips).filter(|&centre| centre < n) {
+                while window.front().is_some_and(|&j| j + reach_strips < centre) {
+                    window.pop_front();
+                }
+                strips[centre].reference_gap = window.front().map_or(f64::INFINITY, |&j| strips[j].gap);
+            }
         }
-        Ok(Self { wheel, right, strips, touch, reach })
+        Self { wheel, right, strips, reach }
     }
 
     /// The virtual penetration of strip i at z_ws (module doc, 2); −∞ off the profiles (where
@@ -584,21 +612,7 @@ impl WheelOnRail {
     /// assert!(heavy.patches[0].strips.len() > light.patches[0].strips.len());
     /// ```
     pub fn non_hertzian_patches_at(&self, position: &WheelsetPosition) -> Result<NonHertzianContact, ProfileError> {
-        let right = self.right_pose(position)?;
-        let mut strips = Strips::new(self, right, FIRST_REACH)?;
-        let depth = position.vertical - strips.touch;
-        // (NaN, from a NaN height, is refused too.)
-        if !(..=MAX_PENETRATION).contains(&depth) {
-            return Err(ProfileError::whole(format!(
-                "wheelset_vertical_position = {} m puts the wheel {depth:e} m into the rail (it touches at {} m): \
-                 more than {MAX_PENETRATION} m of penetration is a wheel inside its rail, not a contact",
-                position.vertical, strips.touch
-            )));
-        }
-        if reach_for(depth) != strips.reach {
-            strips = Strips::new(self, right, reach_for(depth))?;
-        }
-        Ok(NonHertzianContact { vertical: position.vertical, patches: strips.patches(position.vertical)? })
+        self.non_hertzian_pose(position)?.patches_at(position.vertical)
     }
 
     /// The non-Hertzian patches (module doc) carrying the vertical force F_z \[N\] on the wheel
@@ -626,41 +640,145 @@ impl WheelOnRail {
         vertical_force: f64,
         position: &WheelsetPosition,
     ) -> Result<NonHertzianContact, ProfileError> {
+        self.non_hertzian_pose(position)?.patches_for_force(vertical_force, None)
+    }
+
+    /// The non-Hertzian normal problem of the pose `position` (its lateral position, roll and
+    /// yaw; `vertical` is not used), to be solved at several vertical positions or forces: the
+    /// strips' geometry is computed once for them all.
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+    ///
+    /// let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    /// let position = WheelsetPosition { lateral: 5e-3, ..Default::default() };
+    /// let mut pose = placed.non_hertzian_pose(&position).unwrap();
+    /// let first = pose.patches_for_force(10e3, None).unwrap();
+    /// // A load near the last one, started from its z_ws: the same as solved alone.
+    /// let near = pose.patches_for_force(10.1e3, Some(first.vertical)).unwrap();
+    /// let alone = placed.non_hertzian_patches_for_force(10.1e3, &position).unwrap();
+    /// assert!((near.vertical - alone.vertical).abs() < 1e-12);
+    /// // At its z_ws, the prescribed position gives the same patches.
+    /// assert_eq!(pose.patches_at(near.vertical).unwrap(), near);
+    /// ```
+    pub fn non_hertzian_pose(&self, position: &WheelsetPosition) -> Result<NonHertzianPose<'_>, ProfileError> {
+        let right = self.right_pose(position)?;
+        let scan = Scan::new(self, &right)?;
+        Ok(NonHertzianPose { wheel: self, right, scan, cuts: Vec::new() })
+    }
+}
+
+/// One pose's non-Hertzian normal problem ([`WheelOnRail::non_hertzian_pose`]): its coarse scan
+/// and the strips cut so far, kept for the next solve at the same pose.
+pub struct NonHertzianPose<'a> {
+    wheel: &'a WheelOnRail,
+    right: WheelsetPosition,
+    scan: Scan,
+    /// One cut per reach used ([`reach_for`]): a depth is always solved on its own reach's
+    /// strips, so that a solve gives the same answer whatever was solved before it.
+    cuts: Vec<Strips<'a>>,
+}
+
+impl<'a> NonHertzianPose<'a> {
+    /// The strips reaching `reach` above the touch, cut when first needed.
+    fn strips(&mut self, reach: f64) -> &Strips<'a> {
+        let index = match self.cuts.iter().position(|cut| cut.reach == reach) {
+            Some(index) => index,
+            None => {
+                self.cuts.push(Strips::new(self.wheel, self.right, &self.scan, reach));
+                self.cuts.len() - 1
+            }
+        };
+        &self.cuts[index]
+    }
+
+    /// The vertical force carried at z_ws, on the strips of its depth's reach.
+    fn carried(&mut self, vertical: f64) -> f64 {
+        let touch = self.scan.touch;
+        self.strips(reach_for(vertical - touch)).carried(vertical)
+    }
+
+    /// The patches at z_ws = `vertical` ([`WheelOnRail::non_hertzian_patches_at`]). A z_ws more
+    /// than [`MAX_PENETRATION`] below the touch is refused.
+    pub fn patches_at(&mut self, vertical: f64) -> Result<NonHertzianContact, ProfileError> {
+        let touch = self.scan.touch;
+        let depth = vertical - touch;
+        // (NaN, from a NaN height, is refused too.)
+        if !(..=MAX_PENETRATION).contains(&depth) {
+            return Err(ProfileError::whole(format!(
+                "wheelset_vertical_position = {vertical} m puts the wheel {depth:e} m into the rail (it touches at \
+                 {touch} m): more than {MAX_PENETRATION} m of penetration is a wheel inside its rail, not a contact"
+            )));
+        }
+        Ok(NonHertzianContact { vertical, patches: self.strips(reach_for(depth)).patches(vertical)? })
+    }
+
+    /// The patches carrying the vertical force F_z \[N\] ([`WheelOnRail::non_hertzian_patches_for_force`]),
+    /// the root's search started from `near`, a z_ws close to it (the last solve's for a load
+    /// close to this one), if given.
+    pub fn patches_for_force(
+        &mut self,
+        vertical_force: f64,
+        near: Option<f64>,
+    ) -> Result<NonHertzianContact, ProfileError> {
         if !vertical_force.is_finite() {
             return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
         }
-        let right = self.right_pose(position)?;
-        let mut strips = Strips::new(self, right, FIRST_REACH)?;
-        let touch = strips.touch;
+        let touch = self.scan.touch;
         if vertical_force <= 0.0 {
             return Ok(NonHertzianContact { vertical: touch, patches: Vec::new() });
         }
-        // A bracket [low, high] of the root, growing from the touch (carried(touch) = 0); the
-        // strips cut deeper when the bracket reaches beyond them.
-        let (mut low, mut high) = (touch, touch + 1e-5);
-        loop {
-            if high - touch >= strips.reach {
-                strips = Strips::new(self, right, reach_for(high - touch))?;
+        let too_deep = || {
+            ProfileError::whole(format!(
+                "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
+            ))
+        };
+        // A bracket [low, high] of the root of r(z) = carried(z) − F_z, which grows with z_ws.
+        let (mut low, mut high, mut f_low, mut f_high);
+        match near.filter(|&z| z > touch && z - touch <= MAX_PENETRATION) {
+            // From `near`: steps away from it towards the root, doubling, from 1 % of its depth
+            // (the balance's rounds move z_ws by less); the touch bounds it below (r = −F_z).
+            Some(near) => {
+                let f_near = self.carried(near) - vertical_force;
+                let mut step = 0.01 * (near - touch);
+                let (mut z, mut f) = (near, f_near);
+                loop {
+                    let next = if f < 0.0 { z + step } else { (z - step).max(touch) };
+                    if next - touch > MAX_PENETRATION {
+                        return Err(too_deep());
+                    }
+                    let f_next = self.carried(next) - vertical_force;
+                    if (f_next >= 0.0) != (f >= 0.0) {
+                        (low, high, f_low, f_high) = if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) };
+                        break;
+                    }
+                    (z, f) = (next, f_next);
+                    step *= 2.0;
+                }
             }
-            if strips.carried(high) >= vertical_force {
-                break;
-            }
-            low = high;
-            high = touch + 2.0 * (high - touch);
-            if high - touch > MAX_PENETRATION {
-                return Err(ProfileError::whole(format!(
-                    "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
-                )));
+            // Growing from the touch (carried(touch) = 0).
+            None => {
+                (low, high) = (touch, touch + 1e-5);
+                loop {
+                    if self.carried(high) >= vertical_force {
+                        break;
+                    }
+                    low = high;
+                    high = touch + 2.0 * (high - touch);
+                    if high - touch > MAX_PENETRATION {
+                        return Err(too_deep());
+                    }
+                }
+                (f_low, f_high) = (self.carried(low) - vertical_force, self.carried(high) - vertical_force);
             }
         }
         // Regula falsi, Illinois variant (the retained end's residual halved when it is kept
         // twice), until the force is met to 1e-12 or the bracket can be halved no more.
-        let (mut f_low, mut f_high) = (strips.carried(low) - vertical_force, strips.carried(high) - vertical_force);
         let mut kept = 0i8;
         for _ in 0..200 {
             let z = (low * f_high - high * f_low) / (f_high - f_low);
             let z = if z > low && z < high { z } else { 0.5 * (low + high) };
-            let f = strips.carried(z) - vertical_force;
+            let f = self.carried(z) - vertical_force;
             if f.abs() <= 1e-12 * vertical_force || z <= low || z >= high {
                 low = z;
                 high = z;
@@ -682,10 +800,7 @@ impl WheelOnRail {
         }
         let vertical = if f_high.abs() < f_low.abs() { high } else { low };
         let vertical = if low == high { low } else { vertical };
-        if reach_for(vertical - touch) != strips.reach {
-            strips = Strips::new(self, right, reach_for(vertical - touch))?;
-        }
-        Ok(NonHertzianContact { vertical, patches: strips.patches(vertical)? })
+        Ok(NonHertzianContact { vertical, patches: self.strips(reach_for(vertical - touch)).patches(vertical)? })
     }
 }
 
