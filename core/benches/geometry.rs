@@ -1,6 +1,7 @@
 //! One wheel's contact from profiles: the contact search and normal problem alone
 //! (`geometry_direct_*`), one Polach evaluation for scale, whole wheel steps (geometry, normal
-//! problem with the creep forces' share, the forces) at four poses, and the Manchester
+//! problem with the creep forces' share, the forces) at four poses, with Hertz's patches and
+//! with the non-Hertzian ones (`wheel_step_non_hertzian_*`), and the Manchester
 //! benchmark's steps (`a22_*`: each wheel's cases in one iteration; the time over the count is
 //! the mean step). The goal for a whole wheel step is ≤ 5 µs.
 
@@ -11,7 +12,7 @@ use std::hint::black_box;
 use wheel_rail_contact::geometry::{ContactPoint, WheelOnRail, WheelSide, WheelsetPosition};
 use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::wheel::{
-    VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity,
+    ContactMethod, VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity,
 };
 use wheel_rail_contact::{ContactInput, CreepForceModel, ExactTable, ModelChoice, Polach};
 
@@ -41,27 +42,35 @@ fn geometry(c: &mut Criterion) {
     };
     let model = Polach::default();
     c.bench_function("geometry_polach_scale", |bencher| bencher.iter(|| model.creep_forces(black_box(&input))));
-    // A whole wheel step: geometry, normal problem with the creep forces' share, the forces.
+    // A whole wheel step: geometry, normal problem with the creep forces' share, the forces;
+    // with Hertz's patches and with the non-Hertzian ones (`wheel_step_non_hertzian_*`).
     for (model, model_name) in [
         (ModelChoice::Polach(Polach::default()), "polach"),
         (ModelChoice::ExactTable(ExactTable::new().unwrap()), "exact_table"),
     ] {
-        let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28));
-        for (place, lateral, yaw) in
-            [("tread", 0.002, 0.0048), ("centred", 0.0, 0.0), ("two_minima", 0.005, 0.0), ("flange", 0.007, 0.0168)]
-        {
-            let input = WheelInput {
-                position: WheelsetPosition { lateral, yaw, ..WheelsetPosition::default() },
-                velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3478, ..Default::default() },
-                vertical: VerticalContact::PrescribedForce(10e3),
-                friction_coefficient: 0.3,
-            };
-            let mut cache = WheelCache::default();
-            let state = WheelState::default();
-            c.bench_function(&format!("wheel_step_{model_name}_{place}"), |bencher| {
-                bencher.iter(|| contact.evaluate(black_box(&input), &state, &mut cache, Evaluation::Step(1e-3)))
-            });
+        for (method, method_name) in [(ContactMethod::Hertz, ""), (ContactMethod::NonHertzian, "non_hertzian_")] {
+            let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28)).with_method(method);
+            wheel_steps(c, &contact, &format!("wheel_step_{method_name}{model_name}"));
         }
+    }
+}
+
+/// The whole wheel step at four poses, each its own benchmark `{prefix}_{place}`.
+fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str) {
+    for (place, lateral, yaw) in
+        [("tread", 0.002, 0.0048), ("centred", 0.0, 0.0), ("two_minima", 0.005, 0.0), ("flange", 0.007, 0.0168)]
+    {
+        let input = WheelInput {
+            position: WheelsetPosition { lateral, yaw, ..WheelsetPosition::default() },
+            velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3478, ..Default::default() },
+            vertical: VerticalContact::PrescribedForce(10e3),
+            friction_coefficient: 0.3,
+        };
+        let mut cache = WheelCache::default();
+        let state = WheelState::default();
+        c.bench_function(&format!("{prefix}_{place}"), |bencher| {
+            bencher.iter(|| contact.evaluate(black_box(&input), &state, &mut cache, Evaluation::Step(1e-3)))
+        });
     }
 }
 

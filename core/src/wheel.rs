@@ -526,9 +526,14 @@ impl WheelRailContact {
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
         let mut hints = WheelState::default();
-        let round = |load: f64, hints: &WheelState, cache: &mut WheelCache| {
-            let contact = self.geometry.non_hertzian_patches_for_force(load, &input.position)?;
+        // The rounds share the pose: its strips are cut once, and each round's root search
+        // starts from the last round's z_ws (the loads differ by the creep forces' small share).
+        let mut pose = self.geometry.non_hertzian_pose(&input.position)?;
+        let mut near = None;
+        let mut round = |load: f64, hints: &WheelState, cache: &mut WheelCache| {
+            let contact = pose.patches_for_force(load, near)?;
             let vertical = contact.vertical;
+            near = Some(vertical);
             let patches = summaries(contact);
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, hints, cache, evaluation)?;

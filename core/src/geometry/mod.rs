@@ -44,7 +44,7 @@ pub use contact::{TrackDimensions, WheelOnRail, WheelsetPosition};
 pub use measured_profile::{
     read_measured_profile, MeasuredOptions, MeasuredProfile, Orientation, MEASURED_FILTER_WAVELENGTH,
 };
-pub use non_hertzian::{NonHertzianContact, NonHertzianPatch, Strip};
+pub use non_hertzian::{NonHertzianContact, NonHertzianPatch, NonHertzianPose, Strip};
 pub use normal_problem::{ContactCandidates, MAX_PENETRATION};
 pub use patch::{ContactPatch, ContactPoint, WheelSide};
 pub use profile_file::{
