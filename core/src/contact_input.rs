@@ -113,14 +113,7 @@ impl<T: Scalar> ContactInput<T> {
 /// lift-off (Q ≤ 0).
 pub(crate) fn hertz_max_pressure<T: Scalar>(normal_force: T, semi_axis_a: T, semi_axis_b: T) -> T {
     if value(normal_force) > 0.0 {
-        // One division where a·b is a normal number (two dependent divisions were a tenth of a
-        // single-patch step); two where the product would underflow (a, b < 1e-154).
-        let area = semi_axis_a * semi_axis_b;
-        if value(area) >= f64::MIN_POSITIVE {
-            normal_force * (3.0 / (2.0 * std::f64::consts::PI)) / area
-        } else {
-            normal_force * 3.0 / (semi_axis_a * (2.0 * std::f64::consts::PI)) / semi_axis_b
-        }
+        normal_force * 3.0 / (semi_axis_a * (2.0 * std::f64::consts::PI)) / semi_axis_b
     } else {
         T::from(0.0)
     }

@@ -856,7 +856,7 @@ mod tests {
         // The echoes: creepages and ellipse as given, p0 = 3Q/(2πab), μ as given, w = ξ|V|.
         assert_eq!(outputs.effective_creepage_longitudinal, 1e-3);
         assert_eq!((outputs.contact_semi_axis_a, outputs.contact_semi_axis_b), (7.2e-3, 5.4e-3));
-        // To rounding: the FMU forms 3Q/(2π)/(ab), one division instead of two.
+        // To rounding of the order of the operations.
         let p0 = 3.0 * 100e3 / (2.0 * PI * 7.2e-3) / 5.4e-3;
         assert!((outputs.max_pressure - p0).abs() <= 4.0 * f64::EPSILON * p0, "{} against {p0}", outputs.max_pressure);
         assert_eq!((outputs.approach, outputs.current_friction_coefficient), (0.0, 0.3));
