@@ -66,12 +66,15 @@
 //!
 //! Prescribed vertical position: the above at z_ws. Prescribed vertical force (frictionless,
 //! Σ N cos δ = F_z): z_ws by bracketing and the Illinois variant of regula falsi on the carried
-//! vertical force, which grows with z_ws.
+//! vertical force's 2/3 power, which grows with z_ws nearly linearly; started from a z_ws near
+//! the root where one is known ([`NonHertzianPose`]: the wheel's balance rounds).
 //!
 //! Cost: fixed by the strip width (40–220 strips on S1002/UIC60 at 10–100 kN): one exact spline
-//! point per strip per lateral position, then per z_ws one R_D per strip in contact and region.
-//! Not yet fast: a force solve takes 0.1–0.45 ms in release (the Hertz normal problem 2–4 µs);
-//! the strips' geometry is what a precomputed table would hold.
+//! point per strip of the cut per pose (once for all solves at the pose, [`NonHertzianPose`]),
+//! then per z_ws one kernel (an arithmetic-geometric mean) per strip in contact and region.
+//! Not yet fast: a wheel step with a prescribed force takes 0.1–0.4 ms in release (the Hertz
+//! one 3–8 µs; docs/geometry.md), about half of it the cut's exact geometry, which a table over
+//! the pose would hold, and half the kernels of the 16–34 carried-force evaluations.
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
@@ -107,9 +110,10 @@ pub const JOIN_DISTANCE: f64 = 8e-3;
 const SCAN_STEP: f64 = 2e-4;
 
 /// How far above the gap's minimum the strips reach at least \[m\]; a deeper approach cuts
-/// them again, reaching twice as far as often as needed ([`reach_for`]). Above the depth of
-/// 10 kN on the tread (0.1–0.2 mm) and no further: the cut's exact geometry is most of a
-/// solve's cost, and strips above z_ws are out of contact and nobody's reference gap.
+/// them again, reaching twice as far as often as needed ([`reach_for`]). Above the depth at
+/// 10 kN (0.016–0.15 mm on S1002/UIC60 at y_ws 0–10 mm; 0.07–0.68 mm at 100 kN) and no
+/// further: the cut's exact geometry is most of a solve's cost, and strips whose gap lies above
+/// z_ws are out of contact and no strip in contact's reference gap.
 const FIRST_REACH: f64 = 0.25e-3;
 
 /// The strips' reach for an approach `depth` below the touch: [`FIRST_REACH`] doubled until it
