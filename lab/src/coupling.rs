@@ -354,6 +354,19 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
 
 /// Runs `case` with the wheelset FMU and the contact FMU (two instances), each contact unit
 /// carrying `wheel_load` \[N\]; an error only if the system cannot even start.
+/// The workspace's release binaries of the wheelset and the contact unit (after `cargo build
+/// --release -p wheel-rail-contact-fmu -p wheelset`), with the repository's model descriptions
+/// and data/ as the contact unit's resources/ (it holds data/exact_table.bin, as the packaged
+/// FMU's does; the wheelset's holds nothing): (wheelset, contact).
+pub fn release_fmus() -> Result<(Fmu, Fmu), String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("lab/ is in the workspace");
+    let (release, resources) = (root.join("target/release"), root.join("data"));
+    let contact =
+        Fmu::load(&release.join("libwheel_rail_contact_fmu.so"), &root.join("fmu/modelDescription.xml"), &resources)?;
+    let wheelset = Fmu::load(&release.join("libwheelset.so"), &root.join("wheelset/modelDescription.xml"), &resources)?;
+    Ok((wheelset, contact))
+}
+
 pub fn run(wheelset: &Fmu, contact: &Fmu, case: &Case, wheel_load: f64) -> Result<Run, String> {
     let system = System::new(wheelset, contact, case, wheel_load)?;
     let h = case.step;

@@ -22,10 +22,9 @@
 //! `cargo run --release -p lab --bin coupling_stability_map > docs/coupling-stability/map.csv`.
 //! `RAYON_NUM_THREADS` bounds the threads.
 
-use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use lab::coupling::{run, Case, Fmu, Master, Run};
+use lab::coupling::{release_fmus, run, Case, Master, Run};
 use lab::wheelset_parameters::{document, number};
 use rayon::prelude::*;
 
@@ -41,10 +40,6 @@ const DURATION: f64 = 0.5;
 /// The start off centre \[m\].
 const INITIAL_DISPLACEMENT: f64 = 3e-3;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("lab/ is in the workspace").to_path_buf()
-}
-
 fn distance(run: &Run, reference: &Run) -> f64 {
     run.displacements
         .iter()
@@ -54,14 +49,7 @@ fn distance(run: &Run, reference: &Run) -> f64 {
 }
 
 fn main() -> Result<(), String> {
-    let root = root();
-    let release = root.join("target/release");
-    // The contact FMU's resources/ holds data/exact_table.bin (packaging/src/fmu.rs); the
-    // wheelset's holds nothing.
-    let resources = root.join("data");
-    let contact =
-        Fmu::load(&release.join("libwheel_rail_contact_fmu.so"), &root.join("fmu/modelDescription.xml"), &resources)?;
-    let wheelset = Fmu::load(&release.join("libwheelset.so"), &root.join("wheelset/modelDescription.xml"), &resources)?;
+    let (wheelset, contact) = release_fmus()?;
     let wheel_load = 0.5 * number(&document(), "wheelset", "axle_load");
     let only = std::env::args().nth(1);
 

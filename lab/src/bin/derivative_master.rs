@@ -8,10 +8,9 @@
 //! Run after `cargo build --release -p wheel-rail-contact-fmu -p wheelset`:
 //! `cargo run --release -p lab --bin derivative_master`.
 
-use std::path::Path;
 use std::time::Instant;
 
-use lab::coupling::{run, Case, Fmu, Master, Run};
+use lab::coupling::{release_fmus, run, Case, Master, Run};
 use lab::wheelset_parameters::{document, number};
 
 const SPEEDS: [f64; 3] = [1.0, 20.0, 80.0];
@@ -20,12 +19,7 @@ const DURATION: f64 = 0.5;
 const INITIAL_DISPLACEMENT: f64 = 3e-3;
 
 fn main() -> Result<(), String> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("lab/ is in the workspace");
-    let release = root.join("target/release");
-    let resources = root.join("data");
-    let contact =
-        Fmu::load(&release.join("libwheel_rail_contact_fmu.so"), &root.join("fmu/modelDescription.xml"), &resources)?;
-    let wheelset = Fmu::load(&release.join("libwheelset.so"), &root.join("wheelset/modelDescription.xml"), &resources)?;
+    let (wheelset, contact) = release_fmus()?;
     let wheel_load = 0.5 * number(&document(), "wheelset", "axle_load");
     let case = |speed, master, step| Case {
         rung: "polach",
