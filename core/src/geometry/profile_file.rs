@@ -18,7 +18,7 @@
 //!
 //! MiniProf: a header in any of the forms MiniProf and its tools write (`Key=Value` lines, or
 //! the old style's plain lines such as `#MINIWHEELPROF` and `MINIPROF 101 148 1994 3 24`, ended
-//! by a blank line: [`miniprof_points`]), then one point per line, columns as `ColumnDef` names
+//! by a blank line: see `miniprof_points`), then one point per line, columns as `ColumnDef` names
 //! them (`X,Y` when absent: X lateral, Y vertical, both in mm), moved by the header's `Xoffset`
 //! and `Yoffset`; everything after `"`, `!` or `%` is a comment (MiniProf comments out points
 //! with a leading `"`, as CONTACT's `read_miniprof.m` reads them).
