@@ -12,7 +12,7 @@ use wheel_rail_contact_fmu::scene::contact_input;
 
 use crate::page::{dependencies_list, platforms_section, variables_table, BinaryNote, STYLE};
 use crate::plot::{line_plot, Series};
-use crate::profile_figure;
+use crate::{non_hertzian_figure, profile_figure};
 
 /// The core's input at the FMU's start values (the default scene).
 pub fn default_contact_input() -> ContactInput {
@@ -212,7 +212,7 @@ ordered by lateral position on the rail from its field side, tread first: <code>
 the rail), <code>patchK_creepage_longitudinal</code>, <code>patchK_creepage_lateral</code>,
 <code>patchK_spin_creepage</code> (wheel minus rail: the negatives of CONTACT's CKSI, CETA, CPHI),
 <code>patchK_semi_axis_a</code>, <code>patchK_semi_axis_b</code>. An absent patch gives zeros; a third patch (rare) is
-in the totals only. No directional derivatives (fmi2Error).</li>
+in the totals only. Directional derivatives: by central differences (Behaviour, below).</li>
 </ul>
 {profile_figures}
 <p>On the benchmark's case A-2.2 (both wheels, 21 lateral positions with yaw and roll) the FMU's patch is within
@@ -222,6 +222,34 @@ within 0.041 μN, with Polach's method within 10 % and 0.2 μN (but on the flang
 Polach's lateral force is short and its share of the vertical balance leaves the normal force 10.5 % high) — except
 where the gap is flat or has two nearby minima (y<sub>ws</sub> = 0; the right wheel at 0.5 mm) or the contact jumps
 from tread to flange (the right wheel at 5 mm). The fmpy test <code>fmu/tests/fmpy/test_profiles.py</code> checks it.</p>
+
+<h3>Non-Hertzian contact (parameter <code>contact_method</code>) and measured profiles</h3>
+<p><code>contact_method</code> = hertz (1, the default) finds one Hertz ellipse per minimum of the undeformed gap,
+the fastest way. It is off where the gap is not Hertzian: flat within microns over 10 mm (the centred wheelset on
+new profiles), with two close minima (the tread–flange transition) or conformal (worn profiles).
+<code>contact_method</code> = non_hertzian (2) finds one patch per contact region of the two profiles' virtual
+interpenetration, strip by strip across the rail (Kik and Piotrowski, Vehicle System Dynamics 46 (2008) 27–48, as
+CONTACT's fast KPEC method): the region's extent and shape, its load, the pressure centroid as the contact point
+with the rolling radius and contact angle there, and an equivalent ellipse of the same area for the creep-force
+model; regions closer than 8 mm along the surface are one patch (CONTACT's D_SEP). With a prescribed wheel load
+the wheelset's height is solved under the creep forces' share as with Hertz. On all 42 cases of the Manchester
+benchmark's A-2.2 (both wheels) with <code>creep_force_model</code> = exact_table: one patch where CONTACT finds
+one, the contact point within 0.85 mm on the rail, the contact angle within 0.01 rad on the tread and 0.04 on the
+flange root, the normal force within 0.2 % and the creep forces within 0.12 μN of CONTACT's full solution, but
+for the centred wheelset's F<sub>x</sub> (0.123 μN: CONTACT's wide patch rolls on radii that vary across it) and
+the right wheel at 0.5 mm (F<sub>s</sub>, 0.129 μN); with Hertz the contact point is off by up to 2.5 mm and the
+creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
+strip): its peak lies 8–13 % below CONTACT's on the tread, up to 35 % where the patch is wide and 17–25 % on the
+flange (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's
+lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs about 50 times Hertz's.</p>
+{non_hertzian_figures}
+<p><b>Measured profiles.</b> A MiniProf file (<code>.whl</code>, <code>.ban</code>) is read as the instrument
+writes it: every header form, its column definition and offsets, commented-out points, a left-side measurement
+mirrored; zig-zags, back-steps and overhangs that cannot touch are dropped. Its points are then smoothed by
+CONTACT's weighted smoothing spline with the filter wavelength <code>profile_filter_wavelength</code> (5 mm by
+default: measurement noise shorter than it is removed, the shape kept; 0 interpolates the cleaned points): read
+unsmoothed, the contact search locks onto the noise. SIMPACK files and the built-in profiles are used as given. A
+file that cannot be read is fmi2Error naming the variable, the file, the line and the reason.</p>
 
 <h2>Which variables each option uses</h2>
 {option_table}
@@ -359,7 +387,11 @@ be freed. Instances are independent; there is no global state.</li>
         options = OPTIONS_HTML
             .replace("{model_list}", &model_list_html())
             .replace("{option_table}", &option_table_html())
-            .replace("{profile_figures}", &profile_figure::DISPLACEMENTS.map(profile_figure::figure).concat()),
+            .replace("{profile_figures}", &profile_figure::DISPLACEMENTS.map(profile_figure::figure).concat())
+            .replace(
+                "{non_hertzian_figures}",
+                &non_hertzian_figure::DISPLACEMENTS.map(non_hertzian_figure::figures).concat()
+            ),
         dependencies = dependencies_list(&VARIABLES),
         q = scene.normal_force / 1e3,
         a = scene.semi_axis_a * 1e3,
@@ -398,14 +430,19 @@ mod tests {
     }
 
     /// The profile mode has its section, with the figure at both displacements: the default
-    /// curve's plot and two of the profiles in contact.
+    /// curve's plot, two of the profiles in contact, and the non-Hertzian patches' shape and
+    /// pressure at two poses.
     #[test]
     fn the_profile_mode_is_documented_with_its_figure() {
         let html = index_html(&[BinaryNote::Win64 { linked_by_zig: true }]);
         assert!(html.contains("<h2>Contact from profiles (parameter <code>contact_geometry</code>)</h2>"));
-        assert_eq!(html.matches("<svg").count(), 3);
+        assert!(html
+            .contains("<h3>Non-Hertzian contact (parameter <code>contact_method</code>) and measured profiles</h3>"));
+        assert_eq!(html.matches("<svg").count(), 7);
         assert!(html.contains("right wheel, y_ws = 2 mm") && html.contains("right wheel, y_ws = 7 mm"));
-        assert!(!html.contains("{profile_figures}"));
+        assert!(html.contains("y_ws = 0 mm, 10 kN: the patches in plan view"));
+        assert!(html.contains("y_ws = 5 mm, 10 kN: the pressure along x = 0"));
+        assert!(!html.contains("{profile_figures}") && !html.contains("{non_hertzian_figures}"));
     }
 
     #[test]

@@ -24,6 +24,7 @@ pub mod default_scene;
 pub mod documentation;
 pub mod exact_table;
 pub mod fmu;
+pub mod non_hertzian_figure;
 pub mod page;
 pub mod plot;
 pub mod profile_figure;
