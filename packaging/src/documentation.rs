@@ -230,14 +230,15 @@ new profiles), with two close minima (the tread–flange transition) or conforma
 <code>contact_method</code> = non_hertzian (2) finds one patch per contact region of the two profiles' virtual
 interpenetration, strip by strip across the rail (Kik and Piotrowski, Vehicle System Dynamics 46 (2008) 27–48, as
 CONTACT's fast KPEC method): the region's extent and shape, its load, the pressure centroid as the contact point
-with the rolling radius and contact angle there, and an equivalent ellipse of the same area for the creep-force
+with the contact angle there, and an equivalent ellipse of the same area for the creep-force
 model; regions closer than 8 mm along the surface are one patch (CONTACT's D_SEP). With a prescribed wheel load
 the wheelset's height is solved under the creep forces' share as with Hertz. On all 42 cases of the Manchester
 benchmark's A-2.2 (both wheels) with <code>creep_force_model</code> = exact_table: one patch where CONTACT finds
 one, the contact point within 0.85 mm on the rail, the contact angle within 0.01 rad on the tread and 0.04 on the
 flange root, the normal force within 0.2 % and the creep forces within 0.12 μN of CONTACT's full solution, but
-for the centred wheelset's F<sub>x</sub> (0.123 μN: CONTACT's wide patch rolls on radii that vary across it) and
-the right wheel at 0.5 mm (F<sub>s</sub>, 0.129 μN); with Hertz the contact point is off by up to 2.5 mm and the
+for the right wheel at 0.5 mm (F<sub>s</sub>, 0.133 μN: a wide patch on a gap flat within microns); the creepages
+are the strips' load-weighted mean, taken at their mean rolling radius (on the centred wheelset's wide patch the
+radius varies across it: F<sub>x</sub> 0.083 μN off CONTACT's 0.3 N, 0.123 μN at the centroid's own radius); with Hertz the contact point is off by up to 2.5 mm and the
 creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
 strip): its peak lies 8–13 % below CONTACT's on the tread, up to 35 % where the patch is wide and 17–25 % on the
 flange (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's

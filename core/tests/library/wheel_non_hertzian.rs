@@ -41,12 +41,12 @@ fn tolerances(on_flange: bool) -> (f64, f64, f64, f64) {
 }
 
 /// Where the equivalent ellipse's creep forces miss CONTACT's by more than the tolerance, and
-/// by how much at most (in μN): the centred wheelset (both wheels: CONTACT's ξ = −5.7e-5 at its
-/// reference point gives F_x = 0.3 N on its wide patch, where the rolling radius varies across
-/// it; ours, at the pressure centroid, gives −370 N) and y_ws = 0.5 mm (F_s 2198 N against
-/// 2579 N, the patch 0.85 mm inward of CONTACT's). Measured, not tolerated silently: they must
-/// stay within these bounds.
-const KNOWN_GAPS: [(&str, u32, f64); 3] = [("right", 1, 0.13), ("left", 1, 0.13), ("right", 2, 0.135)];
+/// by how much at most (in μN): y_ws = 0.5 mm with 1.2 mrad of yaw (F_s 0.133 μN off: the patch
+/// 0.85 mm inward of CONTACT's on a gap flat within microns, where the spin and the lateral slip
+/// vary across the wide patch). Measured, not tolerated silently: it must stay within the bound.
+/// (The centred wheelset, 0.123 μN when the creepages were taken at the centroid's own rolling
+/// radius, is within the tolerance since they are taken at the strips' mean.)
+const KNOWN_GAPS: [(&str, u32, f64); 1] = [("right", 2, 0.135)];
 
 #[test]
 fn every_a22_case_matches_contact() {
