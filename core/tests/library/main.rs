@@ -33,3 +33,4 @@ mod public_api_examples;
 mod scene_exact_warm_start;
 mod scene_sequences;
 mod wheel_non_hertzian;
+mod wheel_worn;
