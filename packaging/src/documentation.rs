@@ -238,7 +238,11 @@ one, the contact point within 0.85 mm on the rail, the contact angle within 0.01
 flange root, the normal force within 0.2 % and the creep forces within 0.12 μN of CONTACT's full solution, but
 for the right wheel at 0.5 mm (F<sub>s</sub>, 0.133 μN: a wide patch on a gap flat within microns); the creepages
 are the strips' load-weighted mean, taken at their mean rolling radius (on the centred wheelset's wide patch the
-radius varies across it: F<sub>x</sub> 0.083 μN off CONTACT's 0.3 N, 0.123 μN at the centroid's own radius); with Hertz the contact point is off by up to 2.5 mm and the
+radius varies across it: F<sub>x</sub> 0.083 μN off CONTACT's 0.3 N, 0.123 μN at the centroid's own radius). On
+measured worn profiles (a worn wheel on a worn high rail from CONTACT's test bank, 20 cases from the tread over the
+worn gauge corner to the flange, with friction) every patch CONTACT finds with at least 1 % of the load is found, two
+where it finds two, within the same tolerances but for the contact angle of a light patch on the worn gauge corner;
+with Hertz the contact point is off by up to 2.5 mm and the
 creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
 strip): its peak lies 8–13 % below CONTACT's on the tread, up to 35 % where the patch is wide and 17–25 % on the
 flange (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's

@@ -47,17 +47,18 @@ fn by_region(patch: &NonHertzianPatch, value: impl Fn(&Strip) -> f64) -> Vec<(f6
     let mut points = Vec::with_capacity(patch.strips.len() + 4);
     for (k, strip) in patch.strips.iter().enumerate() {
         let edge = strip.width / 2.0;
-        let starts = k == 0 || strip.rail_lateral - patch.strips[k - 1].rail_lateral > 3.0 * edge;
+        let starts = k == 0 || (strip.rail_lateral - patch.strips[k - 1].rail_lateral).abs() > 3.0 * edge;
         if starts {
+            // The strips run from the field side (+y on the right rail) to the gauge side.
             if let Some(last) = k.checked_sub(1).map(|j| &patch.strips[j]) {
-                points.push((millimetres(last.rail_lateral + last.width / 2.0), 0.0));
+                points.push((millimetres(last.rail_lateral - last.width / 2.0), 0.0));
             }
-            points.push((millimetres(strip.rail_lateral - edge), 0.0));
+            points.push((millimetres(strip.rail_lateral + edge), 0.0));
         }
         points.push((millimetres(strip.rail_lateral), value(strip)));
     }
     if let Some(last) = patch.strips.last() {
-        points.push((millimetres(last.rail_lateral + last.width / 2.0), 0.0));
+        points.push((millimetres(last.rail_lateral - last.width / 2.0), 0.0));
     }
     points
 }
@@ -161,7 +162,7 @@ mod tests {
         let centred = pose(0.0);
         assert_eq!((centred.non_hertzian.len(), centred.hertz.len()), (1, 1));
         let (wide, ellipse) = (&centred.non_hertzian[0], &centred.hertz[0]);
-        let width = wide.strips.last().unwrap().rail_lateral - wide.strips[0].rail_lateral;
+        let width = wide.strips[0].rail_lateral - wide.strips.last().unwrap().rail_lateral;
         assert!((12e-3..16e-3).contains(&width), "{width}");
         assert!(
             width > 2.0 * ellipse.ellipse.semi_axis_b,

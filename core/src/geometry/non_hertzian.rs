@@ -536,7 +536,11 @@ impl<'a> Strips<'a> {
                 None => groups.push(vec![region]),
             }
         }
-        groups.iter().map(|regions| self.patch(regions, vertical)).collect()
+        // The strips are cut along the wheel profile's y, which runs from the flange (the rail's
+        // gauge side) to the field side: the patches tread first, as the Hertz ones.
+        let mut patches = groups.iter().map(|regions| self.patch(regions, vertical)).collect::<Result<Vec<_>, _>>()?;
+        patches.reverse();
+        Ok(patches)
     }
 
     /// One patch from its regions at z_ws, on the wheel's side.
@@ -582,6 +586,8 @@ impl<'a> Strips<'a> {
                 });
             }
         }
+        // Field side first (cut from the gauge side, see `patches`).
+        strips.reverse();
         let total: f64 = strips.iter().map(|s| s.normal_force).sum();
         // The contact point at the pressure centroid, with the rail's slope there as the
         // patch's contact angle; the normal force such that the patch carries the strips'

@@ -135,6 +135,10 @@ fn worn_profiles_match_contact_from_the_tread_to_the_flange() {
         let loaded: Vec<&&ContactPatchRow> = patches.iter().filter(|row| row.normal_force >= 0.01 * load).collect();
         assert_eq!(output.patches.len(), loaded.len(), "case {case}: patches");
         two_patch_cases += usize::from(loaded.len() == 2);
+        // Tread first, as the Hertz patches (from the rail's field side, +y on the right rail).
+        for pair in output.patches.windows(2) {
+            assert!(pair[0].patch.point.rail_lateral > pair[1].patch.point.rail_lateral, "case {case}: order");
+        }
         for patch in &output.patches {
             let point = &patch.patch.point;
             let row = loaded

@@ -706,3 +706,57 @@ fn measured_miniprof_profiles_are_read_cleaned_and_smoothed() {
     let (_, message) = log.last().unwrap();
     assert!(message.contains("profile_filter_wavelength = -0.001 is invalid"), "{message}");
 }
+
+/// Worn, measured profiles through the FMU with `contact_method = non_hertzian` (issue 39): the
+/// averaged worn wheel on the averaged worn high rail (MiniProf, CONTACT's test bank), on their
+/// North American track, at y_ws = 12.5 mm, 80 kN, yaw 2 mrad, μ = 0.3, `exact_table`: CONTACT's
+/// full solution (`core/tests/data/contact_worn_right.csv`, case 14) has two patches, the tread's
+/// at rail y −20.80 mm (FN 67.87 kN) and the worn gauge corner's at −36.92 mm (11.15 kN); the FMU
+/// reports both, tread first, within 1 mm and 2 mm, their normal forces within 3 % and 5 %
+/// (the gauge corner's angle is CONTACT's planar mean, `wheel_worn.rs`), its totals within
+/// 0.12 μF_z of CONTACT's (FX, FY on the rail −18.01, −3.405 kN).
+#[test]
+fn worn_measured_profiles_give_contacts_two_patches() {
+    use wheel_rail_contact_fmu::model_description::ContactMethod;
+    let measured = concat!(env!("CARGO_MANIFEST_DIR"), "/../core/tests/data/profiles/measured/");
+    let (wheel, rail) = (format!("{measured}avg_wheel.whl"), format!("{measured}avg_HR.BAN"));
+    let log = MessageLog::default();
+    let fmu = Fmu::instantiate_logged("worn", &log);
+    let integers = [ContactGeometry::Profiles as i32, ContactMethod::NonHertzian as i32, Model::ExactTable as i32];
+    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::CONTACT_METHOD, vr::CREEP_FORCE_MODEL], &integers), OK);
+    assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE, vr::RAIL_PROFILE], &[&wheel, &rail]), OK);
+    let track = [
+        (vr::TRACK_GAUGE, 1.4351),
+        (vr::GAUGE_MEASURING_HEIGHT, 0.015875),
+        (vr::FLANGE_BACK_DISTANCE, 1.3522),
+        (vr::FLANGE_BACK_POSITION, 0.0),
+        (vr::WHEEL_NOMINAL_RADIUS, 0.4191),
+        (vr::FRICTION_COEFFICIENT, 0.3),
+    ];
+    for (reference, value) in track {
+        assert_eq!(fmu.set_real(&[reference], &[value]), OK);
+    }
+    assert_eq!(fmu.set_real(&WHEELSET, &[12.5e-3, 0.0, 0.0, 0.002, 80e3, 2.0, 2.0 / 0.4191, 0.0, 0.0]), OK);
+    assert_eq!(exit_initialisation(&fmu), OK, "{:?}", log.last());
+    let [count, fx, fy, fz, y1, n1, y2, n2] = fmu
+        .get_real(&[
+            vr::CONTACT_PATCH_COUNT,
+            vr::TRACK_FORCE_X,
+            vr::TRACK_FORCE_Y,
+            vr::TRACK_FORCE_Z,
+            vr::PATCH1_RAIL_LATERAL_POSITION,
+            vr::PATCH1_NORMAL_FORCE,
+            vr::PATCH2_RAIL_LATERAL_POSITION,
+            vr::PATCH2_NORMAL_FORCE,
+        ])
+        .try_into()
+        .unwrap();
+    assert_eq!(count, 2.0);
+    assert!((y1 + 20.80e-3).abs() < 1e-3 && (n1 / 67.87e3 - 1.0).abs() < 0.03, "tread: y {y1}, N {n1}");
+    assert!((y2 + 36.92e-3).abs() < 2e-3 && (n2 / 11.15e3 - 1.0).abs() < 0.05, "gauge corner: y {y2}, N {n2}");
+    // On the wheel: the negatives of CONTACT's totals on the rail.
+    for (ours, contact) in [(fx, 18.01e3), (fy, 3.405e3)] {
+        assert!((ours - contact).abs() < 0.12 * 0.3 * 80e3, "{ours} against {contact}");
+    }
+    assert!((fz + 80e3).abs() < 1e-6 * 80e3, "F_z {fz}");
+}
