@@ -1,7 +1,8 @@
 //! One wheel's contact from profiles: the contact search and normal problem alone
 //! (`geometry_direct_*`), one Polach evaluation for scale, whole wheel steps (geometry, normal
 //! problem with the creep forces' share, the forces) at four poses, with Hertz's patches and
-//! with the non-Hertzian ones (`wheel_step_non_hertzian_*`), and the Manchester
+//! with the non-Hertzian ones (`wheel_step_non_hertzian_*`; with the strip table,
+//! `wheel_step_non_hertzian_table_*`), and the Manchester
 //! benchmark's steps (`a22_*`: each wheel's cases in one iteration; the time over the count is
 //! the mean step). The goal for a whole wheel step is ≤ 5 µs.
 
@@ -52,6 +53,10 @@ fn geometry(c: &mut Criterion) {
             let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28)).with_method(method);
             wheel_steps(c, &contact, &format!("wheel_step_{method_name}{model_name}"));
         }
+        let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28))
+            .with_method(ContactMethod::NonHertzian)
+            .with_strip_table();
+        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_{model_name}"));
     }
 }
 

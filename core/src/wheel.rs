@@ -355,6 +355,14 @@ impl WheelRailContact {
         Self { method, ..self }
     }
 
+    /// The same contact with the non-Hertzian strips' geometry from tables
+    /// ([`WheelOnRail::with_strip_table`]; about a millisecond to build): worth it with
+    /// [`ContactMethod::NonHertzian`] alone, which it makes several times faster within 2 nm
+    /// of the exact gap.
+    pub fn with_strip_table(self) -> Self {
+        Self { geometry: self.geometry.with_strip_table(), ..self }
+    }
+
     /// The wheel's placed profiles.
     pub fn geometry(&self) -> &WheelOnRail {
         &self.geometry

@@ -82,10 +82,11 @@
 //! contact angle, one patch each as CONTACT; the other (y_ws = 5 mm, 10 kN, tread and flange root
 //! in one patch) 0.25 mm from the centroid but 0.014 rad off in angle.
 
-use super::contact::{WheelOnRail, WheelsetPosition};
+use super::contact::{LocusFrame, WheelOnRail, WheelsetPosition};
 use super::normal_problem::MAX_PENETRATION;
 use super::patch::{ContactPatch, WheelSide};
 use super::profile_file::ProfileError;
+use super::strip_table::StripTable;
 use crate::hertz::HertzContact;
 use std::collections::VecDeque;
 use std::f64::consts::PI;
@@ -166,7 +167,22 @@ pub struct NonHertzianContact {
     pub patches: Vec<NonHertzianPatch>,
 }
 
-/// The exact geometry of one strip (right side).
+/// One strip's geometry at its centre at z_ws = 0 (right side), from the exact splines
+/// ([`WheelOnRail::surface_point`]) or the strip table (`strip_table.rs`).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct StripPoint {
+    /// The undeformed vertical gap \[m\].
+    pub(super) gap: f64,
+    pub(super) rolling_radius: f64,
+    pub(super) track_lateral: f64,
+    pub(super) rail_lateral: f64,
+    /// Track z of the rail's surface \[m\].
+    pub(super) track_vertical: f64,
+    /// sin γ, cos γ of the rail's slope angle γ.
+    pub(super) sin_cos: (f64, f64),
+}
+
+/// The geometry of one strip (right side).
 #[derive(Debug, Clone, Copy)]
 struct StripGeometry {
     wheel_lateral: f64,
@@ -179,7 +195,6 @@ struct StripGeometry {
     rolling_radius: f64,
     track_lateral: f64,
     rail_lateral: f64,
-    slope: f64,
     sin_cos: (f64, f64),
 }
 
@@ -208,6 +223,94 @@ impl Scan {
     }
 }
 
+/// Where a pose's strips come from: the exact splines per strip over the stretch the coarse
+/// scan finds (the reference), or the strip table grown from the contact search's minima
+/// (`strip_table.rs`, module doc).
+enum Source<'a> {
+    Exact(Scan),
+    Table { table: &'a StripTable, frame: LocusFrame, minima: Vec<(i64, f64)>, touch: f64 },
+}
+
+impl<'a> Source<'a> {
+    /// The strip table's where the wheel has one and the contact search finds a minimum, the
+    /// exact path's otherwise.
+    fn new(
+        wheel: &'a WheelOnRail,
+        position: &WheelsetPosition,
+        right: &WheelsetPosition,
+    ) -> Result<Self, ProfileError> {
+        if let Some(table) = &wheel.strip_table {
+            let minima = StripTable::minima(wheel, position)?;
+            let touch = minima.iter().map(|&(_, gap)| gap).fold(f64::INFINITY, f64::min);
+            if touch.is_finite() {
+                return Ok(Self::Table { table, frame: LocusFrame::new(right), minima, touch });
+            }
+        }
+        Ok(Self::Exact(Scan::new(wheel, right)?))
+    }
+
+    /// The lowest gap: z_ws where the wheel touches.
+    fn touch(&self) -> f64 {
+        match self {
+            Self::Exact(scan) => scan.touch,
+            Self::Table { touch, .. } => *touch,
+        }
+    }
+
+    /// The strips (wheel profile y, geometry; `None` off a profile) over the stretch where the
+    /// gap lies within `reach` of its minimum, with one beyond each end, from the field side.
+    fn strips(&self, wheel: &WheelOnRail, right: &WheelsetPosition, reach: f64) -> Vec<(f64, Option<StripPoint>)> {
+        match self {
+            Self::Exact(scan) => {
+                let at = |i: usize| scan.from + i as f64 * SCAN_STEP;
+                let near: Vec<usize> = (0..scan.gaps.len()).filter(|&i| scan.gaps[i] < scan.touch + reach).collect();
+                // One step beyond the first and last scanned sample within reach: the stretch's ends.
+                let (first, last) = (at(near[0]) - SCAN_STEP, at(near[near.len() - 1]) + SCAN_STEP);
+                let (k_first, k_last) = ((first / STRIP_WIDTH).ceil() as i64, (last / STRIP_WIDTH).floor() as i64);
+                (k_first..=k_last)
+                    .map(|k| {
+                        let wheel_lateral = k as f64 * STRIP_WIDTH;
+                        let point = wheel.surface_point(wheel_lateral, right).ok().map(|point| StripPoint {
+                            gap: point.gap_at_zero,
+                            rolling_radius: point.rolling_radius,
+                            track_lateral: point.track_lateral,
+                            rail_lateral: point.rail_lateral,
+                            track_vertical: point.track_vertical,
+                            sin_cos: point.contact_angle_sin_cos(),
+                        });
+                        (wheel_lateral, point)
+                    })
+                    .collect()
+            }
+            Self::Table { table, frame, minima, touch } => {
+                let limit = touch + reach;
+                let at = |k: i64| (k as f64 * STRIP_WIDTH, table.point(wheel, frame, k));
+                let within = |strip: &(f64, Option<StripPoint>)| strip.1.is_some_and(|point| point.gap < limit);
+                // From the first to the last minimum within reach (the lowest is), then outward
+                // while the gap stays within reach, one strip beyond.
+                let near = || minima.iter().filter(|&&(_, gap)| gap < limit).map(|&(k, _)| k);
+                let (low, high) = (near().min().unwrap_or(0), near().max().unwrap_or(0));
+                let mut before = vec![at(low - 1)];
+                let mut strips: Vec<(f64, Option<StripPoint>)> = (low..=high).map(at).collect();
+                let mut k = low - 1;
+                while before.last().is_some_and(within) {
+                    k -= 1;
+                    before.push(at(k));
+                }
+                let mut k = high + 1;
+                strips.push(at(k));
+                while strips.last().is_some_and(within) {
+                    k += 1;
+                    strips.push(at(k));
+                }
+                before.reverse();
+                before.extend(strips);
+                before
+            }
+        }
+    }
+}
+
 /// The strips of one pose (right side).
 struct Strips<'a> {
     wheel: &'a WheelOnRail,
@@ -233,35 +336,29 @@ struct Region {
 impl<'a> Strips<'a> {
     /// Cuts the strips of the pose `right` over the stretch where the gap lies within `reach`
     /// of its minimum.
-    fn new(wheel: &'a WheelOnRail, right: WheelsetPosition, scan: &Scan, reach: f64) -> Self {
-        let at = |i: usize| scan.from + i as f64 * SCAN_STEP;
-        let near: Vec<usize> = (0..scan.gaps.len()).filter(|&i| scan.gaps[i] < scan.touch + reach).collect();
-        // One step beyond the first and last scanned sample within reach: the stretch's ends.
-        let (first, last) = (at(near[0]) - SCAN_STEP, at(near[near.len() - 1]) + SCAN_STEP);
-        let (k_first, k_last) = ((first / STRIP_WIDTH).ceil() as i64, (last / STRIP_WIDTH).floor() as i64);
-        let mut strips: Vec<StripGeometry> = Vec::with_capacity((k_last - k_first + 1).max(0) as usize);
-        let mut track_vertical = Vec::with_capacity(strips.capacity());
-        for k in k_first..=k_last {
-            let wheel_lateral = k as f64 * STRIP_WIDTH;
-            let geometry = match wheel.surface_point(wheel_lateral, &right) {
-                Ok(point) => {
+    fn new(wheel: &'a WheelOnRail, right: WheelsetPosition, source: &Source, reach: f64) -> Self {
+        let cut = source.strips(wheel, &right, reach);
+        let mut strips: Vec<StripGeometry> = Vec::with_capacity(cut.len());
+        let mut track_vertical = Vec::with_capacity(cut.len());
+        for (wheel_lateral, point) in cut {
+            let geometry = match point {
+                Some(point) => {
                     track_vertical.push(point.track_vertical);
                     StripGeometry {
                         wheel_lateral,
-                        gap: point.gap_at_zero,
+                        gap: point.gap,
                         reference_gap: 0.0,
                         arc: 0.0,
                         width: 0.0,
                         rolling_radius: point.rolling_radius,
                         track_lateral: point.track_lateral,
                         rail_lateral: point.rail_lateral,
-                        slope: point.contact_angle,
-                        sin_cos: point.contact_angle_sin_cos(),
+                        sin_cos: point.sin_cos,
                     }
                 }
                 // Off a profile: no contact there (the stretch lies within reach of the
                 // minimum, so this is at most its end).
-                Err(_) => {
+                None => {
                     let before = strips.last().map_or((0.0, 0.0), |s| (s.track_lateral, s.rail_lateral));
                     track_vertical.push(track_vertical.last().copied().unwrap_or(0.0));
                     StripGeometry {
@@ -273,7 +370,6 @@ impl<'a> Strips<'a> {
                         rolling_radius: 0.0,
                         track_lateral: before.0 + STRIP_WIDTH,
                         rail_lateral: before.1 + STRIP_WIDTH,
-                        slope: 0.0,
                         sin_cos: (0.0, 1.0),
                     }
                 }
@@ -287,7 +383,8 @@ impl<'a> Strips<'a> {
                 .hypot(track_vertical[i] - track_vertical[i - 1]);
             strips[i].arc = strips[i - 1].arc + step;
         }
-        // (The stretch spans at least two scan steps, 0.4 mm: four strips or more.)
+        // (The stretch spans at least two scan steps, 0.4 mm, four strips or more, or, from the
+        // strip table, three strips or more.)
         let n = strips.len();
         for i in 0..n {
             let (before, after) = (i.saturating_sub(1), (i + 1).min(n - 1));
@@ -515,7 +612,7 @@ impl<'a> Strips<'a> {
                     width: s.width,
                     half_length: length,
                     max_pressure: region.scale * length,
-                    contact_angle: s.slope,
+                    contact_angle: s.sin_cos.0.atan2(s.sin_cos.1),
                     normal_force: force,
                 };
                 strips.push(match side {
@@ -689,8 +786,8 @@ impl WheelOnRail {
     /// ```
     pub fn non_hertzian_pose(&self, position: &WheelsetPosition) -> Result<NonHertzianPose<'_>, ProfileError> {
         let right = self.right_pose(position)?;
-        let scan = Scan::new(self, &right)?;
-        Ok(NonHertzianPose { wheel: self, right, scan, cuts: Vec::new() })
+        let source = Source::new(self, position, &right)?;
+        Ok(NonHertzianPose { wheel: self, right, source, cuts: Vec::new() })
     }
 }
 
@@ -699,7 +796,7 @@ impl WheelOnRail {
 pub struct NonHertzianPose<'a> {
     wheel: &'a WheelOnRail,
     right: WheelsetPosition,
-    scan: Scan,
+    source: Source<'a>,
     /// One cut per reach used ([`reach_for`]): a depth is always solved on its own reach's
     /// strips, so that a solve gives the same answer whatever was solved before it.
     cuts: Vec<Strips<'a>>,
@@ -711,7 +808,7 @@ impl<'a> NonHertzianPose<'a> {
         let index = match self.cuts.iter().position(|cut| cut.reach == reach) {
             Some(index) => index,
             None => {
-                self.cuts.push(Strips::new(self.wheel, self.right, &self.scan, reach));
+                self.cuts.push(Strips::new(self.wheel, self.right, &self.source, reach));
                 self.cuts.len() - 1
             }
         };
@@ -720,14 +817,14 @@ impl<'a> NonHertzianPose<'a> {
 
     /// The vertical force carried at z_ws, on the strips of its depth's reach.
     fn carried(&mut self, vertical: f64) -> f64 {
-        let touch = self.scan.touch;
+        let touch = self.source.touch();
         self.strips(reach_for(vertical - touch)).carried(vertical)
     }
 
     /// The patches at z_ws = `vertical` ([`WheelOnRail::non_hertzian_patches_at`]). A z_ws more
     /// than [`MAX_PENETRATION`] below the touch is refused.
     pub fn patches_at(&mut self, vertical: f64) -> Result<NonHertzianContact, ProfileError> {
-        let touch = self.scan.touch;
+        let touch = self.source.touch();
         let depth = vertical - touch;
         // (NaN, from a NaN height, is refused too.)
         if !(..=MAX_PENETRATION).contains(&depth) {
@@ -750,7 +847,7 @@ impl<'a> NonHertzianPose<'a> {
         if !vertical_force.is_finite() {
             return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
         }
-        let touch = self.scan.touch;
+        let touch = self.source.touch();
         if vertical_force <= 0.0 {
             return Ok(NonHertzianContact { vertical: touch, patches: Vec::new() });
         }
