@@ -206,10 +206,12 @@ impl WheelState {
     }
 }
 
-/// Derived data for speed only, one scene cache per patch.
+/// Derived data for speed only: one scene cache per patch, and the last non-Hertzian balance's
+/// z_ws, where the next one's root search starts (a step moves the wheelset little).
 #[derive(Debug, Clone, Default)]
 pub struct WheelCache {
     patches: Vec<SceneCache>,
+    vertical: Option<f64>,
 }
 
 /// Why a wheel cannot be evaluated.
@@ -513,18 +515,21 @@ impl WheelRailContact {
         best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(unsettled)
     }
 
-    /// Prescribed vertical force with non-Hertzian patches: rounds of the frictionless
-    /// non-Hertzian problem for a load L and the creep forces on its patches, until the rail
-    /// carries F_z through both within [`BALANCE_TOLERANCE`] (module doc). The first round takes
-    /// L = F_z; the residual r(L) = carried − F_z rises with L and is nearly linear in it (the
-    /// creep forces' share of the load changes slowly), so the next L is the secant root of r
-    /// through the last two rounds (from the first alone, L − r).
+    /// Prescribed vertical force with non-Hertzian patches: z_ws where the rail carries F_z
+    /// through the normal and the creep forces of the patches at z_ws within
+    /// [`BALANCE_TOLERANCE`] (module doc), found by the non-Hertzian problem's own root search
+    /// ([`crate::geometry::NonHertzianPose`]: bracket, then Illinois regula falsi on the carried
+    /// force's 2/3 power) with each evaluation a round — the patches at z_ws, their creep forces,
+    /// the vertical force they carry together — started from the last step's z_ws
+    /// ([`WheelCache`]). The carried force is nearly the normal forces' alone, whose 2/3 power the
+    /// search's secants nearly meet: 2–6 rounds, where solving the frictionless problem to 1e-12
+    /// for each corrected load took 16–34.
     ///
-    /// Where r is not smooth the rounds do not settle: on a narrow flange patch the equivalent
-    /// ellipse's width moves by a strip (0.1 mm of some 0.5 mm) as a strip enters, and with it
-    /// the creep forces' share by some 100 N. Then a bisection of r between the rounds that
-    /// bracket its sign change closes in on the step, and the round that carries F_z most
-    /// closely is the answer (as the Hertz balance does where patches join).
+    /// Where the carried force is not smooth the rounds close in on a step: on a narrow flange
+    /// patch the equivalent ellipse's width moves by a strip (0.1 mm of some 0.5 mm) as a strip
+    /// enters, and with it the creep forces' share by some 100 N. Then the bracket closes on the
+    /// step and the round that carries F_z more closely is the answer (as the Hertz balance does
+    /// where patches join).
     fn balance_non_hertzian(
         &self,
         force: f64,
@@ -533,79 +538,28 @@ impl WheelRailContact {
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
-        let mut hints = WheelState::default();
-        // The rounds share the pose: its strips are cut once, and each round's root search
-        // starts from the last round's z_ws (the loads differ by the creep forces' small share).
         let mut pose = self.geometry.non_hertzian_pose(&input.position)?;
-        let mut near = None;
-        let mut round = |load: f64, hints: &WheelState, cache: &mut WheelCache| {
-            let contact = pose.patches_for_force(load, near)?;
-            let vertical = contact.vertical;
-            near = Some(vertical);
-            let patches = summaries(contact);
+        // Each round's model memory starts the next round's (the exact theory's warm start: the
+        // rounds differ by little); the relaxed forces always start from `state`.
+        let mut hints = WheelState::default();
+        let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState)> = Vec::new();
+        let near = cache.vertical;
+        let vertical = pose.vertical_for_force(force, near, BALANCE_TOLERANCE, |pose, vertical| {
+            let patches = summaries(pose.patches_at(vertical)?);
             let position = WheelsetPosition { vertical, ..input.position };
-            let (forces, states) = self.patch_forces(input, &position, &patches, state, hints, cache, evaluation)?;
-            let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
-            Ok::<_, WheelContactError>((vertical, forces, states, carried - force))
-        };
-        let settled =
-            |forces: &[PatchForces], residual: f64| forces.is_empty() || residual.abs() <= BALANCE_TOLERANCE * force;
-        // The loads below and above the root seen so far, and the round nearest to carrying F_z.
-        let (mut low, mut high): (Option<f64>, Option<f64>) = (None, None);
-        let mut best: Option<(f64, f64, Vec<PatchForces>, WheelState)> = None;
-        let mut keep = |load: f64,
-                        round: (f64, Vec<PatchForces>, WheelState, f64),
-                        low: &mut Option<f64>,
-                        high: &mut Option<f64>| {
-            let (vertical, forces, states, residual) = round;
-            if residual < 0.0 {
-                *low = Some(low.map_or(load, |l: f64| l.max(load)));
-            } else {
-                *high = Some(high.map_or(load, |h: f64| h.min(load)));
-            }
-            if best.as_ref().is_none_or(|(_, best_residual, _, _)| residual.abs() < best_residual.abs()) {
-                best = Some((vertical, residual, forces, states));
-            }
-        };
-        let mut load = force;
-        let mut last: Option<(f64, f64)> = None;
-        for _ in 0..VERTICAL_ROUNDS {
-            let (vertical, forces, states, residual) = round(load, &hints, cache)?;
-            if settled(&forces, residual) {
-                return Ok((vertical, forces, states));
-            }
-            let next = last.and_then(|last| secant_root(last, (load, residual))).unwrap_or(load - residual);
-            last = Some((load, residual));
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
+            let carried = forces.iter().map(|patch| -patch.track_force()[2]).sum();
             hints = states.clone();
-            keep(load, (vertical, forces, states, residual), &mut low, &mut high);
-            load = next;
-        }
-        if let (Some(mut below), Some(mut above)) = (low, high) {
-            // r's sign changes between them: halve to the load's rounding (≤ 64 halvings).
-            for _ in 0..64 {
-                let middle = 0.5 * (below + above);
-                if middle <= below || middle >= above {
-                    break;
-                }
-                let (vertical, forces, states, residual) = round(middle, &hints, cache)?;
-                if settled(&forces, residual) {
-                    return Ok((vertical, forces, states));
-                }
-                if residual < 0.0 {
-                    below = middle;
-                } else {
-                    above = middle;
-                }
-                keep(middle, (vertical, forces, states, residual), &mut low, &mut high);
-            }
-        }
-        best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(|| {
-            ProfileError::whole(format!(
-                "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
-                 {VERTICAL_ROUNDS} rounds (contact_method = non_hertzian)"
-            ))
-            .into()
-        })
+            rounds.push((vertical, forces, states));
+            Ok::<_, WheelContactError>(carried)
+        })?;
+        cache.vertical = Some(vertical);
+        // The answer is a round's z_ws, but at lift-off (the touch, no patch).
+        Ok(rounds.into_iter().rev().find(|round| round.0 == vertical).unwrap_or((
+            vertical,
+            Vec::new(),
+            WheelState::default(),
+        )))
     }
 
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep

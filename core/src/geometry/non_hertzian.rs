@@ -844,35 +844,56 @@ impl<'a> NonHertzianPose<'a> {
         vertical_force: f64,
         near: Option<f64>,
     ) -> Result<NonHertzianContact, ProfileError> {
+        let vertical =
+            self.vertical_for_force(vertical_force, near, 1e-12, |pose, vertical| Ok(pose.carried(vertical)))?;
+        if vertical_force <= 0.0 {
+            return Ok(NonHertzianContact { vertical, patches: Vec::new() });
+        }
+        Ok(NonHertzianContact {
+            vertical,
+            patches: self.strips(reach_for(vertical - self.source.touch())).patches(vertical)?,
+        })
+    }
+
+    /// z_ws where `carried(z_ws)`, the vertical force the patches at z_ws carry (the normal
+    /// forces' share alone, or with the creep forces': the wheel's balance), meets F_z within
+    /// `tolerance` of it (the frictionless problem's 1e-12, the wheel's balance's
+    /// [`crate::wheel::BALANCE_TOLERANCE`]), the search started from `near` if given; the touch for
+    /// F_z ≤ 0 (lift-off). Where `carried` jumps across F_z (a strip entering a narrow flange
+    /// patch moves the creep forces' share), the bracket closes on the jump and the side nearer
+    /// to F_z is the answer. Every z_ws returned is one `carried` was evaluated at, but the touch.
+    pub(crate) fn vertical_for_force<E: From<ProfileError>>(
+        &mut self,
+        vertical_force: f64,
+        near: Option<f64>,
+        tolerance: f64,
+        mut carried: impl FnMut(&mut Self, f64) -> Result<f64, E>,
+    ) -> Result<f64, E> {
         if !vertical_force.is_finite() {
-            return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")));
+            return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")).into());
         }
         let touch = self.source.touch();
         if vertical_force <= 0.0 {
-            return Ok(NonHertzianContact { vertical: touch, patches: Vec::new() });
+            return Ok(touch);
         }
         // The residual on the scale of the force's 2/3 power, r(z) = carried(z)^(2/3) − F_z^(2/3),
         // which grows with z_ws: a patch's force grows about as its approach's 3/2 power (Hertz,
         // Johnson 1985, eq. 4.23; KP's strips sum such terms), so r is nearly linear in z_ws and
-        // the secant lines below nearly meet its root. The force is met when |carried − F_z| ≤
-        // 1e-12 F_z.
+        // the secant lines below nearly meet its root.
         let target = vertical_force.powf(2.0 / 3.0);
-        let met = |carried: f64| (carried - vertical_force).abs() <= 1e-12 * vertical_force;
+        let met = |carried: f64| (carried - vertical_force).abs() <= tolerance * vertical_force;
         // A bracket [low, high] of the root, from `start` (`near`, or 10 µm into the rail from the touch):
         // first to the root of the line through the touch (r = −F_z^(2/3)) and the start, half as
         // far again so that it passes the root, then on with doubled steps; the touch bounds it
         // below.
         let start = near.filter(|&z| z > touch && z - touch <= MAX_PENETRATION).unwrap_or(touch + 1e-5);
-        let carried = self.carried(start);
-        if met(carried) {
-            return Ok(NonHertzianContact {
-                vertical: start,
-                patches: self.strips(reach_for(start - touch)).patches(start)?,
-            });
+        let at_start = carried(self, start)?;
+        if met(at_start) {
+            return Ok(start);
         }
-        let (mut z, mut f) = (start, carried.powf(2.0 / 3.0) - target);
-        let mut step = if carried > 0.0 {
-            1.5 * (start - touch) * ((vertical_force / carried).powf(2.0 / 3.0) - 1.0).abs()
+        let (mut z, mut f) = (start, at_start.powf(2.0 / 3.0) - target);
+        let mut step = if at_start > 0.0 {
+            1.5 * (start - touch) * ((vertical_force / at_start).powf(2.0 / 3.0) - 1.0).abs()
         } else {
             start - touch
         };
@@ -882,9 +903,14 @@ impl<'a> NonHertzianPose<'a> {
             if next == z {
                 return Err(ProfileError::whole(format!(
                     "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
-                )));
+                ))
+                .into());
             }
-            let f_next = self.carried(next).powf(2.0 / 3.0) - target;
+            let at_next = carried(self, next)?;
+            if met(at_next) {
+                return Ok(next);
+            }
+            let f_next = at_next.powf(2.0 / 3.0) - target;
             if (f_next >= 0.0) != (f >= 0.0) {
                 (low, high, f_low, f_high) = if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) };
                 break;
@@ -893,35 +919,36 @@ impl<'a> NonHertzianPose<'a> {
             step *= 2.0;
         }
         // Regula falsi, Illinois variant (the retained end's residual halved when it is kept
-        // twice), until the force is met or the bracket can be halved no more.
+        // twice), until the force is met or the bracket can be halved no more; the ends' true
+        // residuals kept for the answer.
+        let (mut true_low, mut true_high) = (f_low, f_high);
         let mut kept = 0i8;
         for _ in 0..200 {
             let z = (low * f_high - high * f_low) / (f_high - f_low);
             let z = if z > low && z < high { z } else { 0.5 * (low + high) };
-            let carried = self.carried(z);
-            let f = carried.powf(2.0 / 3.0) - target;
-            if met(carried) || z <= low || z >= high {
-                low = z;
-                high = z;
+            if z <= low || z >= high {
                 break;
             }
+            let at_z = carried(self, z)?;
+            if met(at_z) {
+                return Ok(z);
+            }
+            let f = at_z.powf(2.0 / 3.0) - target;
             if f < 0.0 {
-                (low, f_low) = (z, f);
+                (low, f_low, true_low) = (z, f, f);
                 if kept == 1 {
                     f_high *= 0.5;
                 }
                 kept = 1;
             } else {
-                (high, f_high) = (z, f);
+                (high, f_high, true_high) = (z, f, f);
                 if kept == -1 {
                     f_low *= 0.5;
                 }
                 kept = -1;
             }
         }
-        let vertical = if f_high.abs() < f_low.abs() { high } else { low };
-        let vertical = if low == high { low } else { vertical };
-        Ok(NonHertzianContact { vertical, patches: self.strips(reach_for(vertical - touch)).patches(vertical)? })
+        Ok(if true_high.abs() < true_low.abs() { high } else { low })
     }
 }
 
