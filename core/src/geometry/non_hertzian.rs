@@ -23,7 +23,8 @@
 //!    [`WheelOnRail::candidates`]): the undeformed vertical gap g(y) at z_ws = 0, the rail's
 //!    slope angle γ(y), the wheel's rolling radius R(y), the strip's position s and width ds
 //!    along the rail's surface. Only the stretch where the gap lies within reach of its minimum
-//!    is cut (a coarse scan of the sampled gap finds it first).
+//!    is cut (a coarse scan of the sampled gap finds it first; with the strip table, the contact
+//!    search's minima start it and it grows strip by strip).
 //! 2. Virtual penetration (KP, the virtual interpenetration): the rigid approach is scaled by
 //!    ε = 0.55 ([`VIRTUAL_PENETRATION_SCALE`]), because the elastic surfaces sink around the
 //!    contact: the region where the undeformed gap lies less than ε δ above its minimum
@@ -67,14 +68,26 @@
 //! Prescribed vertical position: the above at z_ws. Prescribed vertical force (frictionless,
 //! Σ N cos δ = F_z): z_ws by bracketing and the Illinois variant of regula falsi on the carried
 //! vertical force's 2/3 power, which grows with z_ws nearly linearly; started from a z_ws near
-//! the root where one is known ([`NonHertzianPose`]: the wheel's balance rounds).
+//! the root where one is known ([`NonHertzianPose`]: the wheel's balance, from its last step's).
 //!
-//! Cost: fixed by the strip width (40–220 strips on S1002/UIC60 at 10–100 kN): one exact spline
-//! point per strip of the cut per pose (once for all solves at the pose, [`NonHertzianPose`]),
-//! then per z_ws one kernel (an arithmetic-geometric mean) per strip in contact and region.
-//! Not yet fast: a wheel step with a prescribed force takes 0.1–0.4 ms in release (the Hertz
-//! one 3–8 µs; docs/geometry.md), about half of it the cut's exact geometry, which a table over
-//! the pose would hold, and half the kernels of the 16–34 carried-force evaluations.
+//! Cost: fixed by the strip width (40–220 strips on S1002/UIC60 at 10–100 kN). Per pose the cut's
+//! geometry: by default one exact spline point per strip (the reference); with the strip table
+//! ([`WheelOnRail::with_strip_table`], `strip_table.rs`) the wheel's profile per strip read from
+//! a table and the pose in closed form, the rail from its samples (within 2 nm of the exact gap;
+//! 600 random poses within 0.5 nm in the contact point and 1.2e-7 in N,
+//! `core/tests/library/strip_table.rs`). Per z_ws one kernel per strip in contact and region,
+//! read from a table (`KernelTable`, within 1.6e-8 of the arithmetic-geometric mean) but next to
+//! the reference point. The wheel's balance ([`crate::wheel`]) is one root search whose every
+//! evaluation includes the creep forces, from the last step's z_ws: 6–8 evaluations from a cold
+//! start, one where the step repeats the last. A wheel step with a prescribed force, one criterion
+//! run (`cargo bench -p wheel-rail-contact --bench geometry -- wheel_step`), Polach, tread 2 mm /
+//! centred / two minima 5 mm / flange 7 mm: Hertz 3.0 / 4.9 / 5.1 / 4.6 µs; non-Hertzian, exact
+//! strips 158 / 159 / 133 / 21 µs; with the strip table 12.8 / 24.2 / 17.3 / 6.4 µs (4.2 / 4.9 /
+//! 3.4 / 1.4 × Hertz), from a cold cache 35 / 97 / 59 / 21 µs (`exact_table` alike). Before the
+//! tables, the warm start and the one root search: 234 / 343 / 276 / 95 µs. The goal of 10 µs
+//! is met on the flange alone. What remains (a fit to the four warm steps): some 5 µs whatever
+//! the patch (the contact search's minima, the creep forces, the patch's exact point), 50 ns per
+//! strip cut and 80 ns per strip in contact (the centred wheelset's 10 kN patch: 121 of 189).
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
