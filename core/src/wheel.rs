@@ -79,7 +79,6 @@
 
 use std::fmt;
 
-use crate::geometry::non_hertzian::NonHertzianContact;
 use crate::geometry::{ContactCandidates, ContactPatch, ContactPoint, ProfileError, WheelOnRail, WheelsetPosition};
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
@@ -417,7 +416,9 @@ impl WheelRailContact {
                     ContactMethod::Hertz => {
                         self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?
                     }
-                    ContactMethod::NonHertzian => summaries(self.geometry.non_hertzian_patches_at(&input.position)?),
+                    ContactMethod::NonHertzian => {
+                        self.geometry.non_hertzian_pose(&input.position)?.summaries_at(input.position.vertical)?
+                    }
                 };
                 let no_hints = WheelState::default();
                 let (forces, states) =
@@ -576,7 +577,7 @@ impl WheelRailContact {
         let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState)> = Vec::new();
         let near = cache.vertical;
         let vertical = pose.vertical_for_force(force, near, BALANCE_TOLERANCE, |pose, vertical| {
-            let patches = summaries(pose.patches_at(vertical)?);
+            let patches = pose.summaries_at(vertical)?;
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
             let carried = forces.iter().map(|patch| -patch.track_force()[2]).sum();
@@ -679,12 +680,6 @@ struct Round {
     carried: f64,
     /// G(z_ws) and its patches; `None` when `forces` settle the balance.
     next: Option<(f64, Vec<ContactPatch>)>,
-}
-
-/// The patches' summaries (contact point, normal force, equivalent ellipse) of a non-Hertzian
-/// solution: what the creep forces are computed on.
-fn summaries(contact: NonHertzianContact) -> Vec<ContactPatch> {
-    contact.patches.into_iter().map(|patch| patch.patch).collect()
 }
 
 /// The secant step on a residual r(z): the root of the line through (z₀, r₀) and (z₁, r₁), if

@@ -597,8 +597,9 @@ impl<'a> Strips<'a> {
         (strips[low].arc - 0.5 * strips[low].width, strips[high].arc + 0.5 * strips[high].width)
     }
 
-    /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6).
-    fn patches(&self, vertical: f64) -> Result<Vec<NonHertzianPatch>, ProfileError> {
+    /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6); their
+    /// strips listed if `with_strips`.
+    fn patches(&self, vertical: f64, with_strips: bool) -> Result<Vec<NonHertzianPatch>, ProfileError> {
         let mut groups: Vec<(Vec<Region>, f64)> = Vec::new();
         for region in self.regions(vertical) {
             let (low, high) = self.interpenetration_extent(region.first, region.end, vertical);
@@ -610,13 +611,15 @@ impl<'a> Strips<'a> {
                 _ => groups.push((vec![region], high)),
             }
         }
-        groups.iter().map(|(regions, _)| self.patch(regions, vertical)).collect()
+        groups.iter().map(|(regions, _)| self.patch(regions, vertical, with_strips)).collect()
     }
 
-    /// One patch from its regions at z_ws, on the wheel's side.
-    fn patch(&self, regions: &[Region], vertical: f64) -> Result<NonHertzianPatch, ProfileError> {
+    /// One patch from its regions at z_ws, on the wheel's side; its strips listed if
+    /// `with_strips` (the wheel's balance reads the summary alone: a strip's contact angle is
+    /// an arctangent).
+    fn patch(&self, regions: &[Region], vertical: f64, with_strips: bool) -> Result<NonHertzianPatch, ProfileError> {
         let side = self.wheel.side();
-        let (mut normal, mut centroid, mut area, mut peak) = (0.0, 0.0, 0.0, 0.0f64);
+        let (mut normal, mut centroid, mut area, mut peak, mut total) = (0.0, 0.0, 0.0, 0.0f64, 0.0);
         let mut strips = Vec::new();
         let mut deepest = regions[0];
         for region in regions {
@@ -632,6 +635,10 @@ impl<'a> Strips<'a> {
                 centroid += force * s.wheel_lateral;
                 area += 2.0 * length * s.width;
                 peak = peak.max(region.scale * length);
+                total += force;
+                if !with_strips {
+                    continue;
+                }
                 let strip = Strip {
                     track_lateral: s.track_lateral,
                     rail_lateral: s.rail_lateral,
@@ -654,7 +661,6 @@ impl<'a> Strips<'a> {
                 });
             }
         }
-        let total: f64 = strips.iter().map(|s| s.normal_force).sum();
         // The contact point at the pressure centroid, with the rail's slope there as the
         // patch's contact angle; the normal force such that the patch carries the strips'
         // vertical force, N cos δ = Σ F_j cos γ_j.
@@ -923,6 +929,20 @@ impl<'a> NonHertzianPose<'a> {
     /// The patches at z_ws = `vertical` ([`WheelOnRail::non_hertzian_patches_at`]). A z_ws more
     /// than [`MAX_PENETRATION`] below the touch is refused.
     pub fn patches_at(&mut self, vertical: f64) -> Result<NonHertzianContact, ProfileError> {
+        Ok(NonHertzianContact { vertical, patches: self.strips_at(vertical)?.patches(vertical, true)? })
+    }
+
+    /// The patches' summaries at z_ws = `vertical` (contact point, normal force, equivalent
+    /// ellipse; [`Self::patches_at`] without the strips): what the wheel's creep forces are
+    /// computed on.
+    pub(crate) fn summaries_at(&mut self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
+        let patches = self.strips_at(vertical)?.patches(vertical, false)?;
+        Ok(patches.into_iter().map(|patch| patch.patch).collect())
+    }
+
+    /// The strips z_ws = `vertical` is solved on; a z_ws more than [`MAX_PENETRATION`] below the
+    /// touch is refused.
+    fn strips_at(&mut self, vertical: f64) -> Result<&Strips<'a>, ProfileError> {
         let touch = self.source.touch();
         let depth = vertical - touch;
         // (NaN, from a NaN height, is refused too.)
@@ -932,7 +952,7 @@ impl<'a> NonHertzianPose<'a> {
                  {touch} m): more than {MAX_PENETRATION} m of penetration is a wheel inside its rail, not a contact"
             )));
         }
-        Ok(NonHertzianContact { vertical, patches: self.strips(self.source.reach_for(depth)).patches(vertical)? })
+        Ok(self.strips(self.source.reach_for(depth)))
     }
 
     /// The patches carrying the vertical force F_z \[N\] ([`WheelOnRail::non_hertzian_patches_for_force`]),
@@ -950,7 +970,7 @@ impl<'a> NonHertzianPose<'a> {
         }
         Ok(NonHertzianContact {
             vertical,
-            patches: self.strips(self.source.reach_for(vertical - self.source.touch())).patches(vertical)?,
+            patches: self.strips(self.source.reach_for(vertical - self.source.touch())).patches(vertical, true)?,
         })
     }
 
