@@ -397,14 +397,30 @@ impl WheelOnRail {
         check_position(position)?;
         let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };
         let search = GapSearch::new(self, &position);
+        let (minima, barriers) = self.search(&search)?;
+        self.candidates_at(&minima, barriers, &position)
+    }
+
+    /// The gap's minima of the contact search (wheel profile y, refined) and the barriers between
+    /// them: from the contact table's span where it covers the pose, by the full scan elsewhere.
+    fn search(&self, search: &GapSearch) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+        let position = &search.position;
         let span = (position.yaw.abs() <= TABLE_YAW_REACH)
             .then(|| self.table.span(search.table_key(), search.key_reach(), position.roll))
             .flatten();
-        let (minima, barriers) = match span.and_then(|span| search.scan_near(span)) {
-            Some(found) => found,
-            None => search.scan()?,
-        };
-        self.candidates_at(&minima, barriers, &position)
+        match span.and_then(|span| search.scan_near(span)) {
+            Some(found) => Ok(found),
+            None => search.scan(),
+        }
+    }
+
+    /// The contact search's minima of the right-side pose `right` (z_ws = 0) as (wheel profile
+    /// y, the sampled gap there), without their exact points: where the non-Hertzian strip
+    /// table's stretches start (`strip_table.rs`).
+    pub(super) fn gap_minima(&self, right: &WheelsetPosition) -> Result<Vec<(f64, f64)>, ProfileError> {
+        let search = GapSearch::new(self, right);
+        let (minima, _) = self.search(&search)?;
+        Ok(minima.into_iter().map(|profile_y| (profile_y, search.gap(profile_y))).collect())
     }
 
     /// [`Self::candidates`] by the full scan alone, never from the contact table: the reference

@@ -245,13 +245,9 @@ enum Source<'a> {
 impl<'a> Source<'a> {
     /// The strip table's where the wheel has one and the contact search finds a minimum, the
     /// exact path's otherwise.
-    fn new(
-        wheel: &'a WheelOnRail,
-        position: &WheelsetPosition,
-        right: &WheelsetPosition,
-    ) -> Result<Self, ProfileError> {
+    fn new(wheel: &'a WheelOnRail, right: &WheelsetPosition) -> Result<Self, ProfileError> {
         if let Some(table) = &wheel.strip_table {
-            let minima = StripTable::minima(wheel, position)?;
+            let minima = StripTable::minima(wheel, right)?;
             let touch = minima.iter().map(|&(_, gap)| gap).fold(f64::INFINITY, f64::min);
             if touch.is_finite() {
                 return Ok(Self::Table { table, frame: LocusFrame::new(right), minima, touch });
@@ -891,7 +887,7 @@ impl WheelOnRail {
     /// ```
     pub fn non_hertzian_pose(&self, position: &WheelsetPosition) -> Result<NonHertzianPose<'_>, ProfileError> {
         let right = self.right_pose(position)?;
-        let source = Source::new(self, position, &right)?;
+        let source = Source::new(self, &right)?;
         Ok(NonHertzianPose { wheel: self, right, source, cuts: Vec::new() })
     }
 }

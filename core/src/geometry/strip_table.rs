@@ -17,7 +17,8 @@
 //!
 //! Where the strips start. The exact path scans the sampled gap every 0.2 mm over the wheel's
 //! whole width to find the stretch within reach of the gap's minimum; here the contact search's
-//! minima ([`WheelOnRail::candidates`], itself started from the contact table) start the stretch,
+//! minima (its scan of the sampled gap, started from the contact table, without the exact points
+//! of [`WheelOnRail::candidates`]) start the stretch,
 //! which grows strip by strip from them while the gap lies within reach: every strip within reach
 //! of the minimum lies in a basin of a minimum within reach (a connected run of strips below a
 //! level holds a local minimum of the gap), the strips between two such minima are cut as the
@@ -70,18 +71,11 @@ impl StripTable {
         })
     }
 
-    /// The contact search's minima of the gap at `position` as strips: (k, gap at z_ws = 0),
-    /// where the stretches start (module doc).
-    pub(super) fn minima(placed: &WheelOnRail, position: &WheelsetPosition) -> Result<Vec<(i64, f64)>, ProfileError> {
-        let side = placed.side();
-        Ok(placed
-            .candidates(position)?
-            .points()
-            .iter()
-            // Back on the right side, where the strips are cut (the mirror is its own inverse).
-            .map(|point| side.mirror_point(point))
-            .map(|point| ((point.wheel_lateral / STRIP_WIDTH).round() as i64, point.gap_at_zero))
-            .collect())
+    /// The contact search's minima of the gap at the right-side pose `right` as strips:
+    /// (k, the sampled gap at the minimum, z_ws = 0), where the stretches start (module doc).
+    pub(super) fn minima(placed: &WheelOnRail, right: &WheelsetPosition) -> Result<Vec<(i64, f64)>, ProfileError> {
+        let minima = placed.gap_minima(right)?;
+        Ok(minima.into_iter().map(|(profile_y, gap)| ((profile_y / STRIP_WIDTH).round() as i64, gap)).collect())
     }
 }
 
