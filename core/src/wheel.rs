@@ -104,9 +104,9 @@ pub enum ContactMethod {
     #[default]
     Hertz,
     /// One patch per contact region of the profiles' virtual interpenetration (Kik–Piotrowski;
-    /// CONTACT's accuracy where the gap is flat or conformal). A wheel step takes 21–160 µs with
-    /// the exact strips, 6–24 µs with the strip table ([`WheelRailContact::with_strip_table`])
-    /// where the step starts from the last one's z_ws, 21–97 µs from a cold start (Polach or
+    /// CONTACT's accuracy where the gap is flat or conformal). A wheel step takes 21–180 µs with
+    /// the exact strips, 5–22 µs with the strip table ([`WheelRailContact::with_strip_table`])
+    /// where the step starts from the last one's z_ws, 17–83 µs from a cold start (Polach or
     /// `exact_table`, the benchmark's four poses; Hertz 3–5 µs in the same run;
     /// `crate::geometry::non_hertzian`, module doc, "Cost").
     NonHertzian,

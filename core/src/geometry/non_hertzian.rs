@@ -81,13 +81,15 @@
 //! evaluation includes the creep forces, from the last step's z_ws: 6–8 evaluations from a cold
 //! start, one where the step repeats the last. A wheel step with a prescribed force, one criterion
 //! run (`cargo bench -p wheel-rail-contact --bench geometry -- wheel_step`), Polach, tread 2 mm /
-//! centred / two minima 5 mm / flange 7 mm: Hertz 3.0 / 4.9 / 5.1 / 4.6 µs; non-Hertzian, exact
-//! strips 158 / 159 / 133 / 21 µs; with the strip table 12.8 / 24.2 / 17.3 / 6.4 µs (4.2 / 4.9 /
-//! 3.4 / 1.4 × Hertz), from a cold cache 35 / 97 / 59 / 21 µs (`exact_table` alike). Before the
-//! tables, the warm start and the one root search: 234 / 343 / 276 / 95 µs. The goal of 10 µs
-//! is met on the flange alone. What remains (a fit to the four warm steps): some 5 µs whatever
-//! the patch (the contact search's minima, the creep forces, the patch's exact point), 50 ns per
-//! strip cut and 80 ns per strip in contact (the centred wheelset's 10 kN patch: 121 of 189).
+//! centred / two minima 5 mm / flange 7 mm: Hertz 3.0 / 4.9 / 5.2 / 4.8 µs; non-Hertzian, exact
+//! strips 177 / 159 / 131 / 21 µs; with the strip table 11.3 / 21.3 / 16.3 / 5.3 µs (3.8 / 4.3 /
+//! 3.1 / 1.1 × Hertz) where the step starts from the last one's z_ws (the benchmark repeats its
+//! step), 31 / 83 / 55 / 19 µs from a cold cache (`exact_table` alike). Before the tables, the
+//! warm start and the one root search (another run, Hertz 3.2 / 5.4 / 5.2 / 4.6 µs): 234 / 343 /
+//! 276 / 95 µs. The goal of 10 µs is met on the flange alone. What remains grows with the
+//! strips: the flange's patch, 5 strips in contact of 10 cut, costs 5 µs, the centred wheelset's
+//! 10 kN patch, 121 of 189, 21 µs (the cut's bookkeeping, each strip's kernel and force, the 48
+//! sub-strips next to the reference point by the mean).
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
