@@ -562,6 +562,14 @@ impl WheelRailContact {
     /// enters, and with it the creep forces' share by some 100 N. Then the bracket closes on the
     /// step and the round that carries F_z more closely is the answer (as the Hertz balance does
     /// where patches join).
+    ///
+    /// Where the carried force is not monotonic in z_ws the balance can have two roots, and the
+    /// start picks one: at the tread-to-flange transition (right wheel, y_ws 6.42 mm, roll
+    /// 1.9 mrad, yaw −4.0 mrad, 58.7 kN, V 19.3 m/s) two z_ws 1.4 µm apart both carry F_z within
+    /// 1e-10, with the patch's F_s −3956 N and −8606 N. From a cold cache (10 µm into the rail)
+    /// the search finds the root the former rounds found (on 240 sampled poses, and there); from
+    /// the Hertz patches' z_ws it found the other; from the last step's z_ws it starts at the
+    /// root the last step found (a sweep through such a pose is not tested).
     fn balance_non_hertzian(
         &self,
         force: f64,
