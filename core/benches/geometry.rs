@@ -1,7 +1,8 @@
 //! One wheel's contact from profiles: the contact search and normal problem alone
 //! (`geometry_direct_*`), one Polach evaluation for scale, whole wheel steps (geometry, normal
 //! problem with the creep forces' share, the forces) at four poses, with Hertz's patches and
-//! with the non-Hertzian ones (`wheel_step_non_hertzian_*`), and the Manchester
+//! with the non-Hertzian ones (`wheel_step_non_hertzian_*`; with the strip table,
+//! `wheel_step_non_hertzian_table_*`), and the Manchester
 //! benchmark's steps (`a22_*`: each wheel's cases in one iteration; the time over the count is
 //! the mean step). The goal for a whole wheel step is ≤ 5 µs.
 
@@ -50,13 +51,21 @@ fn geometry(c: &mut Criterion) {
     ] {
         for (method, method_name) in [(ContactMethod::Hertz, ""), (ContactMethod::NonHertzian, "non_hertzian_")] {
             let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28)).with_method(method);
-            wheel_steps(c, &contact, &format!("wheel_step_{method_name}{model_name}"));
+            wheel_steps(c, &contact, &format!("wheel_step_{method_name}{model_name}"), false);
         }
+        let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28))
+            .with_method(ContactMethod::NonHertzian)
+            .with_strip_table();
+        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_{model_name}"), false);
+        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_cold_{model_name}"), true);
     }
 }
 
-/// The whole wheel step at four poses, each its own benchmark `{prefix}_{place}`.
-fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str) {
+/// The whole wheel step at four poses, each its own benchmark `{prefix}_{place}`. The same step
+/// repeated, its cache kept: the non-Hertzian balance starts from the last step's z_ws, which a
+/// repeated step meets at once; `cold` starts each from an empty cache instead, as a first step
+/// (a simulation's steps lie between the two).
+fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, cold: bool) {
     for (place, lateral, yaw) in
         [("tread", 0.002, 0.0048), ("centred", 0.0, 0.0), ("two_minima", 0.005, 0.0), ("flange", 0.007, 0.0168)]
     {
@@ -69,7 +78,12 @@ fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str) {
         let mut cache = WheelCache::default();
         let state = WheelState::default();
         c.bench_function(&format!("{prefix}_{place}"), |bencher| {
-            bencher.iter(|| contact.evaluate(black_box(&input), &state, &mut cache, Evaluation::Step(1e-3)))
+            bencher.iter(|| {
+                if cold {
+                    cache = WheelCache::default();
+                }
+                contact.evaluate(black_box(&input), &state, &mut cache, Evaluation::Step(1e-3))
+            })
         });
     }
 }

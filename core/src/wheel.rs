@@ -69,9 +69,9 @@
 //! the undeformed gap ([`ContactCandidates`]). With [`ContactMethod::NonHertzian`] they are the
 //! contact regions of the two profiles' interpenetration instead (Kik–Piotrowski,
 //! [`crate::geometry::non_hertzian`]), each with its pressure centroid as the contact point and an
-//! equivalent ellipse for the creep-force models; a prescribed vertical force is balanced in
-//! rounds as above, each round the frictionless non-Hertzian problem for a load corrected by the
-//! creep forces' vertical part (secant steps on that load).
+//! equivalent ellipse for the creep-force models; a prescribed vertical force is balanced by one
+//! root search on z_ws whose every evaluation is a round as above (the patches at z_ws, their
+//! creep forces, the vertical force both carry), started from the last step's z_ws.
 //!
 //! Creep relaxation and the exact theory's warm start carry over per patch: a patch takes the
 //! state of the last evaluation's patch nearest to it on the rail within [`PATCH_MATCH_DISTANCE`];
@@ -79,7 +79,6 @@
 
 use std::fmt;
 
-use crate::geometry::non_hertzian::NonHertzianContact;
 use crate::geometry::{ContactCandidates, ContactPatch, ContactPoint, ProfileError, WheelOnRail, WheelsetPosition};
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
@@ -105,7 +104,11 @@ pub enum ContactMethod {
     #[default]
     Hertz,
     /// One patch per contact region of the profiles' virtual interpenetration (Kik–Piotrowski;
-    /// CONTACT's accuracy where the gap is flat or conformal, 0.1–0.5 ms a normal problem).
+    /// CONTACT's accuracy where the gap is flat or conformal). A wheel step takes 21–180 µs with
+    /// the exact strips, 5–22 µs with the strip table ([`WheelRailContact::with_strip_table`])
+    /// where the step starts from the last one's z_ws, 17–83 µs from a cold start (Polach or
+    /// `exact_table`, the benchmark's four poses; Hertz 3–5 µs in the same run;
+    /// `crate::geometry::non_hertzian`, module doc, "Cost").
     NonHertzian,
 }
 
@@ -206,10 +209,12 @@ impl WheelState {
     }
 }
 
-/// Derived data for speed only, one scene cache per patch.
+/// Derived data for speed only: one scene cache per patch, and the last non-Hertzian balance's
+/// z_ws, where the next one's root search starts (a step moves the wheelset little).
 #[derive(Debug, Clone, Default)]
 pub struct WheelCache {
     patches: Vec<SceneCache>,
+    vertical: Option<f64>,
 }
 
 /// Why a wheel cannot be evaluated.
@@ -355,6 +360,41 @@ impl WheelRailContact {
         Self { method, ..self }
     }
 
+    /// The same contact with the non-Hertzian strips' geometry from tables
+    /// ([`WheelOnRail::with_strip_table`]; 0.23 ms to build on S1002): worth it with
+    /// [`ContactMethod::NonHertzian`] alone, which it makes several times faster within 2 nm
+    /// of the exact gap.
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+    /// use wheel_rail_contact::scene::{Evaluation, Scene};
+    /// use wheel_rail_contact::wheel::{ContactMethod, VerticalContact, WheelCache, WheelInput, WheelRailContact, WheelState, WheelsetVelocity};
+    /// use wheel_rail_contact::{ModelChoice, Polach};
+    ///
+    /// let scene = Scene::of_model(ModelChoice::Polach(Polach::default()), 82e9, 0.28);
+    /// let exact = WheelRailContact::new(WheelOnRail::manchester_benchmark(WheelSide::Right), scene)
+    ///     .with_method(ContactMethod::NonHertzian);
+    /// let tabled = exact.clone().with_strip_table();
+    /// let input = WheelInput {
+    ///     position: WheelsetPosition { lateral: 2e-3, yaw: 4.8e-3, ..Default::default() },
+    ///     velocity: WheelsetVelocity { rolling_speed: 2.0, wheel_angular_speed: 4.3478, ..Default::default() },
+    ///     vertical: VerticalContact::PrescribedForce(10e3),
+    ///     friction_coefficient: 0.3,
+    /// };
+    /// let step = |contact: &WheelRailContact| {
+    ///     contact.evaluate(&input, &WheelState::default(), &mut WheelCache::default(), Evaluation::Initialise).unwrap().0
+    /// };
+    /// let (a, b) = (step(&exact), step(&tabled));
+    /// // The same wheel within a nanometre and a millinewton.
+    /// assert!((a.wheelset_vertical_position - b.wheelset_vertical_position).abs() < 1e-9);
+    /// for axis in 0..3 {
+    ///     assert!((a.track_force[axis] - b.track_force[axis]).abs() < 1e-3, "{:?} {:?}", a.track_force, b.track_force);
+    /// }
+    /// ```
+    pub fn with_strip_table(self) -> Self {
+        Self { geometry: self.geometry.with_strip_table(), ..self }
+    }
+
     /// The wheel's placed profiles.
     pub fn geometry(&self) -> &WheelOnRail {
         &self.geometry
@@ -376,7 +416,9 @@ impl WheelRailContact {
                     ContactMethod::Hertz => {
                         self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?
                     }
-                    ContactMethod::NonHertzian => summaries(self.geometry.non_hertzian_patches_at(&input.position)?),
+                    ContactMethod::NonHertzian => {
+                        self.geometry.non_hertzian_pose(&input.position)?.summaries_at(input.position.vertical)?
+                    }
                 };
                 let no_hints = WheelState::default();
                 let (forces, states) =
@@ -505,18 +547,29 @@ impl WheelRailContact {
         best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(unsettled)
     }
 
-    /// Prescribed vertical force with non-Hertzian patches: rounds of the frictionless
-    /// non-Hertzian problem for a load L and the creep forces on its patches, until the rail
-    /// carries F_z through both within [`BALANCE_TOLERANCE`] (module doc). The first round takes
-    /// L = F_z; the residual r(L) = carried − F_z rises with L and is nearly linear in it (the
-    /// creep forces' share of the load changes slowly), so the next L is the secant root of r
-    /// through the last two rounds (from the first alone, L − r).
+    /// Prescribed vertical force with non-Hertzian patches: z_ws where the rail carries F_z
+    /// through the normal and the creep forces of the patches at z_ws within
+    /// [`BALANCE_TOLERANCE`] (module doc), found by the non-Hertzian problem's own root search
+    /// ([`crate::geometry::NonHertzianPose`]: bracket, then Illinois regula falsi on the carried
+    /// force's 2/3 power) with each evaluation a round — the patches at z_ws, their creep forces,
+    /// the vertical force they carry together — started from the last step's z_ws
+    /// ([`WheelCache`]). The carried force is nearly the normal forces' alone, whose 2/3 power the
+    /// search's secants nearly meet: 2–6 rounds, where solving the frictionless problem to 1e-12
+    /// for each corrected load took 16–34.
     ///
-    /// Where r is not smooth the rounds do not settle: on a narrow flange patch the equivalent
-    /// ellipse's width moves by a strip (0.1 mm of some 0.5 mm) as a strip enters, and with it
-    /// the creep forces' share by some 100 N. Then a bisection of r between the rounds that
-    /// bracket its sign change closes in on the step, and the round that carries F_z most
-    /// closely is the answer (as the Hertz balance does where patches join).
+    /// Where the carried force is not smooth the rounds close in on a step: on a narrow flange
+    /// patch the equivalent ellipse's width moves by a strip (0.1 mm of some 0.5 mm) as a strip
+    /// enters, and with it the creep forces' share by some 100 N. Then the bracket closes on the
+    /// step and the round that carries F_z more closely is the answer (as the Hertz balance does
+    /// where patches join).
+    ///
+    /// Where the carried force is not monotonic in z_ws the balance can have two roots, and the
+    /// start picks one: at the tread-to-flange transition (right wheel, y_ws 6.42 mm, roll
+    /// 1.9 mrad, yaw −4.0 mrad, 58.7 kN, V 19.3 m/s) two z_ws 1.4 µm apart both carry F_z within
+    /// 1e-10, with the patch's F_s −3956 N and −8606 N. From a cold cache (10 µm into the rail)
+    /// the search finds the root the former rounds found (on 240 sampled poses, and there); from
+    /// the Hertz patches' z_ws it found the other; from the last step's z_ws it starts at the
+    /// root the last step found (a sweep through such a pose is not tested).
     fn balance_non_hertzian(
         &self,
         force: f64,
@@ -525,79 +578,28 @@ impl WheelRailContact {
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
-        let mut hints = WheelState::default();
-        // The rounds share the pose: its strips are cut once, and each round's root search
-        // starts from the last round's z_ws (the loads differ by the creep forces' small share).
         let mut pose = self.geometry.non_hertzian_pose(&input.position)?;
-        let mut near = None;
-        let mut round = |load: f64, hints: &WheelState, cache: &mut WheelCache| {
-            let contact = pose.patches_for_force(load, near)?;
-            let vertical = contact.vertical;
-            near = Some(vertical);
-            let patches = summaries(contact);
+        // Each round's model memory starts the next round's (the exact theory's warm start: the
+        // rounds differ by little); the relaxed forces always start from `state`.
+        let mut hints = WheelState::default();
+        let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState)> = Vec::new();
+        let near = cache.vertical;
+        let vertical = pose.vertical_for_force(force, near, BALANCE_TOLERANCE, |pose, vertical| {
+            let patches = pose.summaries_at(vertical)?;
             let position = WheelsetPosition { vertical, ..input.position };
-            let (forces, states) = self.patch_forces(input, &position, &patches, state, hints, cache, evaluation)?;
-            let carried: f64 = forces.iter().map(|patch| -patch.track_force()[2]).sum();
-            Ok::<_, WheelContactError>((vertical, forces, states, carried - force))
-        };
-        let settled =
-            |forces: &[PatchForces], residual: f64| forces.is_empty() || residual.abs() <= BALANCE_TOLERANCE * force;
-        // The loads below and above the root seen so far, and the round nearest to carrying F_z.
-        let (mut low, mut high): (Option<f64>, Option<f64>) = (None, None);
-        let mut best: Option<(f64, f64, Vec<PatchForces>, WheelState)> = None;
-        let mut keep = |load: f64,
-                        round: (f64, Vec<PatchForces>, WheelState, f64),
-                        low: &mut Option<f64>,
-                        high: &mut Option<f64>| {
-            let (vertical, forces, states, residual) = round;
-            if residual < 0.0 {
-                *low = Some(low.map_or(load, |l: f64| l.max(load)));
-            } else {
-                *high = Some(high.map_or(load, |h: f64| h.min(load)));
-            }
-            if best.as_ref().is_none_or(|(_, best_residual, _, _)| residual.abs() < best_residual.abs()) {
-                best = Some((vertical, residual, forces, states));
-            }
-        };
-        let mut load = force;
-        let mut last: Option<(f64, f64)> = None;
-        for _ in 0..VERTICAL_ROUNDS {
-            let (vertical, forces, states, residual) = round(load, &hints, cache)?;
-            if settled(&forces, residual) {
-                return Ok((vertical, forces, states));
-            }
-            let next = last.and_then(|last| secant_root(last, (load, residual))).unwrap_or(load - residual);
-            last = Some((load, residual));
+            let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
+            let carried = forces.iter().map(|patch| -patch.track_force()[2]).sum();
             hints = states.clone();
-            keep(load, (vertical, forces, states, residual), &mut low, &mut high);
-            load = next;
-        }
-        if let (Some(mut below), Some(mut above)) = (low, high) {
-            // r's sign changes between them: halve to the load's rounding (≤ 64 halvings).
-            for _ in 0..64 {
-                let middle = 0.5 * (below + above);
-                if middle <= below || middle >= above {
-                    break;
-                }
-                let (vertical, forces, states, residual) = round(middle, &hints, cache)?;
-                if settled(&forces, residual) {
-                    return Ok((vertical, forces, states));
-                }
-                if residual < 0.0 {
-                    below = middle;
-                } else {
-                    above = middle;
-                }
-                keep(middle, (vertical, forces, states, residual), &mut low, &mut high);
-            }
-        }
-        best.map(|(vertical, _, forces, states)| (vertical, forces, states)).ok_or_else(|| {
-            ProfileError::whole(format!(
-                "vertical_force = {force} N: the vertical balance with the creep forces did not settle in \
-                 {VERTICAL_ROUNDS} rounds (contact_method = non_hertzian)"
-            ))
-            .into()
-        })
+            rounds.push((vertical, forces, states));
+            Ok::<_, WheelContactError>(carried)
+        })?;
+        cache.vertical = Some(vertical);
+        // The answer is a round's z_ws, but at lift-off (the touch, no patch).
+        Ok(rounds.into_iter().rev().find(|round| round.0 == vertical).unwrap_or((
+            vertical,
+            Vec::new(),
+            WheelState::default(),
+        )))
     }
 
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep
@@ -686,12 +688,6 @@ struct Round {
     carried: f64,
     /// G(z_ws) and its patches; `None` when `forces` settle the balance.
     next: Option<(f64, Vec<ContactPatch>)>,
-}
-
-/// The patches' summaries (contact point, normal force, equivalent ellipse) of a non-Hertzian
-/// solution: what the creep forces are computed on.
-fn summaries(contact: NonHertzianContact) -> Vec<ContactPatch> {
-    contact.patches.into_iter().map(|patch| patch.patch).collect()
 }
 
 /// The secant step on a residual r(z): the root of the line through (z₀, r₀) and (z₁, r₁), if

@@ -74,6 +74,7 @@ use super::patch::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
 use super::sampled_profile::SampledProfile;
 use super::smooth_profile::{ProfilePoint, SmoothProfile};
+use super::strip_table::StripTable;
 use crate::hertz::contact_modulus;
 use crate::InvalidInput;
 
@@ -199,23 +200,25 @@ const SAMPLES_PER_STEP: u32 = 8;
 /// ```
 #[derive(Debug, Clone)]
 pub struct WheelOnRail {
-    wheel: SmoothProfile,
+    pub(super) wheel: SmoothProfile,
     rail: SmoothProfile,
-    dimensions: TrackDimensions,
+    pub(super) dimensions: TrackDimensions,
     side: WheelSide,
     /// The contact table (module doc, "Contact table"), built at placement.
     table: ContactTable,
     /// The profiles sampled for the contact search ([`SampledProfile`]).
     wheel_samples: SampledProfile,
-    rail_samples: SampledProfile,
+    pub(super) rail_samples: SampledProfile,
     /// Track y of the rail profile's origin.
-    rail_offset: f64,
+    pub(super) rail_offset: f64,
     /// Track z of the rail profile's origin: its highest point lies at z = 0 (as CONTACT places
     /// a rail on a track).
-    rail_lift: f64,
+    pub(super) rail_lift: f64,
     /// Wheelset y of the wheel profile's origin.
-    wheel_offset: f64,
+    pub(super) wheel_offset: f64,
     contact_modulus: f64,
+    /// The non-Hertzian strips' wheel table ([`Self::with_strip_table`]), if built.
+    pub(super) strip_table: Option<StripTable>,
 }
 
 impl WheelOnRail {
@@ -273,6 +276,7 @@ impl WheelOnRail {
             dimensions,
             side,
             contact_modulus: modulus,
+            strip_table: None,
         };
         placed.table = ContactTable::new(&placed);
         crate::hertz::table::prepare();
@@ -393,14 +397,30 @@ impl WheelOnRail {
         check_position(position)?;
         let position = WheelsetPosition { vertical: 0.0, ..self.side.mirror_position(position) };
         let search = GapSearch::new(self, &position);
+        let (minima, barriers) = self.search(&search)?;
+        self.candidates_at(&minima, barriers, &position)
+    }
+
+    /// The gap's minima of the contact search (wheel profile y, refined) and the barriers between
+    /// them: from the contact table's span where it covers the pose, by the full scan elsewhere.
+    fn search(&self, search: &GapSearch) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+        let position = &search.position;
         let span = (position.yaw.abs() <= TABLE_YAW_REACH)
             .then(|| self.table.span(search.table_key(), search.key_reach(), position.roll))
             .flatten();
-        let (minima, barriers) = match span.and_then(|span| search.scan_near(span)) {
-            Some(found) => found,
-            None => search.scan()?,
-        };
-        self.candidates_at(&minima, barriers, &position)
+        match span.and_then(|span| search.scan_near(span)) {
+            Some(found) => Ok(found),
+            None => search.scan(),
+        }
+    }
+
+    /// The contact search's minima of the right-side pose `right` (z_ws = 0) as (wheel profile
+    /// y, the sampled gap there), without their exact points: where the non-Hertzian strip
+    /// table's stretches start (`strip_table.rs`).
+    pub(super) fn gap_minima(&self, right: &WheelsetPosition) -> Result<Vec<(f64, f64)>, ProfileError> {
+        let search = GapSearch::new(self, right);
+        let (minima, _) = self.search(&search)?;
+        Ok(minima.into_iter().map(|profile_y| (profile_y, search.gap(profile_y))).collect())
     }
 
     /// [`Self::candidates`] by the full scan alone, never from the contact table: the reference
@@ -490,7 +510,7 @@ impl WheelOnRail {
 /// equation A sin θ + B cos θ = C (module doc, "Yaw"), with cos γ divided out: A/cos γ = cos ψ,
 /// B/cos γ = sin φ sin ψ, C/cos γ = −tan γ cos φ sin ψ.
 #[derive(Clone, Copy)]
-struct LocusFrame {
+pub(super) struct LocusFrame {
     sin_roll: f64,
     cos_roll: f64,
     sin_yaw: f64,
@@ -504,7 +524,7 @@ struct LocusFrame {
 }
 
 impl LocusFrame {
-    fn new(position: &WheelsetPosition) -> Self {
+    pub(super) fn new(position: &WheelsetPosition) -> Self {
         let (sin_roll, cos_roll) = position.roll.sin_cos();
         let (sin_yaw, cos_yaw) = position.yaw.sin_cos();
         let (a, b) = (cos_yaw, sin_roll * sin_yaw);
@@ -522,9 +542,16 @@ impl LocusFrame {
     }
 
     /// Track y and z (z_ws = 0) of the locus point at wheel profile y with height z_wheel and
-    /// slope tan γ; `None` where the locus has no point (|sin θ + β| would exceed 1).
+    /// slope tan γ, and its rolling radius r cos θ (as [`WheelOnRail::locus_at`]'s); `None`
+    /// where the locus has no point (|sin θ + β| would exceed 1).
     #[inline(always)]
-    fn track_position(&self, wheel: &WheelOnRail, profile_y: f64, height: f64, slope: f64) -> Option<(f64, f64)> {
+    pub(super) fn track_position(
+        &self,
+        wheel: &WheelOnRail,
+        profile_y: f64,
+        height: f64,
+        slope: f64,
+    ) -> Option<(f64, f64, f64)> {
         let placement = (wheel.dimensions.nominal_radius, wheel.wheel_offset);
         self.track_position_of::<true>(placement, profile_y, height, slope)
     }
@@ -540,7 +567,7 @@ impl LocusFrame {
         profile_y: f64,
         height: f64,
         slope: f64,
-    ) -> Option<(f64, f64)> {
+    ) -> Option<(f64, f64, f64)> {
         let ratio = self.ratio_per_slope * slope;
         if ratio.is_nan() || ratio.abs() >= 1.0 {
             return None;
@@ -549,7 +576,7 @@ impl LocusFrame {
         let qy = profile_y + wheel_offset;
         if !YAWED {
             let (ry, rz) = (qy * self.cos_roll - radius * self.sin_roll, qy * self.sin_roll + radius * self.cos_roll);
-            return Some((self.lateral + ry, rz - nominal_radius));
+            return Some((self.lateral + ry, rz - nominal_radius, radius));
         }
         // θ = asin(ratio) − β without trigonometry: sin θ = ratio cos β − √(1 − ratio²) sin β.
         let root = (1.0 - ratio * ratio).sqrt();
@@ -557,7 +584,7 @@ impl LocusFrame {
         let cos_angle = root * self.cos_phase + ratio * self.sin_phase;
         let (qx, qz) = (radius * sin_angle, radius * cos_angle);
         let (ry, rz) = (qy * self.cos_roll - qz * self.sin_roll, qy * self.sin_roll + qz * self.cos_roll);
-        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - nominal_radius))
+        Some((self.lateral + qx * self.sin_yaw + ry * self.cos_yaw, rz - nominal_radius, qz))
     }
 
     /// Whether the yaw is 0: [`Self::track_position_of`] without it.
@@ -607,7 +634,7 @@ impl<'a> GapSearch<'a> {
     /// The gap at the locus point of a wheel sample (profile y, height, slope).
     #[inline(always)]
     fn gap_of(&self, profile_y: f64, (height, slope): (f64, f64)) -> Option<f64> {
-        let (lateral, vertical) = self.locus.track_position(self.wheel, profile_y, height, slope)?;
+        let (lateral, vertical, _) = self.locus.track_position(self.wheel, profile_y, height, slope)?;
         let rail_height = self.wheel.rail_samples.height_at(lateral - self.wheel.rail_offset)?;
         Some(rail_height + self.wheel.rail_lift - vertical)
     }
@@ -664,7 +691,7 @@ impl<'a> GapSearch<'a> {
             let (height, slope) = samples.sample(k);
             (k, index) = (k + stride, index + stride as f64);
             // The gap as `gap_of`.
-            let Some((lateral, vertical)) = locus.track_position_of::<YAWED>(placement, profile_y, height, slope)
+            let Some((lateral, vertical, _)) = locus.track_position_of::<YAWED>(placement, profile_y, height, slope)
             else {
                 continue;
             };
@@ -961,7 +988,9 @@ mod tests {
                     locus.track_position_of::<true>(placement, samples.lateral(k), height, slope),
                     locus.track_position_of::<false>(placement, samples.lateral(k), height, slope),
                 );
-                let bits = |p: Option<(f64, f64)>| p.map(|(a, b)| ((a + 0.0).to_bits(), (b + 0.0).to_bits()));
+                let bits = |p: Option<(f64, f64, f64)>| {
+                    p.map(|(a, b, c)| ((a + 0.0).to_bits(), (b + 0.0).to_bits(), (c + 0.0).to_bits()))
+                };
                 assert_eq!(bits(general), bits(unyawed), "y {y}, at ({lateral}, {roll})");
             }
             // Beyond the profile's slopes: a sample the locus refuses either way.

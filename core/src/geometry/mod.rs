@@ -37,6 +37,7 @@ mod patch;
 pub mod profile_file;
 mod sampled_profile;
 pub mod smooth_profile;
+mod strip_table;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};

@@ -158,7 +158,7 @@ impl SampledView<'_> {
 
 /// The cubic Hermite polynomial through z0, z1 with end slopes m0, m1 (per unit t), at t.
 #[inline]
-fn hermite_height(t: f64, z0: f64, z1: f64, m0: f64, m1: f64) -> f64 {
+pub(super) fn hermite_height(t: f64, z0: f64, z1: f64, m0: f64, m1: f64) -> f64 {
     // Horner form of (2t³ − 3t² + 1) z0 + (t³ − 2t² + t) m0 + (−2t³ + 3t²) z1 + (t³ − t²) m1.
     let d = z0 - z1;
     z0 + t * (m0 + t * (-3.0 * d - 2.0 * m0 - m1 + t * (2.0 * d + m0 + m1)))

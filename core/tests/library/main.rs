@@ -32,5 +32,6 @@ mod polach_worked_cases;
 mod public_api_examples;
 mod scene_exact_warm_start;
 mod scene_sequences;
+mod strip_table;
 mod wheel_non_hertzian;
 mod wheel_worn;

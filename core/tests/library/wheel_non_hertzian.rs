@@ -50,11 +50,21 @@ const KNOWN_GAPS: [(&str, u32, f64); 1] = [("right", 2, 0.135)];
 
 #[test]
 fn every_a22_case_matches_contact() {
-    let (right, left) = (wheel(WheelSide::Right), wheel(WheelSide::Left));
+    every_a22_case_matches_contact_on(&wheel(WheelSide::Right), &wheel(WheelSide::Left));
+}
+
+/// The same with the strips' geometry from the strip table (`WheelRailContact::with_strip_table`).
+#[test]
+fn every_a22_case_matches_contact_with_the_strip_table() {
+    let tabled = |side| wheel(side).with_strip_table();
+    every_a22_case_matches_contact_on(&tabled(WheelSide::Right), &tabled(WheelSide::Left));
+}
+
+fn every_a22_case_matches_contact_on(right: &WheelRailContact, left: &WheelRailContact) {
     let mut checked = 0;
     for reference in manchester_a22() {
         let (side, case) = (if reference.side == WheelSide::Right { "right" } else { "left" }, reference.case);
-        let contact = if reference.side == WheelSide::Right { &right } else { &left };
+        let contact = if reference.side == WheelSide::Right { right } else { left };
         let output = evaluate(contact, &reference.input);
         // One patch, as CONTACT finds on every case (the tread and flange root of case 11
         // in one).

@@ -116,14 +116,21 @@ const GAUGE_CORNER_GAP: (u32, f64, f64) = (14, 0.2, 0.055);
 
 #[test]
 fn worn_profiles_match_contact_from_the_tread_to_the_flange() {
-    let contact = wheel(ContactMethod::NonHertzian);
+    let exact = wheel(ContactMethod::NonHertzian);
+    // The strips' geometry computed per pose, and from the strip table (as the FMU computes it).
+    for contact in [exact.clone(), exact.with_strip_table()] {
+        match_contact(&contact);
+    }
+}
+
+fn match_contact(contact: &WheelRailContact) {
     let reference = reference();
     let mut cases = 0;
     let mut two_patch_cases = 0;
     for case in 1..=20 {
         let patches: Vec<&ContactPatchRow> = reference.iter().filter(|row| row.case == case).collect();
         let first = patches[0];
-        let output = evaluate(&contact, first.lateral, first.vertical_force);
+        let output = evaluate(contact, first.lateral, first.vertical_force);
         let load = first.vertical_force;
         // Totals, and the rail carries the prescribed load.
         for i in 0..3 {
