@@ -246,7 +246,9 @@ with Hertz the contact point is off by up to 2.5 mm and the
 creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
 strip): its peak lies 8–13 % below CONTACT's on the tread, up to 35 % where the patch is wide and 17–25 % on the
 flange (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's
-lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs about 50 times Hertz's.</p>
+lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs 5–30 µs from the last step's solution (2–5 times Hertz's, the most for the centred
+wheelset's wide patch; up to 0.1 ms from a cold start): the strips' geometry is tabulated per wheel when the
+instance leaves initialisation (0.2 ms), only with <code>contact_method</code> = non_hertzian.</p>
 {non_hertzian_figures}
 <p><b>Measured profiles.</b> A MiniProf file (<code>.whl</code>, <code>.ban</code>) is read as the instrument
 writes it: every header form, its column definition and offsets, commented-out points, a left-side measurement
