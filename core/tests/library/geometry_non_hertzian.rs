@@ -326,11 +326,44 @@ fn left_and_right_are_mirror_images() {
             assert_eq!((r.patch.normal_force, r.patch.ellipse), (l.patch.normal_force, l.patch.ellipse));
             for (a, b) in r.strips.iter().zip(&l.strips) {
                 assert_eq!(
-                    (a.track_lateral, a.half_length, a.max_pressure),
-                    (-b.track_lateral, b.half_length, b.max_pressure)
+                    (a.track_lateral, a.rail_lateral, a.wheel_lateral, a.contact_angle),
+                    (-b.track_lateral, -b.rail_lateral, -b.wheel_lateral, -b.contact_angle)
+                );
+                assert_eq!(
+                    (a.width, a.half_length, a.max_pressure, a.normal_force),
+                    (b.width, b.half_length, b.max_pressure, b.normal_force)
                 );
             }
         }
+    }
+}
+
+/// The equivalent ellipse grows continuously as the wheel sinks and strips enter the patch (its
+/// edges where the virtual penetration crosses zero between strips; a strip's whole width at
+/// once made b jump by half of it, 0.05 mm, and kept the balance from settling): on the flange
+/// (y_ws = 7 mm, a patch of a few strips) and the tread (2 mm), z_ws in steps of 20 nm from
+/// 1 kN to 30 kN, b moves by less than a twentieth of a strip per step, and only outward.
+#[test]
+fn the_equivalent_ellipse_grows_continuously_as_strips_enter() {
+    let pair = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    for lateral in [7e-3, 2e-3] {
+        let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
+        let at_load = |load| pair.non_hertzian_patches_for_force(load, &position).unwrap().vertical;
+        let (from, to) = (at_load(1e3), at_load(30e3));
+        let steps = ((to - from) / 20e-9).ceil() as usize;
+        let semi_axis_b = |vertical| {
+            let contact = pair.non_hertzian_patches_at(&WheelsetPosition { vertical, ..position }).unwrap();
+            assert_eq!(contact.patches.len(), 1, "y_ws {lateral}, z_ws {vertical}");
+            contact.patches[0].patch.ellipse.semi_axis_b
+        };
+        let (mut last, mut entered) = (semi_axis_b(from), 0);
+        for k in 1..=steps {
+            let b = semi_axis_b(from + (to - from) * k as f64 / steps as f64);
+            assert!(b - last > -1e-9 && b - last < 5e-6, "y_ws {lateral}: b {last} → {b}");
+            entered += usize::from(b > last);
+            last = b;
+        }
+        assert!(entered > steps / 2, "y_ws {lateral}: b grows with z_ws ({entered} of {steps} steps)");
     }
 }
 
