@@ -244,8 +244,8 @@ worn gauge corner to the flange, with friction) every patch CONTACT finds with a
 where it finds two, within the same tolerances but for the contact angle of a light patch on the worn gauge corner;
 with Hertz the contact point is off by up to 2.5 mm and the
 creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
-strip): its peak lies 8–13 % below CONTACT's on the tread, up to 35 % where the patch is wide and 17–25 % on the
-flange (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's
+strip): its peak lies 7–13 % below CONTACT's on the tread, 15–25 % on the flange, up to 41 % where the patch
+is wide and up to 60 % where tread and flange root share it (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's
 lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs 5–30 µs from the last step's solution (2–5 times Hertz's, the most for the centred
 wheelset's wide patch; up to 0.1 ms from a cold start): the strips' geometry is tabulated per wheel when the
 instance leaves initialisation (0.2 ms), only with <code>contact_method</code> = non_hertzian.</p>

@@ -630,20 +630,23 @@ impl<'a> Strips<'a> {
     }
 
     /// Where the virtual penetration falls to zero between strip `inside` (in contact) and its
-    /// neighbour `outside`, along the surface: linear in v between their centres, so that the
+    /// neighbour on the `outward` side, along the surface: linear in v between their centres, so that the
     /// patch's edge, and with it its equivalent ellipse, moves continuously as a strip enters
     /// (a strip's whole width at once made b jump by 0.05 mm on a flange patch 0.5 mm wide, and
     /// the vertical balance could not settle in the jump: 21 N of 80 kN off, worn flange). At
-    /// the end of the cut, the outer edge of the last strip.
-    fn edge(&self, inside: usize, outside: usize, vertical: f64) -> f64 {
+    /// the end of the cut or of a profile, the outer side of the strip itself.
+    fn edge(&self, inside: usize, outward: Outward, vertical: f64) -> f64 {
         let strip = &self.strips[inside];
-        match self.strips.get(outside) {
-            Some(next) if next.gap.is_finite() => {
-                let (v_in, v_out) =
-                    (self.virtual_penetration(inside, vertical), self.virtual_penetration(outside, vertical));
+        let (outside, sign) = match outward {
+            Outward::Up => (inside.checked_add(1), 1.0),
+            Outward::Down => (inside.checked_sub(1), -1.0),
+        };
+        match outside.and_then(|j| self.strips.get(j).map(|next| (j, next))) {
+            Some((j, next)) if next.gap.is_finite() => {
+                let (v_in, v_out) = (self.virtual_penetration(inside, vertical), self.virtual_penetration(j, vertical));
                 strip.arc + (next.arc - strip.arc) * v_in / (v_in - v_out)
             }
-            _ => strip.arc + 0.5 * strip.width * (if outside > inside { 1.0 } else { -1.0 }),
+            _ => strip.arc + sign * 0.5 * strip.width,
         }
     }
 
@@ -732,8 +735,7 @@ impl<'a> Strips<'a> {
         point.rolling_radius = mean_radius;
         let force = normal / point.contact_angle_sin_cos().1;
         let (first, last) = (regions[0].first, regions[regions.len() - 1].end - 1);
-        let semi_axis_b =
-            0.5 * (self.edge(last, last + 1, vertical) - self.edge(first, first.wrapping_sub(1), vertical));
+        let semi_axis_b = 0.5 * (self.edge(last, Outward::Up, vertical) - self.edge(first, Outward::Down, vertical));
         let approach = deepest.approach;
         let ellipse =
             HertzContact { semi_axis_a: area / (PI * semi_axis_b), semi_axis_b, max_pressure: peak, approach };
@@ -747,6 +749,14 @@ impl<'a> Strips<'a> {
             },
         })
     }
+}
+
+/// Which way along the strips an edge of a patch lies ([`Strips::edge`]): towards higher or lower
+/// strip indices.
+#[derive(Clone, Copy)]
+enum Outward {
+    Up,
+    Down,
 }
 
 /// Solves the n × n system `matrix` x = `rhs` (row-major) in place by Gaussian elimination with

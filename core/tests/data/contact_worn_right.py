@@ -11,15 +11,8 @@ rail minus wheel, forces on the rail).
 import re
 import sys
 
-
-def table_after(lines, start, names):
-    """The values under the first header line at or after `start` that holds every name."""
-    for i in range(start, len(lines)):
-        header = lines[i].split()
-        if all(n in header for n in names):
-            values = lines[i + 1].split()
-            return [values[header.index(n)] for n in names]
-    raise ValueError(f"no table with {names} after line {start}")
+# CONTACT's output tables are read as for the A-2.2 reference (the script beside this one).
+from mbench_a22_contact_ref_out import table_after
 
 
 def main(path):

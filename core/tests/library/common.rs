@@ -1,5 +1,8 @@
 //! Shared fixtures for the integration tests.
 
+use wheel_rail_contact::geometry::{
+    read_measured_profile, MeasuredOptions, MeasuredProfile, ProfileError, ProfileFormat, ProfileKind,
+};
 use wheel_rail_contact::scene::SceneOutput;
 use wheel_rail_contact::{ContactInput, Fastsim, Flexibility, ModelChoice, TractionBound};
 
@@ -124,4 +127,21 @@ pub fn scene_outputs(o: &SceneOutput) -> [f64; 13] {
         o.max_pressure,
         o.approach,
     ]
+}
+
+/// The text of a measured profile of `core/tests/data/profiles/measured/` (its README).
+pub fn measured_text(name: &str) -> String {
+    std::fs::read_to_string(format!("{}/tests/data/profiles/measured/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+}
+
+/// `text` read as the file `name` is, its format and kind from the name, default options (as
+/// the FMU reads a profile file).
+pub fn read_measured_as(text: &str, name: &str) -> Result<MeasuredProfile, ProfileError> {
+    let (format, kind) = (ProfileFormat::from_file_name(name).unwrap(), ProfileKind::from_file_name(name).unwrap());
+    read_measured_profile(text, format, kind, &MeasuredOptions::default())
+}
+
+/// The measured profile `name`, read ([`read_measured_as`]).
+pub fn read_measured(name: &str) -> MeasuredProfile {
+    read_measured_as(&measured_text(name), name).unwrap_or_else(|e| panic!("{name}: {e}"))
 }

@@ -7,19 +7,7 @@ use wheel_rail_contact::geometry::{
     SmoothProfile, TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition, MEASURED_FILTER_WAVELENGTH,
 };
 
-fn text(name: &str) -> String {
-    std::fs::read_to_string(format!("{}/tests/data/profiles/measured/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap()
-}
-
-fn read_as(text: &str, name: &str) -> Result<MeasuredProfile, wheel_rail_contact::geometry::ProfileError> {
-    let format = ProfileFormat::from_file_name(name).unwrap();
-    let kind = ProfileKind::from_file_name(name).unwrap();
-    read_measured_profile(text, format, kind, &MeasuredOptions::default())
-}
-
-fn read(name: &str) -> MeasuredProfile {
-    read_as(&text(name), name).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+use crate::common::{measured_text as text, read_measured as read, read_measured_as as read_as};
 
 fn top(profile: &MeasuredProfile) -> (f64, f64) {
     let (y, z) = (&profile.points.lateral, &profile.points.vertical);

@@ -9,8 +9,7 @@
 //! CONTACT finds that carries at least 1 % of the wheel load, with the known gap below.
 
 use wheel_rail_contact::geometry::{
-    read_measured_profile, MeasuredOptions, MeasuredProfile, ProfileFormat, ProfileKind, TrackDimensions, WheelOnRail,
-    WheelSide, WheelsetPosition, MEASURED_FILTER_WAVELENGTH,
+    TrackDimensions, WheelOnRail, WheelSide, WheelsetPosition, MEASURED_FILTER_WAVELENGTH,
 };
 use wheel_rail_contact::scene::{Evaluation, Scene};
 use wheel_rail_contact::wheel::{
@@ -18,12 +17,7 @@ use wheel_rail_contact::wheel::{
 };
 use wheel_rail_contact::{ExactTable, ModelChoice};
 
-fn read(name: &str) -> MeasuredProfile {
-    let text =
-        std::fs::read_to_string(format!("{}/tests/data/profiles/measured/{name}", env!("CARGO_MANIFEST_DIR"))).unwrap();
-    let (format, kind) = (ProfileFormat::from_file_name(name).unwrap(), ProfileKind::from_file_name(name).unwrap());
-    read_measured_profile(&text, format, kind, &MeasuredOptions::default()).unwrap()
-}
+use crate::common::read_measured as read;
 
 /// The deck's wheel: its track (North American: gauge 1435.1 mm at 15.875 mm, flange backs
 /// 1352.2 mm apart at the wheel profile's y = 0, nominal radius 419.1 mm; CONTACT's test-bank

@@ -629,10 +629,11 @@ fn write_wheel_comparison(report: &mut String, settings: &Settings) {
          patch's creep forces F_x, F_s over μN and the wheel's total forces over μF_z (cases with one patch, as \
          CONTACT; with `hertz` the cases where it finds two are counted apart; refused: the vertical balance did not settle, an error \
          naming it). Time: one wheel step with the \
-         vertical balance from a cold cache (no last step to start from), the least over the passes, per case; \
+         vertical balance from a cold cache (no last step to start from), each case's least over the passes, their \
+         mean and the slowest case; \
          `non_hertzian` with its strip table, as the FMU builds it.\n\n\
          | contact method | rung | cases with CONTACT's one patch | rail y max [mm] | angle max [rad] | N max | \
-         creep max [μN] | totals max [μF_z] | µs / wheel step |\n|---|---|---|---|---|---|---|---|---|\n",
+         creep max [μN] | totals max [μF_z] | µs / wheel step | slowest case [µs] |\n|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let cases = manchester_a22();
     let mut rungs: Vec<(String, ModelChoice)> = ModelChoice::RUNGS
@@ -688,19 +689,27 @@ fn write_wheel_comparison(report: &mut String, settings: &Settings) {
                 }
             }
             let passes = if settings.quick { 2 } else { 5 };
-            let seconds = (0..passes)
-                .map(|_| {
-                    let started = Instant::now();
-                    for case in &cases {
-                        let _ = black_box(step(black_box(case)));
-                    }
-                    started.elapsed().as_secs_f64()
+            // Each case's least time over the passes: their mean, and the slowest case.
+            let times: Vec<f64> = cases
+                .iter()
+                .map(|case| {
+                    (0..passes)
+                        .map(|_| {
+                            let started = Instant::now();
+                            let _ = black_box(step(black_box(case)));
+                            started.elapsed().as_secs_f64()
+                        })
+                        .fold(f64::INFINITY, f64::min)
                 })
-                .fold(f64::INFINITY, f64::min);
-            let microseconds = seconds / cases.len() as f64 * 1e6;
+                .collect();
+            let microseconds = times.iter().sum::<f64>() / cases.len() as f64 * 1e6;
+            let (slowest, slowest_seconds) =
+                cases.iter().zip(&times).max_by(|a, b| a.1.total_cmp(b.1)).expect("the A-2.2 cases");
+            let side = if slowest.side == WheelSide::Right { "right" } else { "left" };
+            let slowest = format!("{:.0} ({side} {})", slowest_seconds * 1e6, slowest.case);
             writeln!(
                 report,
-                "| {method_name} | {rung} | {single} of {}{} | {:.2} | {:.4} | {:.3} | {:.3} | {:.3} | {microseconds:.1} |",
+                "| {method_name} | {rung} | {single} of {}{} | {:.2} | {:.4} | {:.3} | {:.3} | {:.3} | {microseconds:.1} | {slowest} |",
                 cases.len(),
                 if failed > 0 { format!(" ({failed} refused)") } else { String::new() },
                 worst[0],
