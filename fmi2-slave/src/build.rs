@@ -1,11 +1,13 @@
 //! Turns `modelDescription.xml` (the FMU's interface, written once) into Rust.
 //!
 //! Generated, per variable: a value-reference constant, a field of a plain struct (`Inputs`,
-//! `Parameters` or `Outputs`, by causality; start values are their `Default`), the Get/Set
+//! `Parameters`, `Outputs` or `Locals`, by causality; start values are their `Default`; a
+//! state derivative `der(x)` is the field `der_x`), the Get/Set
 //! mapping from value reference to field, and a row of the `VARIABLES` table (name, causality,
 //! variability, start, unit, description) that the documentation is generated from. Also: the
 //! GUID, the model identifier, the log categories, one Rust enum per Enumeration type, the
-//! output dependencies declared by name in `<ModelStructure>`, the packaged model description
+//! output and state-derivative dependencies declared by name in `<ModelStructure>`, the
+//! continuous states of Model Exchange (state, derivative, nominal), the packaged model description
 //! (that `<ModelStructure>` in the standard's by-index form, so adding a variable touches one
 //! place) and the FMU-state layout tag (a hash of the variable layout).
 //!
@@ -25,6 +27,8 @@ enum Causality {
     Input,
     Parameter,
     Output,
+    /// A state derivative (the only locals this generator accepts).
+    Local,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -40,6 +44,8 @@ struct Variable {
     /// 1-based position in `<ModelVariables>`: how `<ModelStructure>` refers to it.
     index: usize,
     name: String,
+    /// The Rust name of its field and (upper-cased) constant: the name, `der(x)` as `der_x`.
+    ident: String,
     value_reference: u32,
     causality: Causality,
     variability: String,
@@ -49,6 +55,17 @@ struct Variable {
     unit: Option<String>,
     display_unit: Option<String>,
     start: Option<String>,
+    /// A state derivative's state: its `derivative` attribute (a 1-based index).
+    derivative: Option<usize>,
+    /// The `nominal` attribute (a state's, for fmi2GetNominalsOfContinuousStates).
+    nominal: Option<f64>,
+}
+
+/// What `<ModelStructure>` declares by name: per output and per state derivative (in the order
+/// of the variables), the indices of what it depends on.
+struct Dependencies {
+    outputs: Vec<Vec<usize>>,
+    derivatives: Vec<Vec<usize>>,
 }
 
 struct EnumerationType {
@@ -91,12 +108,23 @@ pub fn generate(xml_path: &str, out_path: &Path) {
     let model_identifier = co_simulation
         .attribute("modelIdentifier")
         .unwrap_or_else(|| fail("<CoSimulation> has no modelIdentifier".into()));
+    let model_exchange = child(root, "ModelExchange");
+    if model_exchange.is_some_and(|me| me.attribute("modelIdentifier") != Some(model_identifier)) {
+        fail("<ModelExchange> must have <CoSimulation>'s modelIdentifier: one binary holds both interfaces".into());
+    }
+    let event_indicators: usize = root
+        .attribute("numberOfEventIndicators")
+        .map(|n| n.parse().unwrap_or_else(|_| fail(format!("numberOfEventIndicators = {n} is not a count"))))
+        .unwrap_or(0);
 
     let units = read_units(root);
     let enumerations = read_enumerations(root);
     let variables = read_variables(root, &units, &enumerations);
-    let output_dependencies = read_model_structure(root, &variables);
-    let packaged = packaged_xml(&text, &standard_model_structure(&variables, &output_dependencies));
+    let dependencies = read_model_structure(root, &variables);
+    if model_exchange.is_none() && !dependencies.derivatives.is_empty() {
+        fail("state derivatives need <ModelExchange>".into());
+    }
+    let packaged = packaged_xml(&text, &standard_model_structure(&variables, &dependencies));
     let packaged_path = out_path.with_file_name("modelDescription.xml");
     std::fs::write(&packaged_path, &packaged).unwrap_or_else(|e| panic!("{}: {e}", packaged_path.display()));
     let log_categories: Vec<&str> = child(root, "LogCategories")
@@ -112,7 +140,12 @@ pub fn generate(xml_path: &str, out_path: &Path) {
     writeln!(source, "/// Names the shared library and its C symbols' prefix-free exports.").unwrap();
     writeln!(source, "pub const MODEL_IDENTIFIER: &str = {model_identifier:?};").unwrap();
     writeln!(source, "/// The log categories of `<LogCategories>`.").unwrap();
-    writeln!(source, "pub const LOG_CATEGORIES: &[&str] = &{log_categories:?};\n").unwrap();
+    writeln!(source, "pub const LOG_CATEGORIES: &[&str] = &{log_categories:?};").unwrap();
+    writeln!(source, "/// Whether the model description declares `<ModelExchange>`.").unwrap();
+    writeln!(source, "pub const MODEL_EXCHANGE: bool = {};", model_exchange.is_some()).unwrap();
+    writeln!(source, "/// `numberOfEventIndicators`.\npub const EVENT_INDICATORS: usize = {event_indicators};")
+        .unwrap();
+    write_continuous_states(&mut source, &variables);
     write_units(&mut source, &units);
     for enumeration in &enumerations {
         write_enumeration(&mut source, enumeration);
@@ -120,7 +153,7 @@ pub fn generate(xml_path: &str, out_path: &Path) {
     write_value_references(&mut source, &variables);
     write_structs(&mut source, &variables);
     write_accessors(&mut source, &variables);
-    write_table(&mut source, &variables, &output_dependencies);
+    write_table(&mut source, &variables, &dependencies);
     std::fs::write(out_path, source).unwrap_or_else(|e| panic!("cannot write {}: {e}", out_path.display()));
 }
 
@@ -190,10 +223,17 @@ fn read_variables(
     let mut value_references = BTreeSet::new();
     for (position, scalar) in elements(model_variables, "ScalarVariable").enumerate() {
         let name = scalar.attribute("name").unwrap_or_default().to_owned();
-        let is_identifier = name.chars().next().is_some_and(|c| c.is_ascii_lowercase())
-            && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+        // `der(x)`, the structured naming convention's state derivative, is the field `der_x`.
+        let ident = match name.strip_prefix("der(").and_then(|rest| rest.strip_suffix(')')) {
+            Some(state) => format!("der_{state}"),
+            None => name.clone(),
+        };
+        let is_identifier = ident.chars().next().is_some_and(|c| c.is_ascii_lowercase())
+            && ident.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
         if !is_identifier {
-            fail(format!("variable `{name}`: names must be snake_case identifiers (they become Rust fields)"));
+            fail(format!(
+                "variable `{name}`: names must be snake_case identifiers or der(identifier) (they become Rust fields)"
+            ));
         }
         if !names.insert(name.clone()) {
             fail(format!("variable name `{name}` is not unique"));
@@ -210,7 +250,10 @@ fn read_variables(
             Some("input") => Causality::Input,
             Some("parameter") => Causality::Parameter,
             Some("output") => Causality::Output,
-            other => fail(format!("variable {name}: causality {other:?} is not supported (input, parameter, output)")),
+            Some("local") => Causality::Local,
+            other => {
+                fail(format!("variable {name}: causality {other:?} is not supported (input, parameter, output, local)"))
+            }
         };
         let variability = scalar.attribute("variability").unwrap_or("continuous").to_owned();
         if scalar.attribute("initial").is_some() {
@@ -249,10 +292,23 @@ fn read_variables(
             fail(format!("variable {name}: every Real needs a unit"));
         }
         let start = type_element.attribute("start").map(str::to_owned);
+        let derivative = type_element.attribute("derivative").map(|index| {
+            index
+                .parse::<usize>()
+                .unwrap_or_else(|_| fail(format!("variable {name}: derivative = {index} is not an index")))
+        });
+        if (causality == Causality::Local) != derivative.is_some() {
+            fail(format!("variable {name}: the locals, and only they, are state derivatives (with `derivative`)"));
+        }
+        let nominal = type_element.attribute("nominal").map(|nominal| match nominal.parse::<f64>() {
+            Ok(value) if value.is_finite() && value > 0.0 => value,
+            _ => fail(format!("variable {name}: nominal = {nominal} must be finite and > 0")),
+        });
         match (causality, &start) {
             (Causality::Output, Some(_)) => {
                 fail(format!("output {name}: initial=\"calculated\" forbids a start value"))
             }
+            (Causality::Local, Some(_)) => fail(format!("local {name}: initial=\"calculated\" forbids a start value")),
             (Causality::Input | Causality::Parameter, None) => {
                 fail(format!("{name}: inputs and parameters need a start"))
             }
@@ -272,6 +328,7 @@ fn read_variables(
         variables.push(Variable {
             index: position + 1,
             name,
+            ident,
             value_reference,
             causality,
             variability,
@@ -281,67 +338,144 @@ fn read_variables(
             unit,
             display_unit,
             start,
+            derivative,
+            nominal,
         });
+    }
+    for v in &variables {
+        let Some(state) = v.derivative else { continue };
+        match variables.get(state.wrapping_sub(1)) {
+            Some(x)
+                if v.name == format!("der({})", x.name)
+                    && x.base_type == BaseType::Real
+                    && x.variability == "continuous" => {}
+            _ => fail(format!(
+                "{}: derivative = {state} must be the index of the continuous Real it is named after",
+                v.name
+            )),
+        }
     }
     variables
 }
 
-/// The dependencies declared by name in `<ModelStructure>` (one `<Output name dependsOn>` per
-/// output, in the order of the outputs): per output, the indices of every input and parameter
-/// it depends on. Unknown names, an output missing or out of order, or an output among the
-/// dependencies stop the build.
-fn read_model_structure(root: roxmltree::Node, variables: &[Variable]) -> Vec<Vec<usize>> {
-    let structure = child(root, "ModelStructure").unwrap_or_else(|| fail("no <ModelStructure>".into()));
-    let by_name: BTreeMap<&str, &Variable> = variables.iter().map(|v| (v.name.as_str(), v)).collect();
-    let outputs: Vec<&str> =
-        variables.iter().filter(|v| v.causality == Causality::Output).map(|v| v.name.as_str()).collect();
-    let declared: Vec<(&str, Vec<usize>)> = elements(structure, "Output")
-        .map(|output| {
-            let name = output.attribute("name").unwrap_or_else(|| fail("an <Output> lacks its name".into()));
-            let depends_on = output
-                .attribute("dependsOn")
-                .unwrap_or_else(|| fail(format!("<Output name=\"{name}\"> must list what it dependsOn")));
-            let mut indices: Vec<usize> = depends_on
-                .split_whitespace()
-                .map(|dependency| match by_name.get(dependency) {
-                    Some(known) if known.causality != Causality::Output => known.index,
-                    _ => fail(format!("{name} cannot depend on `{dependency}`: not an input or parameter")),
-                })
-                .collect();
-            indices.sort_unstable();
-            indices.dedup();
-            (name, indices)
+/// The continuous states of Model Exchange as (state, derivative, nominal) value references,
+/// in the order of the derivatives.
+fn write_continuous_states(source: &mut String, variables: &[Variable]) {
+    let rows: Vec<String> = variables
+        .iter()
+        .filter_map(|v| {
+            let state = &variables[v.derivative? - 1];
+            Some(format!("({}, {}, {:?})", state.value_reference, v.value_reference, state.nominal.unwrap_or(1.0)))
         })
         .collect();
-    if declared.iter().map(|(name, _)| *name).collect::<Vec<_>>() != outputs {
-        fail(format!("<ModelStructure> must declare exactly the outputs {outputs:?}, in order"));
+    writeln!(
+        source,
+        "/// The continuous states of Model Exchange: (state, its derivative, nominal value) value references."
+    )
+    .unwrap();
+    writeln!(source, "pub const CONTINUOUS_STATES: &[(u32, u32, f64)] = &[{}];\n", rows.join(", ")).unwrap();
+}
+
+/// The dependencies declared by name in `<ModelStructure>`: one `<Output name dependsOn>` per
+/// output, in the order of the outputs, each on inputs and parameters; one `<Derivative name
+/// dependsOn>` per state derivative, in order, each on inputs and continuous states. Unknown
+/// names, an entry missing or out of order, or a dependency of another kind stop the build.
+fn read_model_structure(root: roxmltree::Node, variables: &[Variable]) -> Dependencies {
+    let structure = child(root, "ModelStructure").unwrap_or_else(|| fail("no <ModelStructure>".into()));
+    let by_name: BTreeMap<&str, &Variable> = variables.iter().map(|v| (v.name.as_str(), v)).collect();
+    let states: BTreeSet<usize> = variables.iter().filter_map(|v| v.derivative).collect();
+    let declared = |element: &str, causality: Causality, known: &dyn Fn(&Variable) -> bool, kinds: &str| {
+        let expected: Vec<&str> =
+            variables.iter().filter(|v| v.causality == causality).map(|v| v.name.as_str()).collect();
+        let entries: Vec<(&str, Vec<usize>)> = elements(structure, element)
+            .map(|entry| {
+                let name = entry.attribute("name").unwrap_or_else(|| fail(format!("an <{element}> lacks its name")));
+                let depends_on = entry
+                    .attribute("dependsOn")
+                    .unwrap_or_else(|| fail(format!("<{element} name=\"{name}\"> must list what it dependsOn")));
+                let mut indices: Vec<usize> = depends_on
+                    .split_whitespace()
+                    .map(|dependency| match by_name.get(dependency) {
+                        Some(v) if known(v) => v.index,
+                        _ => fail(format!("{name} cannot depend on `{dependency}`: not {kinds}")),
+                    })
+                    .collect();
+                indices.sort_unstable();
+                indices.dedup();
+                (name, indices)
+            })
+            .collect();
+        if entries.iter().map(|(name, _)| *name).collect::<Vec<_>>() != expected {
+            fail(format!("<ModelStructure> must declare exactly the {element}s {expected:?}, in order"));
+        }
+        entries.into_iter().map(|(_, indices)| indices).collect()
+    };
+    Dependencies {
+        outputs: declared(
+            "Output",
+            Causality::Output,
+            &|v| matches!(v.causality, Causality::Input | Causality::Parameter),
+            "an input or parameter",
+        ),
+        derivatives: declared(
+            "Derivative",
+            Causality::Local,
+            &|v| v.causality == Causality::Input || states.contains(&v.index),
+            "an input or continuous state",
+        ),
     }
-    declared.into_iter().map(|(_, indices)| indices).collect()
 }
 
 /// The standard's `<ModelStructure>` (FMI 2.0, §2.2.8) from the declared dependencies: under
-/// `<Outputs>` each output's inputs (no states here), under `<InitialUnknowns>` its inputs and
-/// parameters (every output has initial="calculated", so the initial unknowns are the outputs).
-fn standard_model_structure(variables: &[Variable], dependencies: &[Vec<usize>]) -> String {
+/// `<Outputs>` each output's inputs (an output that is a continuous state: that state, what it
+/// is in Model Exchange), under `<Derivatives>` each state derivative's inputs and states, under
+/// `<InitialUnknowns>` (the outputs and derivatives: all have initial="calculated", in index
+/// order) an output's inputs and parameters, a derivative's everything (no list).
+fn standard_model_structure(variables: &[Variable], dependencies: &Dependencies) -> String {
     let by_index: BTreeMap<usize, &Variable> = variables.iter().map(|v| (v.index, v)).collect();
+    let states: BTreeSet<usize> = variables.iter().filter_map(|v| v.derivative).collect();
     let outputs: Vec<&Variable> = variables.iter().filter(|v| v.causality == Causality::Output).collect();
-    let mut xml = String::from("<ModelStructure>\n    <Outputs>\n");
-    for (output, all) in outputs.iter().zip(dependencies) {
-        let inputs: Vec<String> =
-            all.iter().filter(|i| by_index[*i].causality == Causality::Input).map(usize::to_string).collect();
-        let kinds = vec!["dependent"; inputs.len()].join(" ");
+    let derivatives: Vec<&Variable> = variables.iter().filter(|v| v.causality == Causality::Local).collect();
+    let unknown = |xml: &mut String, index: usize, on: &[usize]| {
+        let on: Vec<String> = on.iter().map(usize::to_string).collect();
+        let kinds = vec!["dependent"; on.len()].join(" ");
         writeln!(
             xml,
-            "      <Unknown index=\"{}\" dependencies=\"{}\" dependenciesKind=\"{kinds}\"/>",
-            output.index,
-            inputs.join(" ")
+            "      <Unknown index=\"{index}\" dependencies=\"{}\" dependenciesKind=\"{kinds}\"/>",
+            on.join(" ")
         )
         .unwrap();
+    };
+    let mut xml = String::from("<ModelStructure>\n    <Outputs>\n");
+    for (output, all) in outputs.iter().zip(&dependencies.outputs) {
+        let on: Vec<usize> = if states.contains(&output.index) {
+            vec![output.index]
+        } else {
+            all.iter().copied().filter(|i| by_index[i].causality == Causality::Input).collect()
+        };
+        unknown(&mut xml, output.index, &on);
     }
-    xml.push_str("    </Outputs>\n    <InitialUnknowns>\n");
-    for (output, all) in outputs.iter().zip(dependencies) {
-        let all: Vec<String> = all.iter().map(usize::to_string).collect();
-        writeln!(xml, "      <Unknown index=\"{}\" dependencies=\"{}\"/>", output.index, all.join(" ")).unwrap();
+    xml.push_str("    </Outputs>\n");
+    if !derivatives.is_empty() {
+        xml.push_str("    <Derivatives>\n");
+        for (derivative, on) in derivatives.iter().zip(&dependencies.derivatives) {
+            unknown(&mut xml, derivative.index, on);
+        }
+        xml.push_str("    </Derivatives>\n");
+    }
+    xml.push_str("    <InitialUnknowns>\n");
+    let mut initial: Vec<(usize, Option<&Vec<usize>>)> =
+        outputs.iter().zip(&dependencies.outputs).map(|(v, all)| (v.index, Some(all))).collect();
+    initial.extend(derivatives.iter().map(|v| (v.index, None)));
+    initial.sort_unstable_by_key(|(index, _)| *index);
+    for (index, all) in initial {
+        match all {
+            Some(all) => {
+                let all: Vec<String> = all.iter().map(usize::to_string).collect();
+                writeln!(xml, "      <Unknown index=\"{index}\" dependencies=\"{}\"/>", all.join(" ")).unwrap();
+            }
+            None => writeln!(xml, "      <Unknown index=\"{index}\"/>").unwrap(),
+        }
     }
     xml.push_str("    </InitialUnknowns>\n  </ModelStructure>");
     xml
@@ -426,7 +560,7 @@ fn write_value_references(source: &mut String, variables: &[Variable]) {
             "    /// `{}`: {}\n    pub const {}: u32 = {};",
             v.name,
             v.description,
-            constant_name(&v.name),
+            constant_name(&v.ident),
             v.value_reference
         )
         .unwrap();
@@ -439,6 +573,7 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         ("Inputs", Causality::Input, "The inputs (causality = input)."),
         ("Parameters", Causality::Parameter, "The parameters (causality = parameter)."),
         ("Outputs", Causality::Output, "The outputs (causality = output), as last computed."),
+        ("Locals", Causality::Local, "The state derivatives (causality = local), as last computed."),
     ];
     for (struct_name, causality, doc) in groups {
         writeln!(
@@ -450,7 +585,7 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         for v in variables.iter().filter(|v| v.causality == causality && v.base_type != BaseType::String) {
             // Escaped: rustdoc would read "[m]" as a link.
             let unit = v.unit.as_deref().map(|u| format!(" \\[{u}\\]")).unwrap_or_default();
-            writeln!(source, "    /// {}{unit}\n    pub {}: {},", v.description, v.name, rust_type(v)).unwrap();
+            writeln!(source, "    /// {}{unit}\n    pub {}: {},", v.description, v.ident, rust_type(v)).unwrap();
         }
         writeln!(source, "}}\n\nimpl Default for {struct_name} {{\n    /// The start values.").unwrap();
         writeln!(source, "    fn default() -> Self {{\n        Self {{").unwrap();
@@ -462,7 +597,7 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
                 (None, BaseType::Real) => "0.0".into(),
                 (None, _) => "0".into(),
             };
-            writeln!(source, "            {}: {value},", v.name).unwrap();
+            writeln!(source, "            {}: {value},", v.ident).unwrap();
         }
         writeln!(source, "        }}\n    }}\n}}\n").unwrap();
     }
@@ -488,7 +623,11 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
     writeln!(source, "/// Every value of one instance{strings}: plain data, no pointers.").unwrap();
     writeln!(source, "#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]")
         .unwrap();
-    writeln!(source, "pub struct Values {{\n    pub inputs: Inputs,\n    pub parameters: Parameters,\n    pub outputs: Outputs,\n}}\n")
+    writeln!(
+        source,
+        "pub struct Values {{\n    pub inputs: Inputs,\n    pub parameters: Parameters,\n    pub outputs: Outputs,\n    pub \
+         locals: Locals,\n}}\n"
+    )
         .unwrap();
 }
 
@@ -543,9 +682,10 @@ fn field_path(v: &Variable) -> String {
         Causality::Input => "inputs",
         Causality::Parameter => "parameters",
         Causality::Output => "outputs",
+        Causality::Local => "locals",
     };
     debug_assert!(v.base_type != BaseType::String, "Strings are not in Values");
-    format!("{group}.{}", v.name)
+    format!("{group}.{}", v.ident)
 }
 
 fn write_accessors(source: &mut String, variables: &[Variable]) {
@@ -574,7 +714,7 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
                 writeln!(
                     source,
                     "            value_reference::{} => Some({reference}self.{}),",
-                    constant_name(&v.name),
+                    constant_name(&v.ident),
                     field_path(v)
                 )
                 .unwrap();
@@ -585,7 +725,8 @@ fn write_accessors(source: &mut String, variables: &[Variable]) {
     writeln!(source, "}}\n").unwrap();
 }
 
-fn write_table(source: &mut String, variables: &[Variable], output_dependencies: &[Vec<usize>]) {
+fn write_table(source: &mut String, variables: &[Variable], dependencies: &Dependencies) {
+    let output_dependencies = &dependencies.outputs;
     let by_index: BTreeMap<usize, &Variable> = variables.iter().map(|v| (v.index, v)).collect();
     writeln!(source, "/// Every variable, in `<ModelVariables>` order.").unwrap();
     writeln!(source, "pub const VARIABLES: [Variable; {}] = [", variables.len()).unwrap();
@@ -616,6 +757,10 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
                 .filter(|i| by_index[*i].causality == Causality::Input)
                 .map(|i| by_index[i].value_reference)
                 .collect()
+        } else if v.causality == Causality::Local {
+            let position =
+                variables.iter().filter(|o| o.causality == Causality::Local).position(|o| o.index == v.index);
+            dependencies.derivatives[position.unwrap()].iter().map(|i| by_index[i].value_reference).collect()
         } else {
             Vec::new()
         };
@@ -660,7 +805,7 @@ fn write_table(source: &mut String, variables: &[Variable], output_dependencies:
             BaseType::String => STRING,
         };
         let writable = match (v.causality, v.variability.as_str()) {
-            (Causality::Output, _) => OUTPUT,
+            (Causality::Output | Causality::Local, _) => OUTPUT,
             (Causality::Parameter, "fixed") => PARAMETER | FIXED,
             (Causality::Parameter, _) => PARAMETER | WRITABLE,
             (Causality::Input, _) => WRITABLE,

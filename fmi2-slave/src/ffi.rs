@@ -1,4 +1,4 @@
-//! The 25 common and 9 Co-Simulation functions of FMI 2.0, generic over the [`Slave`] that
+//! The 25 common, 9 Co-Simulation and 10 Model Exchange functions of FMI 2.0, generic over the [`Slave`] that
 //! implements them, and [`export_fmi2!`](crate::export_fmi2), which expands to one cdylib's
 //! `#[no_mangle] extern "C"` exports calling them. The only file of the crate with `unsafe`.
 //!
@@ -25,7 +25,7 @@ use std::ptr::null_mut;
 
 use crate::fmi2::*;
 use crate::logging::{LogSink, Status};
-use crate::mode::Call;
+use crate::mode::{Call, Interface};
 use crate::{InstantiateArguments, Slave, StatusKind, Unsupported};
 
 const NULL_ARRAY: &str = "NULL array pointer with n > 0";
@@ -188,7 +188,11 @@ pub unsafe fn instantiate<S: Slave>(
         };
         let arguments = InstantiateArguments {
             instance_name: &name,
-            co_simulation: fmuType == fmi2Type_fmi2CoSimulation,
+            interface: match fmuType {
+                fmi2Type_fmi2CoSimulation => Ok(Interface::CoSimulation),
+                fmi2Type_fmi2ModelExchange => Ok(Interface::ModelExchange),
+                other => Err(other),
+            },
             guid: guid.as_deref().unwrap_or(""),
             resource_location: resources.as_deref(),
             logging_on: loggingOn != 0,
@@ -664,8 +668,131 @@ pub unsafe fn get_string_status<S: Slave>(c: fmi2Component, s: fmi2StatusKind, v
     }
 }
 
-/// Expands to the 34 `#[no_mangle] extern "C"` functions of FMI 2.0 (25 common, 9
-/// Co-Simulation) for the [`Slave`] type given, each forwarding its arguments to its generic
+pub unsafe fn enter_event_mode<S: Slave>(c: fmi2Component) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { with_instance(c, Call::EnterEventMode, S::enter_event_mode) }
+}
+
+pub unsafe fn new_discrete_states<S: Slave>(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status {
+    const CALL: Call = Call::NewDiscreteStates;
+    // SAFETY: see the module's contract; `fmi2eventInfo` is checked for NULL before the write.
+    unsafe {
+        with_instance(c, CALL, |instance: &mut S| {
+            let Some(out) = fmi2eventInfo.as_mut() else {
+                return instance.invalid_argument(CALL, "fmi2eventInfo is NULL");
+            };
+            match instance.new_discrete_states() {
+                Ok(info) => {
+                    *out = fmi2EventInfo {
+                        newDiscreteStatesNeeded: info.new_discrete_states_needed.into(),
+                        terminateSimulation: info.terminate_simulation.into(),
+                        nominalsOfContinuousStatesChanged: info.nominals_of_continuous_states_changed.into(),
+                        valuesOfContinuousStatesChanged: info.values_of_continuous_states_changed.into(),
+                        nextEventTimeDefined: info.next_event_time.is_some().into(),
+                        nextEventTime: info.next_event_time.unwrap_or(0.0),
+                    };
+                    Status::Ok
+                }
+                Err(status) => status,
+            }
+        })
+    }
+}
+
+pub unsafe fn enter_continuous_time_mode<S: Slave>(c: fmi2Component) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { with_instance(c, Call::EnterContinuousTimeMode, S::enter_continuous_time_mode) }
+}
+
+pub unsafe fn completed_integrator_step<S: Slave>(
+    c: fmi2Component,
+    _noSetFMUStatePriorToCurrentPoint: fmi2Boolean,
+    enterEventMode: *mut fmi2Boolean,
+    terminateSimulation: *mut fmi2Boolean,
+) -> fmi2Status {
+    const CALL: Call = Call::CompletedIntegratorStep;
+    // SAFETY: see the module's contract; both flags are checked for NULL before the writes.
+    unsafe {
+        with_instance(c, CALL, |instance: &mut S| {
+            if enterEventMode.is_null() || terminateSimulation.is_null() {
+                return instance.invalid_argument(CALL, "enterEventMode or terminateSimulation is NULL");
+            }
+            match instance.completed_integrator_step() {
+                Ok((enter, terminate)) => {
+                    *enterEventMode = enter.into();
+                    *terminateSimulation = terminate.into();
+                    Status::Ok
+                }
+                Err(status) => status,
+            }
+        })
+    }
+}
+
+pub unsafe fn set_time<S: Slave>(c: fmi2Component, time: fmi2Real) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { with_instance(c, Call::SetTime, |instance: &mut S| instance.set_time(time)) }
+}
+
+pub unsafe fn set_continuous_states<S: Slave>(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status {
+    const CALL: Call = Call::SetContinuousStates;
+    // SAFETY: see the module's contract.
+    unsafe {
+        with_instance(c, CALL, |instance: &mut S| match slice(x, nx) {
+            Some(states) => instance.set_continuous_states(states),
+            None => instance.invalid_argument(CALL, NULL_ARRAY),
+        })
+    }
+}
+
+/// The four Model Exchange functions that fill an array of the master's.
+/// SAFETY: see the module's contract.
+unsafe fn fill<S: Slave>(
+    c: fmi2Component,
+    call: Call,
+    values: *mut fmi2Real,
+    n: usize,
+    body: impl FnOnce(&mut S, &mut [f64]) -> Status,
+) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe {
+        with_instance(c, call, |instance: &mut S| match slice_mut(values, n) {
+            Some(values) => body(instance, values),
+            None => instance.invalid_argument(call, NULL_ARRAY),
+        })
+    }
+}
+
+pub unsafe fn get_derivatives<S: Slave>(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { fill(c, Call::GetDerivatives, derivatives, nx, S::get_derivatives) }
+}
+
+pub unsafe fn get_event_indicators<S: Slave>(
+    c: fmi2Component,
+    eventIndicators: *mut fmi2Real,
+    ni: usize,
+) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { fill(c, Call::GetEventIndicators, eventIndicators, ni, S::get_event_indicators) }
+}
+
+pub unsafe fn get_continuous_states<S: Slave>(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { fill(c, Call::GetContinuousStates, x, nx, S::get_continuous_states) }
+}
+
+pub unsafe fn get_nominals_of_continuous_states<S: Slave>(
+    c: fmi2Component,
+    x_nominal: *mut fmi2Real,
+    nx: usize,
+) -> fmi2Status {
+    // SAFETY: see the module's contract.
+    unsafe { fill(c, Call::GetNominalsOfContinuousStates, x_nominal, nx, S::get_nominals_of_continuous_states) }
+}
+
+/// Expands to the 44 `#[no_mangle] extern "C"` functions of FMI 2.0 (25 common, 9
+/// Co-Simulation, 10 Model Exchange) for the [`Slave`] type given, each forwarding its arguments to its generic
 /// twin in this module. Invoke it once per cdylib, in a module that allows `unsafe_code` (the
 /// expansion declares `unsafe extern "C"` functions and `#[no_mangle]`), with a path that
 /// resolves from a child module (e.g. `crate::instance::Instance`): the functions are defined in
@@ -737,6 +864,24 @@ macro_rules! export_fmi2 {
                     = get_boolean_status;
                 fn fmi2GetStringStatus(c: fmi2Component, s: fmi2StatusKind, value: *mut fmi2String) -> fmi2Status
                     = get_string_status;
+                fn fmi2EnterEventMode(c: fmi2Component) -> fmi2Status = enter_event_mode;
+                fn fmi2NewDiscreteStates(c: fmi2Component, fmi2eventInfo: *mut fmi2EventInfo) -> fmi2Status
+                    = new_discrete_states;
+                fn fmi2EnterContinuousTimeMode(c: fmi2Component) -> fmi2Status = enter_continuous_time_mode;
+                fn fmi2CompletedIntegratorStep(c: fmi2Component, noSetFMUStatePriorToCurrentPoint: fmi2Boolean,
+                    enterEventMode: *mut fmi2Boolean, terminateSimulation: *mut fmi2Boolean) -> fmi2Status
+                    = completed_integrator_step;
+                fn fmi2SetTime(c: fmi2Component, time: fmi2Real) -> fmi2Status = set_time;
+                fn fmi2SetContinuousStates(c: fmi2Component, x: *const fmi2Real, nx: usize) -> fmi2Status
+                    = set_continuous_states;
+                fn fmi2GetDerivatives(c: fmi2Component, derivatives: *mut fmi2Real, nx: usize) -> fmi2Status
+                    = get_derivatives;
+                fn fmi2GetEventIndicators(c: fmi2Component, eventIndicators: *mut fmi2Real, ni: usize) -> fmi2Status
+                    = get_event_indicators;
+                fn fmi2GetContinuousStates(c: fmi2Component, x: *mut fmi2Real, nx: usize) -> fmi2Status
+                    = get_continuous_states;
+                fn fmi2GetNominalsOfContinuousStates(c: fmi2Component, x_nominal: *mut fmi2Real, nx: usize)
+                    -> fmi2Status = get_nominals_of_continuous_states;
             }
 
             #[no_mangle]

@@ -65,6 +65,18 @@ pub struct fmi2CallbackFunctions {
     pub componentEnvironment: fmi2ComponentEnvironment,
 }
 
+/// `fmi2EventInfo` of `fmi2FunctionTypes.h`.
+#[repr(C)]
+#[derive(Debug, Copy, Clone, Default)]
+pub struct fmi2EventInfo {
+    pub newDiscreteStatesNeeded: fmi2Boolean,
+    pub terminateSimulation: fmi2Boolean,
+    pub nominalsOfContinuousStatesChanged: fmi2Boolean,
+    pub valuesOfContinuousStatesChanged: fmi2Boolean,
+    pub nextEventTimeDefined: fmi2Boolean,
+    pub nextEventTime: fmi2Real,
+}
+
 /// `fmi2TypesPlatform`, NUL-terminated.
 pub const fmi2TypesPlatform: &[u8; 8] = b"default\0";
 /// `fmi2Version`, NUL-terminated.

@@ -1,4 +1,5 @@
-//! The generic FMU instance: the Co-Simulation state machine ([`crate::mode`]), logging, status
+//! The generic FMU instance: the Co-Simulation and Model Exchange state machines
+//! ([`crate::mode`]), the continuous states and their derivatives, logging, status
 //! inquiries, Get/Set of Real, Integer, Enumeration and String variables checked against the
 //! model's access table, the communication-step checks, FMU states in the versioned state
 //! format ([`crate::state_format`]) and directional derivatives, around a [`Model`] that holds
@@ -27,23 +28,31 @@ use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use crate::logging::{LogFilter, LogSink, Logger, Status};
-use crate::mode::{Call, Mode, Modes, LIVE};
+use crate::mode::{Call, Interface, Mode, Modes, LIVE};
 use crate::state_format::StateFormat;
 use serde::{Deserialize, Serialize};
 
 use crate::variables::{access, Causality, Kind, Variable};
-use crate::{InstantiateArguments, Slave, StatusKind, Unsupported};
+use crate::{EventInfo, InstantiateArguments, Slave, StatusKind, Unsupported};
 
 /// Two communication points closer than this (relative to max(1, |t|)) are the same: masters
 /// compute t + h in their own rounding.
 pub const TIME_TOLERANCE: f64 = 1e-9;
 
-/// fmi2Instantiate's arguments checked for an FMU with this GUID and model identifier: why they
-/// are refused (an empty name, Model Exchange, another GUID), if they are.
-pub fn instantiate_problem(arguments: &InstantiateArguments, guid: &str, model_identifier: &str) -> Option<String> {
+/// fmi2Instantiate's arguments checked for an FMU with this GUID and model identifier, which
+/// supports Model Exchange or not: why they are refused (an empty name, an unknown fmuType,
+/// Model Exchange where the FMU has none, another GUID), if they are.
+pub fn instantiate_problem(
+    arguments: &InstantiateArguments,
+    guid: &str,
+    model_identifier: &str,
+    model_exchange: bool,
+) -> Option<String> {
     if arguments.instance_name.trim().is_empty() {
         Some("instanceName must not be empty".to_owned())
-    } else if !arguments.co_simulation {
+    } else if let Err(fmu_type) = arguments.interface {
+        Some(format!("fmuType = {fmu_type} is neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)"))
+    } else if arguments.interface == Ok(Interface::ModelExchange) && !model_exchange {
         Some(format!("this FMU supports Co-Simulation only (modelIdentifier {model_identifier})"))
     } else if arguments.guid != guid {
         Some(format!("fmuGUID {} does not match this FMU's GUID {guid}", arguments.guid))
@@ -150,9 +159,11 @@ pub enum Evaluation {
     Initialise,
     /// Over one communication step from `time` of `size` > 0, the inputs held.
     Step { time: f64, size: f64 },
-    /// The outputs at the current inputs at the instance's `time`, without advancing the
-    /// model's state (direct feedthrough: a read of an output after an input it depends on was
-    /// written in step mode). A model whose outputs depend on no input directly has nothing to do.
+    /// The outputs and the state derivatives at the current inputs (and, in Model Exchange, the
+    /// continuous states) at the instance's `time`, without advancing the model's state: direct
+    /// feedthrough (a read of an output after an input it depends on was written in step mode),
+    /// and every evaluation of Model Exchange (fmi2GetDerivatives, a read of an output after
+    /// fmi2SetContinuousStates, fmi2SetTime or an input was written).
     Feedthrough { time: f64 },
 }
 
@@ -178,6 +189,14 @@ pub trait Model: Sized {
     /// `providesDirectionalDerivative`: whether [`Model::directional_derivative`] is implemented;
     /// if not, fmi2GetDirectionalDerivative is refused as unsupported.
     const PROVIDES_DIRECTIONAL_DERIVATIVE: bool = false;
+    /// Whether the FMU declares `<ModelExchange>`: fmi2Instantiate accepts fmi2ModelExchange.
+    const MODEL_EXCHANGE: bool = false;
+    /// The continuous states of Model Exchange as (state, its derivative, nominal value), in the
+    /// order of `<Derivatives>`: value references into [`Model::real`]. The derivatives are
+    /// computed by [`Model::evaluate`].
+    const CONTINUOUS_STATES: &'static [(u32, u32, f64)] = &[];
+    /// `numberOfEventIndicators`.
+    const EVENT_INDICATORS: usize = 0;
 
     /// The model of a new instance given the master's resource location (a `file:` URI, or
     /// `None` for NULL), and a note for the call trace; or why the FMU cannot be instantiated
@@ -223,6 +242,18 @@ pub trait Model: Sized {
     fn evaluate(&mut self, state: &mut Self::State, evaluation: Evaluation) -> Result<Option<String>, String>;
     /// A parameter was written (fmi2Set*): what the model derived from the parameters is stale.
     fn parameters_changed(&mut self) {}
+    /// Why the model cannot run as Model Exchange with the values of `state`, if it cannot (an
+    /// option whose state advances only over Co-Simulation steps): checked at
+    /// fmi2ExitInitializationMode, which then fails and stays in initialization mode.
+    fn model_exchange_problem(_state: &Self::State) -> Option<String> {
+        None
+    }
+    /// fmi2CompletedIntegratorStep (Model Exchange): whether the model can go on from `state`,
+    /// the master's accepted point at `time`, or why not (the reason names the variable and its
+    /// value).
+    fn completed_integrator_step(&mut self, _state: &Self::State, _time: f64) -> Result<(), String> {
+        Ok(())
+    }
     /// fmi2SetFMUstate is about to replace `current` by `restored`.
     fn restoring(&mut self, _current: &Self::State, _restored: &Self::State) {}
     /// fmi2GetDirectionalDerivative (only called with [`Model::PROVIDES_DIRECTIONAL_DERIVATIVE`]):
@@ -276,7 +307,7 @@ fn non_finite_output<M: Model>(state: &M::State) -> Option<String> {
     // The values in Debug form: 1e308, not its 309 digits.
     let (output, x) = M::variables()
         .iter()
-        .filter(|v| v.causality == Causality::Output && matches!(v.kind, Kind::Real { .. }))
+        .filter(|v| matches!(v.causality, Causality::Output | Causality::Local) && matches!(v.kind, Kind::Real { .. }))
         .map(|v| (v, value(v)))
         .find(|(_, x)| !x.is_finite())?;
     let sources = if output.dependencies.is_empty() {
@@ -342,7 +373,14 @@ pub fn decode_run(payload: &[u8]) -> Result<FmuState<&[u8]>, String> {
         ));
     }
     let word = |at: usize| f64::from_le_bytes(<[u8; 8]>::try_from(&payload[at..at + 8]).expect("8 bytes"));
-    let modes = [Mode::Instantiated, Mode::InitializationMode, Mode::StepComplete, Mode::Terminated];
+    let modes = [
+        Mode::Instantiated,
+        Mode::InitializationMode,
+        Mode::StepComplete,
+        Mode::EventMode,
+        Mode::ContinuousTimeMode,
+        Mode::Terminated,
+    ];
     let Some(&mode) = modes.iter().find(|m| **m as u8 == payload[0]) else {
         return Err(format!("mode byte {} is not a state an FMU state can hold", payload[0]));
     };
@@ -408,10 +446,17 @@ pub struct Instance<M: Model> {
     returned_strings: Vec<CString>,
     /// The master's logger (with its own copy of the instance name) behind the log filter.
     log: Logger,
-    /// Whether an input that an output depends on directly ([`access::FEEDTHROUGH`]) was
-    /// written since the outputs were last computed: the next read of an output in step mode
-    /// computes them at the current inputs first (FMI 2.0, §4.2.1: a master may set inputs and
-    /// read the outputs that depend on them to solve an algebraic loop).
+    /// The interface the master instantiated (fmi2Instantiate's `fmuType`).
+    interface: Interface,
+    /// The [`access`] bits whose writing makes the outputs stale: [`access::FEEDTHROUGH`] in
+    /// Co-Simulation, any in Model Exchange (one bit test on the hot path).
+    stale_on: u8,
+    /// Whether what the outputs (and state derivatives) are computed from was written since
+    /// they were last computed: in Co-Simulation an input that an output depends on directly
+    /// ([`access::FEEDTHROUGH`]), in Model Exchange any input, the continuous states or the
+    /// time. The next read of an output (or fmi2GetDerivatives) after initialization computes
+    /// them first (FMI 2.0, §4.2.1: a master may set inputs and read the outputs that depend
+    /// on them to solve an algebraic loop; §3.2: Model Exchange evaluates on demand).
     outputs_stale: bool,
 }
 
@@ -429,6 +474,11 @@ impl<M: Model> Instance<M> {
     /// The state-machine mode.
     pub fn mode(&self) -> Mode {
         self.run.mode
+    }
+
+    /// The interface the master instantiated.
+    pub fn interface(&self) -> Interface {
+        self.interface
     }
 
     /// The model's state: every variable's value (inputs, parameters, last outputs) and what it
@@ -470,9 +520,34 @@ impl<M: Model> Instance<M> {
         Status::Fatal
     }
 
+    /// The call legal now: of this instance's interface (or common to both) and allowed in its
+    /// mode.
     #[inline]
     fn require(&mut self, call: Call) -> Result<(), Status> {
+        if call.interface().is_some_and(|interface| interface != self.interface) {
+            return Err(self.wrong_interface(call));
+        }
         self.require_in(call, call.allowed())
+    }
+
+    #[cold]
+    fn wrong_interface(&mut self, call: Call) -> Status {
+        let (interface, other) = match self.interface {
+            Interface::CoSimulation => (Interface::CoSimulation, Interface::ModelExchange),
+            Interface::ModelExchange => (Interface::ModelExchange, Interface::CoSimulation),
+        };
+        let reason =
+            format!("a {} function, but this instance was instantiated for {}", other.name(), interface.name());
+        self.log.fail(call, &reason)
+    }
+
+    /// Whether an instance of this interface can be in `mode` (a restored FMU state's).
+    fn holds(&self, mode: Mode) -> bool {
+        match mode {
+            Mode::StepComplete => self.interface == Interface::CoSimulation,
+            Mode::EventMode | Mode::ContinuousTimeMode => self.interface == Interface::ModelExchange,
+            _ => true,
+        }
     }
 
     /// Like [`Instance::require`] with other modes than the call's own (an argument error is
@@ -492,11 +567,21 @@ impl<M: Model> Instance<M> {
         self.log.fail(call, &format!("illegal call in state {state}"))
     }
 
-    /// Whether a variable of these [`access`] bits can be written as `value_type` now.
+    /// Whether a variable of these [`access`] bits can be written as `value_type` now: fixed
+    /// parameters until initialization ends; in continuous-time mode only the continuous inputs
+    /// (FMI 2.0, §3.2.3: Real inputs; tunable parameters change at events).
     #[inline]
     fn settable(&self, bits: u8, value_type: ValueType) -> bool {
-        bits & value_type.access_bit() != 0
-            && (bits & access::WRITABLE != 0 || (bits & access::FIXED != 0 && self.run.mode != Mode::StepComplete))
+        let of_type = bits & value_type.access_bit() != 0;
+        if bits & access::WRITABLE != 0 {
+            of_type
+                && (self.run.mode != Mode::ContinuousTimeMode
+                    || (bits & access::PARAMETER == 0 && value_type == ValueType::Real))
+        } else {
+            of_type
+                && bits & access::FIXED != 0
+                && matches!(self.run.mode, Mode::Instantiated | Mode::InitializationMode)
+        }
     }
 
     /// Why `value_reference` cannot be written as `value_type` now (only called when it cannot).
@@ -508,7 +593,13 @@ impl<M: Model> Instance<M> {
                 format!("value reference {value_reference} ({}) is not a {}", v.name, value_type.name())
             }
             Some(v) if v.causality == Causality::Output => format!("{} is an output and cannot be set", v.name),
-            Some(v) => format!("{} is a fixed parameter and cannot be set after initialization", v.name),
+            Some(v) if v.causality == Causality::Local => {
+                format!("{} is computed by the model and cannot be set", v.name)
+            }
+            Some(v) if v.variability == crate::variables::Variability::Fixed => {
+                format!("{} is a fixed parameter and cannot be set after initialization", v.name)
+            }
+            Some(v) => format!("{} can be set at events, not in continuousTimeMode", v.name),
         }
     }
 
@@ -543,7 +634,7 @@ impl<M: Model> Instance<M> {
         if written & access::PARAMETER != 0 {
             self.model.parameters_changed();
         }
-        if written & access::FEEDTHROUGH != 0 {
+        if written & self.stale_on != 0 {
             self.outputs_stale = true;
         }
         Ok(())
@@ -563,12 +654,40 @@ impl<M: Model> Instance<M> {
         if self.run.mode == Mode::InitializationMode && reads_output() {
             return self.evaluate(call, Evaluation::Initialise);
         }
-        if self.outputs_stale && self.run.mode == Mode::StepComplete && reads_output() {
-            let status = self.evaluate(call, Evaluation::Feedthrough { time: self.run.time })?;
-            self.outputs_stale = false;
-            return Ok(status);
+        if self.outputs_stale && reads_output() {
+            return self.refresh(call);
         }
         Ok(Status::Ok)
+    }
+
+    /// After initialization: the outputs and state derivatives brought up to date if what they
+    /// are computed from was written since ([`Instance::outputs_stale`]).
+    #[inline]
+    fn refresh(&mut self, call: Call) -> Result<Status, Status> {
+        let running = matches!(self.run.mode, Mode::StepComplete | Mode::EventMode | Mode::ContinuousTimeMode);
+        if !(self.outputs_stale && running) {
+            return Ok(Status::Ok);
+        }
+        let status = self.evaluate(call, Evaluation::Feedthrough { time: self.run.time })?;
+        self.outputs_stale = false;
+        Ok(status)
+    }
+
+    /// fmi2XXX's array length `n` checked against the `expected` one (`what`: the modelDescription's
+    /// count it must equal).
+    fn require_length(&mut self, call: Call, n: usize, expected: usize, what: &str) -> Result<(), Status> {
+        if n == expected {
+            Ok(())
+        } else {
+            Err(self.log.fail(call, &format!("n = {n} is not this FMU's {what} {expected}")))
+        }
+    }
+
+    /// The common checks of the Model Exchange functions that pass the states: legal now, and
+    /// `n` their number.
+    fn require_states(&mut self, call: Call, n: usize) -> Result<(), Status> {
+        self.require(call)?;
+        self.require_length(call, n, M::CONTINUOUS_STATES.len(), "number of continuous states")
     }
 
     /// Brings the outputs up to date: `Ok(Status::Ok)`, or `Ok(Status::Warning)` after logging
@@ -602,8 +721,8 @@ impl<M: Model> Slave for Instance<M> {
     /// that refuses (a resource it needs missing).
     fn instantiate(arguments: InstantiateArguments, sink: Box<dyn LogSink>) -> Option<Self> {
         let mut log = Logger::new(arguments.logging_on, sink);
-        let InstantiateArguments { instance_name, resource_location, .. } = arguments;
-        let model = match instantiate_problem(&arguments, M::GUID, M::MODEL_IDENTIFIER) {
+        let InstantiateArguments { instance_name, resource_location, interface, .. } = arguments;
+        let model = match instantiate_problem(&arguments, M::GUID, M::MODEL_IDENTIFIER, M::MODEL_EXCHANGE) {
             Some(problem) => Err(problem),
             None => M::instantiate(resource_location),
         };
@@ -621,6 +740,11 @@ impl<M: Model> Slave for Instance<M> {
             model,
             returned_strings: Vec::new(),
             log,
+            interface: interface.unwrap_or(Interface::CoSimulation),
+            stale_on: match interface {
+                Ok(Interface::ModelExchange) => u8::MAX,
+                _ => access::FEEDTHROUGH,
+            },
             outputs_stale: false,
         };
         instance.log.trace(|| format!("fmi2Instantiate: resourceLocation = {}", resource_location.unwrap_or("NULL")));
@@ -707,10 +831,20 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         self.log.trace(|| CALL.name().to_owned());
+        if self.interface == Interface::ModelExchange {
+            if let Some(problem) = M::model_exchange_problem(&self.run.model) {
+                return self.log.fail(CALL, &problem);
+            }
+        }
         match self.evaluate(CALL, Evaluation::Initialise) {
             Ok(status) => {
-                self.run.mode = Mode::StepComplete;
-                self.outputs_stale = false;
+                self.run.mode = match self.interface {
+                    Interface::CoSimulation => Mode::StepComplete,
+                    Interface::ModelExchange => Mode::EventMode,
+                };
+                // Model Exchange: the derivatives are computed at the first read, from the
+                // inputs the master has set by then.
+                self.outputs_stale = self.interface == Interface::ModelExchange;
                 status
             }
             Err(status) => status,
@@ -859,6 +993,14 @@ impl<M: Model> Slave for Instance<M> {
             return status;
         }
         self.log.trace(|| format!("{CALL}: state {}, time {}", state.mode.name(), state.time));
+        if !self.holds(state.mode) {
+            let reason = format!(
+                "FMUstate was taken in state {}, which an instance of {} never is in",
+                state.mode.name(),
+                self.interface.name()
+            );
+            return self.log.fail(CALL, &reason);
+        }
         self.model.restoring(&self.run.model, &state.model);
         self.run.clone_from(state);
         // The state may have been taken after an input was written and before the outputs were
@@ -992,6 +1134,139 @@ impl<M: Model> Slave for Instance<M> {
             Ok(()) => self.discard_status(Call::GetStringStatus, kind),
             Err(status) => status,
         }
+    }
+
+    fn enter_event_mode(&mut self) -> Status {
+        self.enter(Call::EnterEventMode, Mode::EventMode)
+    }
+
+    /// Nothing discrete to update and no time events: the event iteration ends at once.
+    fn new_discrete_states(&mut self) -> Result<EventInfo, Status> {
+        self.require(Call::NewDiscreteStates)?;
+        self.log.trace(|| Call::NewDiscreteStates.name().to_owned());
+        Ok(EventInfo::default())
+    }
+
+    fn enter_continuous_time_mode(&mut self) -> Status {
+        self.enter(Call::EnterContinuousTimeMode, Mode::ContinuousTimeMode)
+    }
+
+    /// The model checks the accepted point ([`Model::completed_integrator_step`]); no step
+    /// events, so neither flag is ever set.
+    fn completed_integrator_step(&mut self) -> Result<(bool, bool), Status> {
+        const CALL: Call = Call::CompletedIntegratorStep;
+        self.require(CALL)?;
+        self.log.trace(|| format!("{CALL}: time {}", self.run.time));
+        match self.model.completed_integrator_step(&self.run.model, self.run.time) {
+            Ok(()) => Ok((false, false)),
+            Err(reason) => Err(self.log.fail(CALL, &reason)),
+        }
+    }
+
+    fn set_time(&mut self, time: f64) -> Status {
+        const CALL: Call = Call::SetTime;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        self.log.trace(|| format!("{CALL}: time = {time}"));
+        if let Some(problem) = time_problem("time", time) {
+            return self.log.fail(CALL, &problem);
+        }
+        self.run.time = time;
+        self.outputs_stale = true;
+        Status::Ok
+    }
+
+    /// All or nothing: every value finite, or none is written.
+    fn set_continuous_states(&mut self, states: &[f64]) -> Status {
+        const CALL: Call = Call::SetContinuousStates;
+        if let Err(status) = self.require_states(CALL, states.len()) {
+            return status;
+        }
+        self.log.trace(|| format!("{CALL}: x = {states:?}"));
+        let bad = M::CONTINUOUS_STATES.iter().zip(states).find(|(_, x)| !x.is_finite());
+        if let Some((&(state, ..), x)) = bad {
+            let name = M::variable(state).map_or("?", |v| v.name);
+            return self.log.fail(CALL, &format!("{name} = {x} is invalid: a continuous state must be finite"));
+        }
+        for (&(state, ..), &x) in M::CONTINUOUS_STATES.iter().zip(states) {
+            if let Some(field) = M::real_mut(&mut self.run.model, state) {
+                *field = x;
+            }
+        }
+        self.outputs_stale = true;
+        Status::Ok
+    }
+
+    fn get_derivatives(&mut self, derivatives: &mut [f64]) -> Status {
+        const CALL: Call = Call::GetDerivatives;
+        if let Err(status) = self.require_states(CALL, derivatives.len()) {
+            return status;
+        }
+        let status = match self.refresh(CALL) {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
+        for (&(_, derivative, _), slot) in M::CONTINUOUS_STATES.iter().zip(derivatives.iter_mut()) {
+            *slot = M::real(&self.run.model, derivative).unwrap_or(f64::NAN);
+        }
+        self.log.trace(|| format!("{CALL}: {derivatives:?}"));
+        status
+    }
+
+    /// `numberOfEventIndicators` values (none: both FMUs declare 0, so only n = 0 succeeds).
+    fn get_event_indicators(&mut self, indicators: &mut [f64]) -> Status {
+        const CALL: Call = Call::GetEventIndicators;
+        if let Err(status) = self.require(CALL) {
+            return status;
+        }
+        match self.require_length(CALL, indicators.len(), M::EVENT_INDICATORS, "numberOfEventIndicators") {
+            Ok(()) => Status::Ok,
+            Err(status) => status,
+        }
+    }
+
+    /// In initialization mode the states are first computed from the values set.
+    fn get_continuous_states(&mut self, states: &mut [f64]) -> Status {
+        const CALL: Call = Call::GetContinuousStates;
+        if let Err(status) = self.require_states(CALL, states.len()) {
+            return status;
+        }
+        let status = if self.run.mode == Mode::InitializationMode && !states.is_empty() {
+            match self.evaluate(CALL, Evaluation::Initialise) {
+                Ok(status) => status,
+                Err(status) => return status,
+            }
+        } else {
+            Status::Ok
+        };
+        for (&(state, ..), slot) in M::CONTINUOUS_STATES.iter().zip(states.iter_mut()) {
+            *slot = M::real(&self.run.model, state).unwrap_or(f64::NAN);
+        }
+        self.log.trace(|| format!("{CALL}: {states:?}"));
+        status
+    }
+
+    fn get_nominals_of_continuous_states(&mut self, nominals: &mut [f64]) -> Status {
+        if let Err(status) = self.require_states(Call::GetNominalsOfContinuousStates, nominals.len()) {
+            return status;
+        }
+        for (&(.., nominal), slot) in M::CONTINUOUS_STATES.iter().zip(nominals.iter_mut()) {
+            *slot = nominal;
+        }
+        Status::Ok
+    }
+}
+
+impl<M: Model> Instance<M> {
+    /// fmi2EnterEventMode, fmi2EnterContinuousTimeMode: legal now, then in `mode`.
+    fn enter(&mut self, call: Call, mode: Mode) -> Status {
+        if let Err(status) = self.require(call) {
+            return status;
+        }
+        self.log.trace(|| call.name().to_owned());
+        self.run.mode = mode;
+        Status::Ok
     }
 }
 

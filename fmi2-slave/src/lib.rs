@@ -1,15 +1,15 @@
 //! # fmi2-slave
 //!
-//! The model-independent half of an FMI 2.0 Co-Simulation FMU, shared by every FMU of this
+//! The model-independent half of an FMI 2.0 FMU (Co-Simulation and Model Exchange in one binary), shared by every FMU of this
 //! workspace so that none copies another's C boundary:
 //!
 //! - [`fmi2`]: the FMI 2.0 C types;
-//! - [`ffi`]: the 34 `fmi2*` functions as generic Rust (pointer checks, C strings and slices,
+//! - [`ffi`]: the 44 `fmi2*` functions as generic Rust (pointer checks, C strings and slices,
 //!   panic catching, FMU-state boxing) over a [`Slave`], and [`export_fmi2!`], which expands to
 //!   the `#[no_mangle] extern "C"` exports of one cdylib for its slave type; for in-process
 //!   masters (tests), a logger callback from a Rust function and, behind the `message-log`
 //!   feature, the one recording logger (`ffi::message_log`). The only file with `unsafe`;
-//! - [`mode`]: the Co-Simulation state machine: modes and the call table saying which modes
+//! - [`mode`]: the Co-Simulation and Model Exchange state machines: modes and the call table saying which modes
 //!   allow each call;
 //! - [`instance`]: the generic instance (lifecycle, Get/Set of Real, Integer, Enumeration and
 //!   String variables, step checks, evaluation warnings, FMU states, directional derivatives)
@@ -43,10 +43,10 @@ use std::ffi::CString;
 use logging::{LogSink, Status};
 use mode::Call;
 
-/// The FMI 2.0 Co-Simulation functions (`fmi2Functions.h`: 19 common, 6 Co-Simulation, plus the
-/// FMU-state, derivative and status functions): what [`export_fmi2!`] exports, and all a
+/// The FMI 2.0 functions (`fmi2Functions.h`: the common ones with the FMU-state and derivative
+/// functions, the 9 of Co-Simulation and the 10 of Model Exchange): what [`export_fmi2!`] exports, and all a
 /// binary of this layer may export (`build::export_only_fmi2_functions` holds a win64 DLL to it).
-pub const FMI2_FUNCTIONS: [&str; 34] = [
+pub const FMI2_FUNCTIONS: [&str; 44] = [
     "fmi2GetTypesPlatform",
     "fmi2GetVersion",
     "fmi2SetDebugLogging",
@@ -81,6 +81,16 @@ pub const FMI2_FUNCTIONS: [&str; 34] = [
     "fmi2GetIntegerStatus",
     "fmi2GetBooleanStatus",
     "fmi2GetStringStatus",
+    "fmi2EnterEventMode",
+    "fmi2NewDiscreteStates",
+    "fmi2EnterContinuousTimeMode",
+    "fmi2CompletedIntegratorStep",
+    "fmi2SetTime",
+    "fmi2SetContinuousStates",
+    "fmi2GetDerivatives",
+    "fmi2GetEventIndicators",
+    "fmi2GetContinuousStates",
+    "fmi2GetNominalsOfContinuousStates",
 ];
 
 /// `fmi2StatusKind`.
@@ -95,7 +105,8 @@ pub enum StatusKind {
 /// What fmi2Instantiate received, decoded.
 pub struct InstantiateArguments<'a> {
     pub instance_name: &'a str,
-    pub co_simulation: bool,
+    /// The interface asked for, or the `fmuType` value that is neither.
+    pub interface: Result<mode::Interface, u32>,
     pub guid: &'a str,
     pub resource_location: Option<&'a str>,
     pub logging_on: bool,
@@ -186,4 +197,28 @@ pub trait Slave: Sized {
     fn get_integer_status(&mut self, kind: StatusKind) -> Status;
     fn get_boolean_status(&mut self, kind: StatusKind) -> Result<bool, Status>;
     fn get_string_status(&mut self, kind: StatusKind) -> Status;
+
+    // Model Exchange (FMI 2.0, section 3.2).
+    fn enter_event_mode(&mut self) -> Status;
+    fn new_discrete_states(&mut self) -> Result<EventInfo, Status>;
+    fn enter_continuous_time_mode(&mut self) -> Status;
+    /// `(enterEventMode, terminateSimulation)`.
+    fn completed_integrator_step(&mut self) -> Result<(bool, bool), Status>;
+    fn set_time(&mut self, time: f64) -> Status;
+    fn set_continuous_states(&mut self, states: &[f64]) -> Status;
+    fn get_derivatives(&mut self, derivatives: &mut [f64]) -> Status;
+    fn get_event_indicators(&mut self, indicators: &mut [f64]) -> Status;
+    fn get_continuous_states(&mut self, states: &mut [f64]) -> Status;
+    fn get_nominals_of_continuous_states(&mut self, nominals: &mut [f64]) -> Status;
+}
+
+/// `fmi2EventInfo`, decoded: what fmi2NewDiscreteStates reports.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EventInfo {
+    pub new_discrete_states_needed: bool,
+    pub terminate_simulation: bool,
+    pub nominals_of_continuous_states_changed: bool,
+    pub values_of_continuous_states_changed: bool,
+    /// The time of the next time event, if there is one.
+    pub next_event_time: Option<f64>,
 }

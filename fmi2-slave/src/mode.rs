@@ -1,9 +1,13 @@
-//! The FMI 2.0 Co-Simulation state machine (FMI 2.0.4, section 4.2.4): the modes an instance can
-//! be in, and which modes allow which call, as bit masks (membership is one bit test).
+//! The FMI 2.0 state machines, Co-Simulation (FMI 2.0.4, section 4.2.4) and Model Exchange
+//! (section 3.2.3), in one: the modes an instance can be in (a Co-Simulation instance never
+//! enters `eventMode` or `continuousTimeMode`, a Model Exchange one never `stepComplete`), which
+//! modes allow which call, as bit masks (membership is one bit test), and which interface a call
+//! belongs to.
 
 use serde::{Deserialize, Serialize};
 
-/// The states of the Co-Simulation state machine that this FMU can be in.
+/// The states of the two state machines that this FMU can be in (the discriminants are the
+/// mode byte of a serialized FMU state: new modes go at the end).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Mode {
     Instantiated,
@@ -11,6 +15,10 @@ pub enum Mode {
     StepComplete,
     Terminated,
     Fatal,
+    /// Model Exchange: after initialization and at events.
+    EventMode,
+    /// Model Exchange: between events, while the master integrates.
+    ContinuousTimeMode,
 }
 
 impl Mode {
@@ -22,11 +30,13 @@ impl Mode {
             Mode::StepComplete => "stepComplete",
             Mode::Terminated => "terminated",
             Mode::Fatal => "fatal",
+            Mode::EventMode => "eventMode",
+            Mode::ContinuousTimeMode => "continuousTimeMode",
         }
     }
 }
 
-use Mode::{InitializationMode, Instantiated, StepComplete, Terminated};
+use Mode::{ContinuousTimeMode, EventMode, InitializationMode, Instantiated, StepComplete, Terminated};
 
 /// A set of states as a bit mask: membership is one bit test.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,13 +60,36 @@ impl Modes {
 }
 
 /// Where SetDebugLogging, Reset and the FMU-state functions are allowed.
-pub const LIVE: Modes = Modes::of(&[Instantiated, InitializationMode, StepComplete, Terminated]);
+pub const LIVE: Modes =
+    Modes::of(&[Instantiated, InitializationMode, StepComplete, EventMode, ContinuousTimeMode, Terminated]);
 /// Where values may be read (and directional derivatives taken).
-pub const READABLE: Modes = Modes::of(&[InitializationMode, StepComplete, Terminated]);
+pub const READABLE: Modes = Modes::of(&[InitializationMode, StepComplete, EventMode, ContinuousTimeMode, Terminated]);
 /// Where values may be written (which ones: the variable's causality and variability decide).
-pub const WRITABLE: Modes = Modes::of(&[Instantiated, InitializationMode, StepComplete]);
+pub const WRITABLE: Modes = Modes::of(&[Instantiated, InitializationMode, StepComplete, EventMode, ContinuousTimeMode]);
 /// Where the step status may be inquired.
 pub const STEPPED: Modes = Modes::of(&[StepComplete, Terminated]);
+/// Where initialization is over and the instance is running or has run: the modes after
+/// fmi2ExitInitializationMode, of either interface.
+pub const INITIALIZED: Modes = Modes::of(&[StepComplete, EventMode, ContinuousTimeMode, Terminated]);
+/// Where the continuous states, their derivatives and the event indicators may be read (Model
+/// Exchange; the states are computed in initialization mode on demand).
+pub const STATES_READABLE: Modes = Modes::of(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated]);
+
+/// The interface an instance was instantiated for (fmi2Instantiate's `fmuType`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Interface {
+    ModelExchange,
+    CoSimulation,
+}
+
+impl Interface {
+    pub fn name(self) -> &'static str {
+        match self {
+            Interface::ModelExchange => "Model Exchange",
+            Interface::CoSimulation => "Co-Simulation",
+        }
+    }
+}
 /// Nowhere.
 pub const NEVER: Modes = Modes::of(&[]);
 
@@ -96,6 +129,16 @@ pub enum Call {
     GetIntegerStatus,
     GetBooleanStatus,
     GetStringStatus,
+    EnterEventMode,
+    NewDiscreteStates,
+    EnterContinuousTimeMode,
+    CompletedIntegratorStep,
+    SetTime,
+    SetContinuousStates,
+    GetDerivatives,
+    GetEventIndicators,
+    GetContinuousStates,
+    GetNominalsOfContinuousStates,
 }
 
 impl Call {
@@ -134,21 +177,66 @@ impl Call {
             Call::GetIntegerStatus => "fmi2GetIntegerStatus",
             Call::GetBooleanStatus => "fmi2GetBooleanStatus",
             Call::GetStringStatus => "fmi2GetStringStatus",
+            Call::EnterEventMode => "fmi2EnterEventMode",
+            Call::NewDiscreteStates => "fmi2NewDiscreteStates",
+            Call::EnterContinuousTimeMode => "fmi2EnterContinuousTimeMode",
+            Call::CompletedIntegratorStep => "fmi2CompletedIntegratorStep",
+            Call::SetTime => "fmi2SetTime",
+            Call::SetContinuousStates => "fmi2SetContinuousStates",
+            Call::GetDerivatives => "fmi2GetDerivatives",
+            Call::GetEventIndicators => "fmi2GetEventIndicators",
+            Call::GetContinuousStates => "fmi2GetContinuousStates",
+            Call::GetNominalsOfContinuousStates => "fmi2GetNominalsOfContinuousStates",
+        }
+    }
+
+    /// The interface the call belongs to, `None` for the common functions.
+    #[inline]
+    pub fn interface(self) -> Option<Interface> {
+        match self {
+            Call::DoStep
+            | Call::CancelStep
+            | Call::GetStatus
+            | Call::GetRealStatus
+            | Call::GetIntegerStatus
+            | Call::GetBooleanStatus
+            | Call::GetStringStatus
+            | Call::SetRealInputDerivatives
+            | Call::GetRealOutputDerivatives => Some(Interface::CoSimulation),
+            Call::EnterEventMode
+            | Call::NewDiscreteStates
+            | Call::EnterContinuousTimeMode
+            | Call::CompletedIntegratorStep
+            | Call::SetTime
+            | Call::SetContinuousStates
+            | Call::GetDerivatives
+            | Call::GetEventIndicators
+            | Call::GetContinuousStates
+            | Call::GetNominalsOfContinuousStates => Some(Interface::ModelExchange),
+            _ => None,
         }
     }
 
     /// The modes in which the call is legal (fmi2Instantiate and fmi2FreeInstance need no
-    /// instance mode: always).
+    /// instance mode: always). The Model Exchange rows are the standard's table of section
+    /// 3.2.3 (without its `error` state, which this FMU never enters).
+    #[inline]
     pub fn allowed(self) -> Modes {
         match self {
-            Call::Instantiate | Call::FreeInstance => {
-                Modes::of(&[Instantiated, InitializationMode, StepComplete, Terminated, Mode::Fatal])
-            }
+            Call::Instantiate | Call::FreeInstance => Modes::of(&[
+                Instantiated,
+                InitializationMode,
+                StepComplete,
+                EventMode,
+                ContinuousTimeMode,
+                Terminated,
+                Mode::Fatal,
+            ]),
             Call::SetDebugLogging => LIVE,
             Call::SetupExperiment => Modes::of(&[Instantiated]),
             Call::EnterInitializationMode => Modes::of(&[Instantiated]),
             Call::ExitInitializationMode => Modes::of(&[InitializationMode]),
-            Call::Terminate => Modes::of(&[StepComplete]),
+            Call::Terminate => Modes::of(&[StepComplete, EventMode, ContinuousTimeMode]),
             Call::Reset => LIVE,
             Call::GetReal => READABLE,
             Call::GetInteger => READABLE,
@@ -174,6 +262,17 @@ impl Call {
             Call::GetIntegerStatus => STEPPED,
             Call::GetBooleanStatus => STEPPED,
             Call::GetStringStatus => STEPPED,
+            Call::EnterEventMode => Modes::of(&[EventMode, ContinuousTimeMode]),
+            Call::NewDiscreteStates => Modes::of(&[EventMode]),
+            Call::EnterContinuousTimeMode => Modes::of(&[EventMode]),
+            Call::CompletedIntegratorStep => Modes::of(&[ContinuousTimeMode]),
+            Call::SetTime => Modes::of(&[EventMode, ContinuousTimeMode]),
+            Call::SetContinuousStates => Modes::of(&[ContinuousTimeMode]),
+            Call::GetDerivatives => Modes::of(&[EventMode, ContinuousTimeMode, Terminated]),
+            Call::GetEventIndicators | Call::GetContinuousStates => STATES_READABLE,
+            Call::GetNominalsOfContinuousStates => {
+                Modes::of(&[Instantiated, EventMode, ContinuousTimeMode, Terminated])
+            }
         }
     }
 }

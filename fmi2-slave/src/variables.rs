@@ -7,6 +7,8 @@ pub enum Causality {
     Input,
     Parameter,
     Output,
+    /// Computed by the model, not connected: the state derivatives of Model Exchange.
+    Local,
 }
 
 /// `variability` of a variable.
@@ -48,7 +50,8 @@ pub struct Variable {
     pub unit: Option<&'static str>,
     pub display_unit: Option<&'static str>,
     pub description: &'static str,
-    /// For outputs: the value references of the inputs it depends on (`<ModelStructure><Outputs>`).
+    /// For outputs: the value references of the inputs it depends on (`<ModelStructure><Outputs>`);
+    /// for state derivatives: the inputs and states (`<ModelStructure><Derivatives>`).
     pub dependencies: &'static [u32],
 }
 
@@ -68,7 +71,7 @@ pub mod access {
     pub const WRITABLE: u8 = 8;
     /// Writable only before initialisation ends (fixed parameters).
     pub const FIXED: u8 = 16;
-    /// An output.
+    /// Computed by the model, never written: an output or a local (a state derivative).
     pub const OUTPUT: u8 = 32;
     /// A String variable.
     pub const STRING: u8 = 64;
@@ -85,7 +88,7 @@ pub mod access {
             Kind::String { .. } => STRING,
         };
         let writable = match (variable.causality, variable.variability) {
-            (Causality::Output, _) => OUTPUT,
+            (Causality::Output | Causality::Local, _) => OUTPUT,
             (Causality::Parameter, Variability::Fixed) => PARAMETER | FIXED,
             (Causality::Parameter, _) => PARAMETER | WRITABLE,
             (Causality::Input, _) => WRITABLE,

@@ -110,3 +110,91 @@ fn malformed_descriptions_are_refused_by_their_fault() {
         "modelDescription.xml: value references up to 4095 keep the lookup table small; 4096 is too large"
     );
 }
+
+/// A Model Exchange description: the output `position` is a continuous state, `der(position)`
+/// its derivative, depending on the input and the state.
+const WITH_STATE: &str = r#"<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="probe" guid="{00000000-0000-0000-0000-000000000002}">
+  <CoSimulation modelIdentifier="probe" canHandleVariableCommunicationStepSize="true"/>
+  <ModelExchange modelIdentifier="probe"/>
+  <UnitDefinitions>
+    <Unit name="m">
+      <BaseUnit m="1"/>
+    </Unit>
+    <Unit name="m/s">
+      <BaseUnit m="1" s="-1"/>
+    </Unit>
+  </UnitDefinitions>
+  <ModelVariables>
+    <ScalarVariable name="speed" valueReference="0" causality="input" variability="continuous" description="A speed">
+      <Real unit="m/s" start="1"/>
+    </ScalarVariable>
+    <ScalarVariable name="start" valueReference="100" causality="parameter" variability="fixed" description="Where it starts">
+      <Real unit="m" start="2"/>
+    </ScalarVariable>
+    <ScalarVariable name="position" valueReference="200" causality="output" variability="continuous" description="A position">
+      <Real unit="m" nominal="0.001"/>
+    </ScalarVariable>
+    <ScalarVariable name="der(position)" valueReference="300" causality="local" variability="continuous" description="Its rate">
+      <Real unit="m/s" derivative="3"/>
+    </ScalarVariable>
+  </ModelVariables>
+  <ModelStructure>
+    <Output name="position" dependsOn="start"/>
+    <Derivative name="der(position)" dependsOn="speed position"/>
+  </ModelStructure>
+</fmiModelDescription>
+"#;
+
+#[test]
+fn a_continuous_state_gets_its_derivative_structure_and_table() {
+    let (source, packaged) = generate(WITH_STATE, "state").unwrap();
+    // FMI 2.0 §2.2.8: the output that is a state depends on that state; the derivative on the
+    // input (1) and the state (3); the initial unknowns are the output and the derivative, in
+    // index order, the derivative on every known.
+    let structure = "<ModelStructure>\n    <Outputs>\n      <Unknown index=\"3\" dependencies=\"3\" dependenciesKind=\"dependent\"/>\n    </Outputs>\n    <Derivatives>\n      <Unknown index=\"4\" dependencies=\"1 3\" dependenciesKind=\"dependent dependent\"/>\n    </Derivatives>\n    <InitialUnknowns>\n      <Unknown index=\"3\" dependencies=\"2\"/>\n      <Unknown index=\"4\"/>\n    </InitialUnknowns>\n  </ModelStructure>";
+    assert!(packaged.contains(structure), "{packaged}");
+    assert!(source.contains("pub const CONTINUOUS_STATES: &[(u32, u32, f64)] = &[(200, 300, 0.001)];"), "{source}");
+    assert!(source.contains("pub const MODEL_EXCHANGE: bool = true;"), "{source}");
+    assert!(source.contains("pub der_position: f64,"), "{source}");
+    assert!(source.contains("value_reference::DER_POSITION => Some(self.locals.der_position),"), "{source}");
+    assert!(source.contains("dependencies: &[0, 200] }"), "{source}");
+    let (plain, _) = generate(VALID, "plain").unwrap();
+    assert!(plain.contains("pub const CONTINUOUS_STATES: &[(u32, u32, f64)] = &[];"), "{plain}");
+    assert!(plain.contains("pub const MODEL_EXCHANGE: bool = false;"), "{plain}");
+}
+
+#[test]
+fn malformed_states_are_refused_by_their_fault() {
+    let refusal = |name: &str, from: &str, to: &str| -> String {
+        assert!(WITH_STATE.contains(from), "{from}");
+        generate(&WITH_STATE.replace(from, to), name).expect_err(name)
+    };
+    let not_the_state =
+        "modelDescription.xml: der(position): derivative = 2 must be the index of the continuous Real it is named after";
+    assert_eq!(refusal("index", "derivative=\"3\"", "derivative=\"2\""), not_the_state);
+    assert_eq!(
+        refusal("no derivative", " derivative=\"3\"", ""),
+        "modelDescription.xml: variable der(position): the locals, and only they, are state derivatives (with `derivative`)"
+    );
+    assert_eq!(
+        refusal("parameter", "dependsOn=\"speed position\"", "dependsOn=\"speed start\""),
+        "modelDescription.xml: der(position) cannot depend on `start`: not an input or continuous state"
+    );
+    assert_eq!(
+        refusal("missing", "    <Derivative name=\"der(position)\" dependsOn=\"speed position\"/>\n", ""),
+        "modelDescription.xml: <ModelStructure> must declare exactly the Derivatives [\"der(position)\"], in order"
+    );
+    assert_eq!(
+        refusal("no ME", "  <ModelExchange modelIdentifier=\"probe\"/>\n", ""),
+        "modelDescription.xml: state derivatives need <ModelExchange>"
+    );
+    assert_eq!(
+        refusal("other binary", "<ModelExchange modelIdentifier=\"probe\"/>", "<ModelExchange modelIdentifier=\"other\"/>"),
+        "modelDescription.xml: <ModelExchange> must have <CoSimulation>'s modelIdentifier: one binary holds both interfaces"
+    );
+    assert_eq!(
+        refusal("nominal", "nominal=\"0.001\"", "nominal=\"0\""),
+        "modelDescription.xml: variable position: nominal = 0 must be finite and > 0"
+    );
+}

@@ -6,28 +6,37 @@ use fmi2_slave::instance::{
     copy_serialized, discard_message, experiment_problem, instantiate_problem, panic_message, step_end,
     unknown_categories_message, TIME_TOLERANCE,
 };
-use fmi2_slave::mode::Call;
+use fmi2_slave::mode::{Call, Interface};
 use fmi2_slave::{InstantiateArguments, StatusKind};
 
 const GUID: &str = "{guid}";
 
-fn arguments<'a>(instance_name: &'a str, co_simulation: bool, guid: &'a str) -> InstantiateArguments<'a> {
-    InstantiateArguments { instance_name, co_simulation, guid, resource_location: None, logging_on: false }
+const CS: Result<Interface, u32> = Ok(Interface::CoSimulation);
+const ME: Result<Interface, u32> = Ok(Interface::ModelExchange);
+
+fn arguments<'a>(instance_name: &'a str, interface: Result<Interface, u32>, guid: &'a str) -> InstantiateArguments<'a> {
+    InstantiateArguments { instance_name, interface, guid, resource_location: None, logging_on: false }
 }
 
 #[test]
-fn instantiation_needs_a_name_co_simulation_and_the_guid() {
-    assert_eq!(instantiate_problem(&arguments("wheel", true, GUID), GUID, "m"), None);
+fn instantiation_needs_a_name_an_interface_the_fmu_has_and_the_guid() {
+    assert_eq!(instantiate_problem(&arguments("wheel", CS, GUID), GUID, "m", false), None);
+    assert_eq!(instantiate_problem(&arguments("wheel", ME, GUID), GUID, "m", true), None);
+    assert_eq!(instantiate_problem(&arguments("wheel", CS, GUID), GUID, "m", true), None);
     assert_eq!(
-        instantiate_problem(&arguments(" \t", true, GUID), GUID, "m").as_deref(),
+        instantiate_problem(&arguments(" \t", CS, GUID), GUID, "m", true).as_deref(),
         Some("instanceName must not be empty")
     );
     assert_eq!(
-        instantiate_problem(&arguments("wheel", false, GUID), GUID, "m").as_deref(),
+        instantiate_problem(&arguments("wheel", ME, GUID), GUID, "m", false).as_deref(),
         Some("this FMU supports Co-Simulation only (modelIdentifier m)")
     );
     assert_eq!(
-        instantiate_problem(&arguments("wheel", true, "{other}"), GUID, "m").as_deref(),
+        instantiate_problem(&arguments("wheel", Err(5), GUID), GUID, "m", true).as_deref(),
+        Some("fmuType = 5 is neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)")
+    );
+    assert_eq!(
+        instantiate_problem(&arguments("wheel", CS, "{other}"), GUID, "m", true).as_deref(),
         Some("fmuGUID {other} does not match this FMU's GUID {guid}")
     );
 }

@@ -22,7 +22,7 @@ impl LogSink for NoLog {
 fn instance(integers: &[(u32, i32)]) -> Instance {
     let arguments = InstantiateArguments {
         instance_name: "bench",
-        co_simulation: true,
+        interface: Ok(wheel_rail_contact_fmu::mode::Interface::CoSimulation),
         guid: GUID,
         resource_location: None,
         logging_on: false,

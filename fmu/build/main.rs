@@ -7,7 +7,7 @@
 fn main() {
     let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     fmi2_slave::build::generate("modelDescription.xml", &out_dir.join("model_description.rs"));
-    // The FMU exports the 34 fmi2* functions and nothing else: rustc's export list for a cdylib
+    // The FMU exports the 44 fmi2* functions and nothing else: rustc's export list for a cdylib
     // holds only its `#[no_mangle]` functions, and no C library is linked in; for a win64 DLL
     // linked by zig, a module-definition file says it (packaging checks every binary's export
     // table, `packaging::fmu::check_library`).

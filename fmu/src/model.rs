@@ -22,7 +22,7 @@ use fmi2_slave::instance::{Evaluation, FmuState, Model};
 use wheel_rail_contact::scene::Evaluation as SceneEvaluation;
 
 use crate::mode::Mode;
-use crate::model_description::{self, access_of, Variable, VARIABLES};
+use crate::model_description::{self, access_of, Switch, Variable, VARIABLES};
 use crate::resources::resource_directory;
 use crate::scene::{update_outputs, ContactCache};
 use crate::snapshot::{self, ContactState};
@@ -53,6 +53,8 @@ impl Model for ContactModel {
     const STATE_MAGIC: [u8; 8] = snapshot::MAGIC;
     const STATE_FORMAT_VERSION: u16 = snapshot::FORMAT_VERSION;
     const PROVIDES_DIRECTIONAL_DERIVATIVE: bool = true;
+    const MODEL_EXCHANGE: bool = model_description::MODEL_EXCHANGE;
+    const EVENT_INDICATORS: usize = model_description::EVENT_INDICATORS;
 
     /// Refused with a missing or corrupted `exact_table` table in the resources directory. A
     /// resource location that names no directory is not an error: only a relative profile path
@@ -142,6 +144,18 @@ impl Model for ContactModel {
         };
         *profiles = self.cache.profile_digest();
         Ok(warning)
+    }
+
+    /// The relaxed forces advance only over Co-Simulation steps: Model Exchange would hold them.
+    fn model_exchange_problem(state: &ContactState) -> Option<String> {
+        (state.values.parameters.creep_relaxation != Switch::Off as i32).then(|| {
+            format!(
+                "creep_relaxation = {} is not available in Model Exchange: its relaxed forces advance over \
+                 Co-Simulation steps, and Model Exchange evaluates the contact algebraically (no continuous states); \
+                 set creep_relaxation = 0 (off) or instantiate for Co-Simulation",
+                state.values.parameters.creep_relaxation
+            )
+        })
     }
 
     #[inline]

@@ -6,7 +6,7 @@
 //! | `linux64`  | `x86_64-unknown-linux-gnu` | cargo-zigbuild (+ zig) for glibc ≥ [`GLIBC_BASELINE`]; else plain cargo, this machine's glibc |
 //! | `win64`    | `x86_64-pc-windows-gnu`  | the Rust target (`cargo fmu` adds it with rustup) + cargo-zigbuild (+ zig); else mingw-w64's `x86_64-w64-mingw32-gcc` |
 //!
-//! Every binary is read back before it is zipped ([`check_library`]): it must export the 34
+//! Every binary is read back before it is zipped ([`check_library`]): it must export the 44
 //! FMI 2.0 functions, a linux64 one built for the baseline must need no newer glibc symbol, and
 //! a win64 one may import only DLLs that Windows ships (the Universal C Runtime with zig; with
 //! mingw-w64 its runtime and libgcc linked statically), so nothing but the FMU itself has to be

@@ -105,7 +105,7 @@ fn the_documentation_states_the_glibc_its_linux_binary_needs() {
 
 /// The wheelset FMU, packaged as `cargo fmu` packages it: its generated model description (the
 /// standard `<ModelStructure>`, its GUID) and its binary, named after its model identifier,
-/// exporting exactly the 34 functions.
+/// exporting exactly the 44 functions.
 #[test]
 #[ignore = "slow tier: scripts/test-all runs it (cargo test --workspace -- --include-ignored)"]
 fn the_wheelset_fmu_is_packaged_beside_the_contact_unit() {

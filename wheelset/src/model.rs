@@ -4,12 +4,15 @@
 //! The outputs are the state (y, ψ, ẏ, ψ̇, Ω, and V): ExitInitializationMode sets them from the
 //! initial-value parameters, with Ω = V/r_c (both wheels on their centred rolling radius, so the
 //! run starts without longitudinal creepage, docs/wheelset.md); DoStep advances them with
-//! [`physics::advance`] under the inputs held. Errors name the variable, the value and the time.
+//! [`physics::advance`] under the inputs held. In Model Exchange the master integrates: the
+//! outputs but V are the continuous states, and every evaluation sets the locals `der(...)` to
+//! [`physics::Parameters::rates`] at the current states and loads. Errors name the variable, the
+//! value and the time.
 
 use fmi2_slave::instance::{decode_run, encode_run, keep_if_finite, Evaluation, FmuState, Model};
-use fmi2_slave::mode::{Mode, STEPPED};
+use fmi2_slave::mode::{Mode, INITIALIZED};
 
-use crate::model_description::{self, Causality, Inputs, Outputs, Parameters, Values, VARIABLES};
+use crate::model_description::{self, Causality, Inputs, Locals, Outputs, Parameters, Values, VARIABLES};
 use crate::physics::{self, Loads, State, WheelsetError};
 
 /// One wheelset's values: inputs, parameters and the outputs, which are its state.
@@ -91,6 +94,17 @@ impl Wheelset {
         }
     }
 
+    /// The state derivatives as the locals `der(...)`.
+    fn locals(rates: &State) -> Locals {
+        Locals {
+            der_wheelset_lateral_displacement: rates.lateral_displacement,
+            der_wheelset_yaw_angle: rates.yaw_angle,
+            der_wheelset_lateral_velocity: rates.lateral_velocity,
+            der_wheelset_yaw_rate: rates.yaw_rate,
+            der_wheel_angular_speed: rates.wheel_angular_speed,
+        }
+    }
+
     /// The loads on the wheelset: both wheels' forces and moments summed (module doc of
     /// [`physics`]); every input finite, and each wheel pressed onto its rail (track z is down,
     /// so a wheel carrying load has track_force_z < 0; ≥ 0 is lift-off, which the model cannot
@@ -167,7 +181,10 @@ impl Model for WheelsetModel {
     const STATE_LAYOUT_TAG: u64 = model_description::STATE_LAYOUT_TAG;
     const STATE_MAGIC: [u8; 8] = *b"WSTstate";
     /// Mode, time, stop time, then every Real ([`encode_run`]).
-    const STATE_FORMAT_VERSION: u16 = 2;
+    const STATE_FORMAT_VERSION: u16 = 3;
+    const MODEL_EXCHANGE: bool = model_description::MODEL_EXCHANGE;
+    const CONTINUOUS_STATES: &'static [(u32, u32, f64)] = model_description::CONTINUOUS_STATES;
+    const EVENT_INDICATORS: usize = model_description::EVENT_INDICATORS;
 
     fn instantiate(_resource_location: Option<&str>) -> Result<(Self, Option<String>), String> {
         Ok((WheelsetModel, None))
@@ -207,10 +224,21 @@ impl Model for WheelsetModel {
         match evaluation {
             Evaluation::Initialise => keep_if_finite::<Self>(state, Wheelset::initialize)?,
             Evaluation::Step { time, size } => keep_if_finite::<Self>(state, |next| next.step(time, size))?,
-            // Its outputs are its state: no input acts on them within a step.
-            Evaluation::Feedthrough { .. } => {}
+            // Its outputs are its state: no input acts on them; the derivatives at the loads.
+            Evaluation::Feedthrough { time } => keep_if_finite::<Self>(state, |next| next.derive(time))?,
         }
         Ok(None)
+    }
+
+    /// Model Exchange's accepted point must lie within the derailment bound, where a step of
+    /// Co-Simulation stops too.
+    fn completed_integrator_step(&mut self, state: &Wheelset, time: f64) -> Result<(), String> {
+        let (lateral_displacement, limit) =
+            (state.values.outputs.wheelset_lateral_displacement, state.values.parameters.derailment_displacement);
+        if lateral_displacement.abs() > limit {
+            return Err(describe(WheelsetError::Derailed { lateral_displacement, limit }, time));
+        }
+        Ok(())
     }
 
     fn encode(state: &FmuState<Wheelset>) -> Vec<u8> {
@@ -259,6 +287,19 @@ impl Wheelset {
             ..State::rolling(parameters.forward_speed, parameters.centred_rolling_radius)
         };
         self.values.outputs = Self::outputs(&state, parameters.forward_speed);
+        // The derivatives at the loads as they start, where those are valid (a master may set
+        // the loads only after initialization; Model Exchange reads the derivatives after it).
+        if self.derive(0.0).is_err() {
+            self.values.locals = Locals::default();
+        }
+        Ok(())
+    }
+
+    /// The locals `der(...)`: the rates at the current state and loads.
+    pub fn derive(&mut self, time: f64) -> Result<(), String> {
+        let loads = self.loads(time)?;
+        let parameters = Self::physics_parameters(&self.values.parameters);
+        self.values.locals = Self::locals(&parameters.rates(&Self::state(&self.values.outputs), &loads));
         Ok(())
     }
 
@@ -268,6 +309,7 @@ impl Wheelset {
         let next = physics::advance(&parameters, &Self::state(&self.values.outputs), &loads, step)
             .map_err(|error| describe(error, time + step))?;
         self.values.outputs = Self::outputs(&next, parameters.forward_speed);
+        self.values.locals = Self::locals(&parameters.rates(&next, &loads));
         Ok(())
     }
 
@@ -290,7 +332,7 @@ impl Wheelset {
                 return Err(format!("{} = {value} is invalid: an output is always finite", output.name));
             }
         }
-        if !STEPPED.contains(mode) {
+        if !INITIALIZED.contains(mode) {
             return Ok(());
         }
         Self::check_parameters(&self.values.parameters)?;

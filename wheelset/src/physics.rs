@@ -210,8 +210,9 @@ impl Parameters {
         self.oscillators().iter().map(|&(k, c)| k.sqrt() + c).fold(0.0, f64::max)
     }
 
-    /// The rates of the state under `loads`.
-    fn rates(&self, state: &State, loads: &Loads) -> State {
+    /// The rates of the state under `loads`: the equations of motion (module doc), what Model
+    /// Exchange's master integrates.
+    pub fn rates(&self, state: &State, loads: &Loads) -> State {
         let [(k_y, c_y), (k_psi, c_psi)] = self.oscillators();
         State {
             lateral_displacement: state.lateral_velocity,

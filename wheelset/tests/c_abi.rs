@@ -587,7 +587,7 @@ fn a_forged_state_with_a_valid_checksum_is_refused_by_its_sense() {
         log.last_text()
     );
     assert_eq!(deserialize(&fmu, &format.encode(&payload[..17])), ERROR);
-    assert!(log.last_text().ends_with("0 bytes of values, not the 264 of this FMU's variables"), "{}", log.last_text());
+    assert!(log.last_text().ends_with("0 bytes of values, not the 304 of this FMU's variables"), "{}", log.last_text());
     // The refusals changed nothing: the instance steps on from its own values, all finite, and
     // the unforged state still restores.
     let outputs = fmu.get(&STATE);

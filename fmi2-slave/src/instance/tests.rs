@@ -253,7 +253,7 @@ impl LogSink for Recorder {
 fn arguments(resource_location: Option<&str>) -> InstantiateArguments<'_> {
     InstantiateArguments {
         instance_name: "affine 1",
-        co_simulation: true,
+        interface: Ok(Interface::CoSimulation),
         guid: Affine::GUID,
         resource_location,
         logging_on: false,
@@ -301,20 +301,40 @@ fn instantiate_keeps_name_and_resources_and_checks_guid_and_model() {
     let (instance, _) = new_instance();
     assert_eq!((instance.name(), instance.resource_location()), ("affine 1", Some("file:///tmp/resources/")));
     assert_eq!(instance.mode(), Instantiated);
-    for (guid, co_simulation, name, location, expected) in [
-        ("{wrong}", true, "a", None, "fmi2Instantiate: fmuGUID {wrong} does not match this FMU's GUID {affine}"),
+    let co_simulation = Ok(Interface::CoSimulation);
+    for (guid, interface, name, location, expected) in [
+        (
+            "{wrong}",
+            co_simulation,
+            "a",
+            None,
+            "fmi2Instantiate: fmuGUID {wrong} does not match this FMU's GUID {affine}",
+        ),
         (
             Affine::GUID,
-            false,
+            Ok(Interface::ModelExchange),
             "a",
             None,
             "fmi2Instantiate: this FMU supports Co-Simulation only (modelIdentifier affine)",
         ),
-        (Affine::GUID, true, " ", None, "fmi2Instantiate: instanceName must not be empty"),
-        (Affine::GUID, true, "a", Some("file:///elsewhere"), "fmi2Instantiate: no resources at file:///elsewhere"),
+        (
+            Affine::GUID,
+            Err(2),
+            "a",
+            None,
+            "fmi2Instantiate: fmuType = 2 is neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)",
+        ),
+        (Affine::GUID, co_simulation, " ", None, "fmi2Instantiate: instanceName must not be empty"),
+        (
+            Affine::GUID,
+            co_simulation,
+            "a",
+            Some("file:///elsewhere"),
+            "fmi2Instantiate: no resources at file:///elsewhere",
+        ),
     ] {
         let log = Log::default();
-        let arguments = InstantiateArguments { co_simulation, instance_name: name, guid, ..arguments(location) };
+        let arguments = InstantiateArguments { interface, instance_name: name, guid, ..arguments(location) };
         assert!(Instance::<Affine>::instantiate(arguments, Box::new(Recorder(log.clone()))).is_none());
         assert_eq!(log.borrow().as_slice(), [(Status::Error, "logStatusError".to_owned(), expected.to_owned())]);
     }

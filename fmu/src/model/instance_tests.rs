@@ -5,6 +5,7 @@
 use super::test_support::*;
 use super::*;
 use crate::logging::Status;
+use crate::mode::Interface;
 use crate::mode::Mode::{InitializationMode, Instantiated};
 use crate::model_description::{value_reference as vr, Inputs, GUID};
 
@@ -13,13 +14,17 @@ fn instantiate_copies_name_and_resources_and_checks_the_guid() {
     let (instance, _) = new_instance();
     assert_eq!((instance.name(), instance.resource_location()), ("wheel 1", Some("file:///tmp/resources/")));
     assert_eq!(instance.mode(), Instantiated);
-    for (guid, co_simulation, name, expected) in [
-        ("{wrong}", true, "wheel", "fmi2Instantiate: fmuGUID {wrong} does not match"),
-        (GUID, false, "wheel", "fmi2Instantiate: this FMU supports Co-Simulation only"),
-        (GUID, true, " ", "fmi2Instantiate: instanceName must not be empty"),
+    let model_exchange = InstantiateArguments { interface: Ok(Interface::ModelExchange), ..arguments(GUID) };
+    let log = Log::default();
+    let instance = Instance::instantiate(model_exchange, Box::new(Recorder(log.clone()))).expect("Model Exchange");
+    assert_eq!(instance.interface(), Interface::ModelExchange);
+    for (guid, interface, name, expected) in [
+        ("{wrong}", Ok(Interface::CoSimulation), "wheel", "fmi2Instantiate: fmuGUID {wrong} does not match"),
+        (GUID, Err(3), "wheel", "fmi2Instantiate: fmuType = 3 is neither"),
+        (GUID, Ok(Interface::CoSimulation), " ", "fmi2Instantiate: instanceName must not be empty"),
     ] {
         let log = Log::default();
-        let arguments = InstantiateArguments { co_simulation, instance_name: name, ..arguments(guid) };
+        let arguments = InstantiateArguments { interface, instance_name: name, ..arguments(guid) };
         assert!(Instance::instantiate(arguments, Box::new(Recorder(log.clone()))).is_none());
         assert!(last_message(&log).starts_with(expected), "{}", last_message(&log));
         assert_eq!(log.borrow()[0].0, Status::Error);

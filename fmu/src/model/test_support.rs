@@ -20,7 +20,7 @@ impl LogSink for Recorder {
 pub(super) fn arguments(guid: &str) -> InstantiateArguments<'_> {
     InstantiateArguments {
         instance_name: "wheel 1",
-        co_simulation: true,
+        interface: Ok(crate::mode::Interface::CoSimulation),
         guid,
         resource_location: Some("file:///tmp/resources/"),
         logging_on: false,

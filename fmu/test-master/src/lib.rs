@@ -108,23 +108,28 @@ impl Fmu {
         Self::with_callbacks(name, log.callbacks(), resource_location)
     }
 
+    /// [`Self::instantiate_logged`] for Model Exchange.
+    pub fn model_exchange_logged(name: &str, log: &MessageLog) -> Fmu {
+        Self::of_type(fmi2Type_fmi2ModelExchange, name, log.callbacks(), Some(&repository_resources()))
+            .expect("fmi2Instantiate returned NULL")
+    }
+
     fn with_callbacks(name: &str, callbacks: fmi2CallbackFunctions, resource_location: Option<&str>) -> Option<Fmu> {
+        Self::of_type(fmi2Type_fmi2CoSimulation, name, callbacks, resource_location)
+    }
+
+    fn of_type(
+        fmu_type: fmi2Type,
+        name: &str,
+        callbacks: fmi2CallbackFunctions,
+        resource_location: Option<&str>,
+    ) -> Option<Fmu> {
         let callbacks = Box::new(callbacks);
         let (name, guid) = (CString::new(name).unwrap(), CString::new(GUID).unwrap());
         let location = resource_location.map(|location| CString::new(location).unwrap());
         let location_pointer = location.as_ref().map_or(null(), |location| location.as_ptr());
         // SAFETY: valid strings (or NULL for the location) and callbacks.
-        let c = unsafe {
-            fmi2Instantiate(
-                name.as_ptr(),
-                fmi2Type_fmi2CoSimulation,
-                guid.as_ptr(),
-                location_pointer,
-                &*callbacks,
-                0,
-                0,
-            )
-        };
+        let c = unsafe { fmi2Instantiate(name.as_ptr(), fmu_type, guid.as_ptr(), location_pointer, &*callbacks, 0, 0) };
         (!c.is_null()).then_some(Fmu { c, _callbacks: callbacks })
     }
 

@@ -1,7 +1,7 @@
 //! The adapter's own FMI 2.0 C types (`src/fmi2.rs`) against the standard's headers (bindgen's
 //! `fmi2*TYPE` from fmi-sys, a test-only dependency): every export's signature must coerce to
-//! the header's function type, so a mismatch does not compile; the one export with a struct in
-//! its signature (fmi2Instantiate) is checked field by field.
+//! the header's function type, so a mismatch does not compile; the two exports with a struct in
+//! their signature (fmi2Instantiate, fmi2NewDiscreteStates) are checked field by field.
 
 use std::mem::{align_of, offset_of, size_of};
 
@@ -10,7 +10,7 @@ use headers::*;
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::fmi2 as own;
 
-/// Every export but fmi2Instantiate, by its header type.
+/// Every export but fmi2Instantiate and fmi2NewDiscreteStates, by its header type.
 const _: () = {
     let _: fmi2GetTypesPlatformTYPE = Some(fmi2GetTypesPlatform);
     let _: fmi2GetVersionTYPE = Some(fmi2GetVersion);
@@ -45,7 +45,51 @@ const _: () = {
     let _: fmi2GetIntegerStatusTYPE = Some(fmi2GetIntegerStatus);
     let _: fmi2GetBooleanStatusTYPE = Some(fmi2GetBooleanStatus);
     let _: fmi2GetStringStatusTYPE = Some(fmi2GetStringStatus);
+    let _: fmi2EnterEventModeTYPE = Some(fmi2EnterEventMode);
+    let _: fmi2EnterContinuousTimeModeTYPE = Some(fmi2EnterContinuousTimeMode);
+    let _: fmi2CompletedIntegratorStepTYPE = Some(fmi2CompletedIntegratorStep);
+    let _: fmi2SetTimeTYPE = Some(fmi2SetTime);
+    let _: fmi2SetContinuousStatesTYPE = Some(fmi2SetContinuousStates);
+    let _: fmi2GetDerivativesTYPE = Some(fmi2GetDerivatives);
+    let _: fmi2GetEventIndicatorsTYPE = Some(fmi2GetEventIndicators);
+    let _: fmi2GetContinuousStatesTYPE = Some(fmi2GetContinuousStates);
+    let _: fmi2GetNominalsOfContinuousStatesTYPE = Some(fmi2GetNominalsOfContinuousStates);
 };
+
+#[test]
+fn event_info_has_the_headers_layout_and_new_discrete_states_its_signature() {
+    assert_eq!(size_of::<own::fmi2EventInfo>(), size_of::<headers::fmi2EventInfo>());
+    assert_eq!(align_of::<own::fmi2EventInfo>(), align_of::<headers::fmi2EventInfo>());
+    macro_rules! same_offset {
+        ($($field:ident),*) => {$(
+            assert_eq!(
+                offset_of!(own::fmi2EventInfo, $field),
+                offset_of!(headers::fmi2EventInfo, $field),
+                stringify!($field)
+            );
+        )*};
+    }
+    same_offset!(
+        newDiscreteStatesNeeded,
+        terminateSimulation,
+        nominalsOfContinuousStatesChanged,
+        valuesOfContinuousStatesChanged,
+        nextEventTimeDefined,
+        nextEventTime
+    );
+    let own = own::fmi2EventInfo::default();
+    let _: headers::fmi2EventInfo = headers::fmi2EventInfo {
+        newDiscreteStatesNeeded: own.newDiscreteStatesNeeded,
+        terminateSimulation: own.terminateSimulation,
+        nominalsOfContinuousStatesChanged: own.nominalsOfContinuousStatesChanged,
+        valuesOfContinuousStatesChanged: own.valuesOfContinuousStatesChanged,
+        nextEventTimeDefined: own.nextEventTimeDefined,
+        nextEventTime: own.nextEventTime,
+    };
+    type OwnNewDiscreteStates =
+        unsafe extern "C" fn(headers::fmi2Component, *mut own::fmi2EventInfo) -> headers::fmi2Status;
+    let _: OwnNewDiscreteStates = fmi2NewDiscreteStates;
+}
 
 #[test]
 fn callback_functions_have_the_headers_layout() {

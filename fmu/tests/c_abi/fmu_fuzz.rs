@@ -1,5 +1,6 @@
 //! A seeded, randomised fuzz harness of the C ABI: random sequences of every FMI 2.0 call an
-//! instance accepts, with random value references (valid and not), random values (NaN, ±Inf,
+//! instance accepts, on Co-Simulation and Model Exchange instances (each also called with the
+//! other interface's functions), with random value references (valid and not), random values (NaN, ±Inf,
 //! ±1e±300, ±0, negatives, subnormals, realistic ones), NULL pointers with n = 0 (and with
 //! n > 0), random state transitions, and FMU states taken, set, freed, serialised, corrupted and
 //! deserialised. Every call must return a valid fmi2Status (never fmi2Fatal: that would be a
@@ -123,10 +124,9 @@ impl Fuzzer {
         let name = CString::new(format!("fuzz {}", self.instances.len())).unwrap();
         let guid = CString::new(GUID).unwrap();
         let debug = fmi2Boolean::from(self.rng.random_bool(0.3));
+        let fmu_type = if self.rng.random_bool(0.6) { fmi2Type_fmi2CoSimulation } else { fmi2Type_fmi2ModelExchange };
         // SAFETY: valid strings and callbacks.
-        let c = unsafe {
-            fmi2Instantiate(name.as_ptr(), fmi2Type_fmi2CoSimulation, guid.as_ptr(), null(), &*callbacks, 0, debug)
-        };
+        let c = unsafe { fmi2Instantiate(name.as_ptr(), fmu_type, guid.as_ptr(), null(), &*callbacks, 0, debug) };
         assert!(!c.is_null());
         self.calls += 1;
         self.instances.push(c);
@@ -139,7 +139,7 @@ impl Fuzzer {
         // SAFETY: `c` is live; every pointer is NULL or valid for its n; states come from this FMU
         // and are not freed (a freed one is removed from the pool).
         unsafe {
-            match self.rng.random_range(0..34) {
+            match self.rng.random_range(0..40) {
                 0..=5 => {
                     let references = self.value_references();
                     let values: Vec<f64> = references.iter().map(|_| self.real()).collect();
@@ -302,6 +302,39 @@ impl Fuzzer {
                     let status = fmi2GetDirectionalDerivative(c, u, unknowns.len(), k, knowns.len(), r, d);
                     self.check(status, "fmi2GetDirectionalDerivative");
                 }
+                34 => match self.rng.random_range(0..3) {
+                    0 => self.check(fmi2EnterEventMode(c), "fmi2EnterEventMode"),
+                    1 => self.check(fmi2EnterContinuousTimeMode(c), "fmi2EnterContinuousTimeMode"),
+                    _ => {
+                        let mut info = fmi2EventInfo::default();
+                        let target = if self.rng.random_bool(0.05) { null_mut() } else { &mut info as *mut _ };
+                        self.check(fmi2NewDiscreteStates(c, target), "fmi2NewDiscreteStates");
+                    }
+                },
+                35 => {
+                    let (mut enter, mut terminate) = (0, 0);
+                    let target = if self.rng.random_bool(0.05) { null_mut() } else { &mut enter as *mut _ };
+                    let status = fmi2CompletedIntegratorStep(c, 1, target, &mut terminate);
+                    self.check(status, "fmi2CompletedIntegratorStep");
+                }
+                36 => {
+                    let time = self.real();
+                    self.check(fmi2SetTime(c, time), "fmi2SetTime");
+                }
+                37 => {
+                    // The contact FMU has no states: n = 0 is right, anything else an error.
+                    let states: Vec<f64> = (0..self.rng.random_range(0..3)).map(|_| self.real()).collect();
+                    let p = self.pointer(&states);
+                    self.check(fmi2SetContinuousStates(c, p, states.len()), "fmi2SetContinuousStates");
+                }
+                38 => {
+                    let mut values = vec![0.0; self.rng.random_range(0..3)];
+                    let (n, p) = (values.len(), self.pointer_mut(&mut values));
+                    self.check(fmi2GetDerivatives(c, p, n), "fmi2GetDerivatives");
+                    self.check(fmi2GetEventIndicators(c, p, n), "fmi2GetEventIndicators");
+                    self.check(fmi2GetContinuousStates(c, p, n), "fmi2GetContinuousStates");
+                    self.check(fmi2GetNominalsOfContinuousStates(c, p, n), "fmi2GetNominalsOfContinuousStates");
+                }
                 _ => {
                     let references = self.value_references();
                     let orders = vec![1; references.len()];
@@ -414,7 +447,7 @@ fn random_call_sequences_through_the_c_abi_never_crash_and_always_answer_a_valid
     }
     // The harness reaches the interesting paths: every export is called often, the central
     // ones both succeed and refuse, and messages reach the logger.
-    assert_eq!(fuzzer.statuses.len(), 30, "every export but Instantiate/FreeInstance/GetVersion/GetTypesPlatform");
+    assert_eq!(fuzzer.statuses.len(), 40, "every export but Instantiate/FreeInstance/GetVersion/GetTypesPlatform");
     for (call, counts) in &fuzzer.statuses {
         assert!(counts.iter().sum::<usize>() > budget / 200, "{call} called too rarely: {counts:?}");
     }
@@ -426,6 +459,10 @@ fn random_call_sequences_through_the_c_abi_never_crash_and_always_answer_a_valid
         "fmi2SetFMUstate",
         "fmi2SerializeFMUstate",
         "fmi2DeSerializeFMUstate",
+        "fmi2SetTime",
+        "fmi2EnterContinuousTimeMode",
+        "fmi2CompletedIntegratorStep",
+        "fmi2GetDerivatives",
     ] {
         let [ok, _, _, error, _] = fuzzer.statuses[call];
         assert!(ok > 0 && error > 0, "{call} was not exercised both ways");

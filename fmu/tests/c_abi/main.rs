@@ -14,6 +14,7 @@ mod fmu_state;
 mod fmu_threads;
 mod hertz_contact;
 mod logging;
+mod model_exchange;
 mod profile_files;
 mod profiles;
 mod stepping;
