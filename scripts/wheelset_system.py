@@ -11,12 +11,15 @@ import argparse
 import json
 import math
 import pathlib
+import shutil
 import subprocess
 import sys
+import tempfile
 import textwrap
 import tomllib
 
 import numpy as np
+from lxml import etree
 
 import ssp_master
 
@@ -58,6 +61,43 @@ def system_ssp(path=None):
     target/wheelset/wheelset_on_track.ssp)."""
     build_fmus_if_missing()
     return ssp_master.assemble(SYSTEM_SOURCE, FMUS, path or OUTPUT / "wheelset_on_track.ssp")
+
+
+# Model Exchange (docs/coupling-stability.md, "Model Exchange in OMSimulator"): the same system with
+# OMSimulator's variable-step annotation (oms:VariableStepSolver, CVODE) in place of its fixed-step
+# master, which makes OMSimulator instantiate both FMUs as Model Exchange in one strongly coupled
+# system. OMSimulator passes the connections between the FMUs at the end of each CVODE call of at
+# most maximumStepSize, not within its right-hand side (SystemSC.cpp, cvode_rhs and doStepCVODE),
+# so the coupling's stability bounds maximumStepSize as it bounds a Co-Simulation step: 0.2 ms
+# (the Co-Simulation SSP's step) stays within 0.5 % of the 10 µs reference at 20 and 80 m/s, 1 m/s
+# needs 0.05 ms. The relative tolerance: CVODE's absolute one is it times each state's nominal.
+MODEL_EXCHANGE_MAXIMUM_STEP = 2e-4
+MODEL_EXCHANGE_RELATIVE_TOLERANCE = 1e-6
+
+
+def model_exchange_ssp(path=None, maximum_step=MODEL_EXCHANGE_MAXIMUM_STEP, forward_speed=None):
+    """The system as `system_ssp` assembles it, for Model Exchange in OMSimulator (default
+    target/wheelset/wheelset_on_track_me.ssp): the fixed-step master's annotation replaced by
+    CVODE's with `maximum_step` [s]; `forward_speed` [m/s], if given, replaces the wheelset's."""
+    build_fmus_if_missing()
+    oms = ssp_master.STEP_NAMESPACE
+    with tempfile.TemporaryDirectory() as scratch:
+        source = pathlib.Path(scratch) / "wheelset_on_track"
+        shutil.copytree(SYSTEM_SOURCE, source)
+        ssd = etree.parse(str(source / "SystemStructure.ssd"))
+        (master,) = ssd.getroot().iter(f"{{{oms}}}FixedStepMaster")
+        solver = etree.Element(f"{{{oms}}}VariableStepSolver", description="cvode",
+                               relativeTolerance=repr(MODEL_EXCHANGE_RELATIVE_TOLERANCE), minimumStepSize="1e-12",
+                               maximumStepSize=repr(maximum_step), initialStepSize="1e-07")
+        master.getparent().replace(master, solver)
+        ssd.write(str(source / "SystemStructure.ssd"), xml_declaration=True, encoding="UTF-8")
+        if forward_speed is not None:
+            coach = etree.parse(str(source / "resources" / "passenger_coach.ssv"))
+            (value,) = coach.xpath("//ssv:Parameter[@name='forward_speed']/ssv:Real",
+                                   namespaces={"ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues"})
+            value.set("value", repr(float(forward_speed)))
+            coach.write(str(source / "resources" / "passenger_coach.ssv"), xml_declaration=True, encoding="UTF-8")
+        return ssp_master.assemble(source, FMUS, path or OUTPUT / "wheelset_on_track_me.ssp")
 
 
 def run(ssp, variant=None, parameters=None, stop_time=None, step_size=None):
@@ -222,6 +262,75 @@ def measure():
               + f" -> {'not bracketed' if speed is None else f'{speed:.2f} m/s'}")
 
 
+def omsimulator():
+    """The OMSimulator CLI: $OMSIMULATOR, `OMSimulator` on PATH or where ../shared/tools/omsimulator
+    builds it (/work/oms/OMSimulator/install/bin/OMSimulator); None without one."""
+    import os
+    built_here = pathlib.Path("/work/oms/OMSimulator/install/bin/OMSimulator")
+    return (os.environ.get("OMSIMULATOR") or shutil.which("OMSimulator")
+            or (str(built_here) if built_here.exists() else None))
+
+
+def run_model_exchange(executable, speed, maximum_step, directory, stop_time=0.5):
+    """OMSimulator's run of `model_exchange_ssp` at `speed` [m/s] and `maximum_step` [s] in
+    `directory`: (its output lines that are warnings or errors, the result as {name: array} with the
+    SSD's component.variable names (None if it wrote none), the wall time [s])."""
+    import csv
+    import re
+    import time
+    directory = pathlib.Path(directory)
+    ssp = model_exchange_ssp(directory / "me.ssp", maximum_step, forward_speed=speed)
+    started = time.perf_counter()
+    completed = subprocess.run([executable, "--resultFile=result.csv", f"--stopTime={stop_time}", str(ssp)],
+                               cwd=directory, capture_output=True, text=True, timeout=3600)
+    wall = time.perf_counter() - started
+    output = completed.stdout + completed.stderr
+    problems = [line for line in output.splitlines() if re.match(r"\s*(warning|error)\b", line, re.IGNORECASE)]
+    if completed.returncode != 0:
+        problems.append(f"exit status {completed.returncode}")
+    result = None
+    if (directory / "result.csv").exists():
+        with open(directory / "result.csv") as file:
+            header = [name.strip() for name in next(csv.reader(file))]
+        data = np.loadtxt(directory / "result.csv", delimiter=",", skiprows=1, ndmin=2)
+        prefix = "wheelset_on_track.wheelset_on_track."
+        result = {name.removeprefix(prefix): data[:, i] for i, name in enumerate(header)}
+    return problems, result, wall
+
+
+def distance(result, reference, start=3e-3, stop_time=0.5):
+    """docs/coupling-stability.md's distance: max over t = 10, 20, …, 500 ms of |y − y_ref| / y0."""
+    times = np.arange(1, round(stop_time / 0.01) + 1) * 0.01
+    y = np.interp(times, result["time"], result[DISPLACEMENT])
+    return float(np.max(np.abs(y - np.interp(times, reference["time"], reference[DISPLACEMENT]))) / start)
+
+
+def measure_model_exchange(speeds=(1.0, 20.0, 80.0), steps=(5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3)):
+    """The table of docs/coupling-stability.md, "Model Exchange in OMSimulator": per speed and
+    maximumStepSize, the distance from the 10 µs reference (the project's master, Co-Simulation)
+    and OMSimulator's wall time per simulated second: of the 0.5 s run less a run of 0.1 ms (the
+    start, reading the SSP and instantiating, ≈ 0.7 s, which is printed)."""
+    executable = omsimulator()
+    if executable is None:
+        raise SystemExit("OMSimulator not found: set OMSIMULATOR or put OMSimulator on PATH")
+    ssp = system_ssp()
+    with tempfile.TemporaryDirectory() as directory:
+        overhead = min(run_model_exchange(executable, 20.0, 1e-4, directory, stop_time=1e-4)[2] for _ in range(3))
+    print(f"OMSimulator's start, SSP and instantiation (a run of 0.1 ms): {overhead:.2f} s")
+    print("| speed [m/s] | maximumStepSize [ms] | distance | wall time per simulated second [s] | OMSimulator |")
+    print("|---|---|---|---|---|")
+    for speed in speeds:
+        reference = run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)
+        for step in steps:
+            with tempfile.TemporaryDirectory() as directory:
+                problems, result, wall = run_model_exchange(executable, speed, step, directory)
+            complete = result is not None and result["time"][-1] >= 0.5 - 1e-9
+            gap = f"{distance(result, reference):.2e}" if complete else "–"
+            verdict = "clean" if not problems else f"{len(problems)} errors/warnings"
+            per_second = f"{max(wall - overhead, 0.0) / 0.5:.2f}" if complete else "–"
+            print(f"| {speed:g} | {step * 1e3:g} | {gap} | {per_second} | {verdict} |", flush=True)
+
+
 def main(arguments=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--variant", choices=["hunting_check", "klingel_check"],
@@ -235,9 +344,21 @@ def main(arguments=None):
     parser.add_argument("--name", default="wheelset_on_track", help="stem of the CSV and plot files")
     parser.add_argument("--measure", action="store_true",
                         help="print the Klingel and critical-speed figures of docs/wheelset.md instead")
+    parser.add_argument("--measure-model-exchange", action="store_true",
+                        help="print the Model Exchange table of docs/coupling-stability.md (needs OMSimulator)")
+    parser.add_argument("--model-exchange-ssp", action="store_true",
+                        help="write target/wheelset/wheelset_on_track_me.ssp, the system for Model Exchange with "
+                             "CVODE in OMSimulator, and print how to run it")
     options = parser.parse_args(arguments)
     if options.measure:
         measure()
+        return 0
+    if options.model_exchange_ssp:
+        ssp = model_exchange_ssp()
+        print(f"wrote {ssp}: run it with OMSimulator --resultFile=result.csv {ssp}")
+        return 0
+    if options.measure_model_exchange:
+        measure_model_exchange()
         return 0
     values = {}
     if options.creep_force_model:

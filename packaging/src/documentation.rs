@@ -303,6 +303,12 @@ exact; with relaxation the exact exponential update keeps that property. An outp
 on was set within a step is computed at the new inputs, without advancing the time or the relaxed forces (direct
 feedthrough, as <code>&lt;ModelStructure&gt;</code> declares), so a master can solve an algebraic loop through
 the unit.</p>
+<p><b>Model Exchange.</b> The same binary is also an FMI 2.0 Model Exchange FMU (<code>&lt;ModelExchange&gt;</code>
+beside <code>&lt;CoSimulation&gt;</code>, one modelIdentifier): the unit is algebraic — no continuous states, no
+event indicators — and an output read in event or continuous-time mode is computed at the inputs set at that
+moment, bit for bit what a Co-Simulation step at those inputs gives. <code>creep_relaxation</code> = on, whose
+relaxed forces advance over Co-Simulation steps, is refused at fmi2ExitInitializationMode with the reason. Each
+interface refuses the other's functions (fmi2Error naming both).</p>
 
 <h2>Sign convention and units</h2>
 <p>Kalker's and CONTACT's convention: x in the rolling direction, y lateral, z the contact normal into the wheel;

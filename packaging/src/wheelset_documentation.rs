@@ -133,6 +133,12 @@ of <b>two wheel_rail_contact units</b> (left and right wheel, each with <code>co
 <code>rolling_speed</code> (= V) and <code>wheel_angular_speed</code> — so a master connects them one to one. The
 outputs are states: no input acts on them within a step (no direct feedthrough), so the coupled system has no
 algebraic loop. Track axes are the contact unit's: x forward, y to the right, z down; ψ about z.</p>
+<p><b>Model Exchange.</b> The same binary is also an FMI 2.0 Model Exchange FMU: the master integrates. The
+continuous states are y, ψ, their rates and Ω (the outputs but <code>rolling_speed</code>; nominals 1 mm, 1 mrad,
+10 mm/s, 10 mrad/s, 10 rad/s, which CVODE-based masters scale their absolute tolerance by), their derivatives the
+locals <code>der(…)</code>: the equations of motion above at the loads set at that moment. No event indicators;
+fmi2CompletedIntegratorStep reports an error when |y| exceeds <code>derailment_displacement</code>, as a
+Co-Simulation step does.</p>
 
 <h2>How it is meant to be coupled</h2>
 <p>The project's repository describes the system once, as an SSP 1.0 (System Structure and Parameterization):
