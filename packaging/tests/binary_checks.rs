@@ -122,7 +122,16 @@ fn the_wheelset_fmu_is_packaged_beside_the_contact_unit() {
     };
     let description = String::from_utf8(read("modelDescription.xml")).unwrap();
     assert!(description.contains(&format!("guid=\"{GUID}\"")));
-    assert!(description.contains("<Unknown index=\"28\" dependencies=\"\" dependenciesKind=\"\"/>"), "{description}");
+    // y (variable 28) is an output and a continuous state: it depends on itself; its rate's rate,
+    // der(wheelset_lateral_velocity) (36), on both lateral forces (2, 8), y and ẏ (28, 30).
+    assert!(
+        description.contains("<Unknown index=\"28\" dependencies=\"28\" dependenciesKind=\"dependent\"/>"),
+        "{description}"
+    );
+    let lateral_acceleration =
+        "<Unknown index=\"36\" dependencies=\"2 8 28 30\" dependenciesKind=\"dependent dependent dependent dependent\"/>";
+    assert!(description.contains(lateral_acceleration), "{description}");
+    assert!(description.contains("<ModelExchange\n    modelIdentifier=\"wheelset\""), "{description}");
     let exports = exported_functions(&read("binaries/linux64/wheelset.so")).unwrap();
     assert_eq!(exports, FMI2_FUNCTIONS.iter().map(|name| name.to_string()).collect::<BTreeSet<_>>());
 }
