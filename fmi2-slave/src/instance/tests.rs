@@ -94,6 +94,8 @@ impl Model for Affine {
     const STATE_MAGIC: [u8; 8] = *b"AFFstate";
     const STATE_FORMAT_VERSION: u16 = 1;
     const PROVIDES_DIRECTIONAL_DERIVATIVE: bool = true;
+    /// Algebraic (no states): the Model Exchange state machine with nothing to integrate.
+    const MODEL_EXCHANGE: bool = true;
 
     /// Refuses a resource location without `resources`; notes one that is not a `file:` URI.
     fn instantiate(resource_location: Option<&str>) -> Result<(Self, Option<String>), String> {
@@ -286,6 +288,14 @@ fn stepping() -> (Instance<Affine>, Log) {
     (stepping_logging_to(&log), log)
 }
 
+/// A Model Exchange instance logging to `log`.
+fn model_exchange_logging_to(log: &Log) -> Instance<Affine> {
+    let told = Rc::new(RefCell::new(Told::default()));
+    TOLD.with(|cell| *cell.borrow_mut() = told.clone());
+    let arguments = InstantiateArguments { interface: Ok(Interface::ModelExchange), ..arguments(None) };
+    Instance::instantiate(arguments, Box::new(Recorder(log.clone()))).unwrap()
+}
+
 fn last_message(log: &Log) -> String {
     log.borrow().last().map(|(_, _, m)| m.clone()).unwrap_or_default()
 }
@@ -309,13 +319,6 @@ fn instantiate_keeps_name_and_resources_and_checks_guid_and_model() {
             "a",
             None,
             "fmi2Instantiate: fmuGUID {wrong} does not match this FMU's GUID {affine}",
-        ),
-        (
-            Affine::GUID,
-            Ok(Interface::ModelExchange),
-            "a",
-            None,
-            "fmi2Instantiate: this FMU supports Co-Simulation only (modelIdentifier affine)",
         ),
         (
             Affine::GUID,
@@ -416,6 +419,145 @@ fn illegal_calls_are_refused_in_every_state() {
             }
         }
     }
+}
+
+/// The Model Exchange state machine (FMI 2.0.4 §3.2.3, its table written out here): every call in
+/// every state of a Model Exchange instance, refused outside the states the table allows it in,
+/// the state unchanged; the Co-Simulation functions refused everywhere by interface.
+#[test]
+fn model_exchange_calls_are_refused_outside_their_states() {
+    use crate::mode::Mode::{ContinuousTimeMode, EventMode};
+    type Call = fn(&mut Instance<Affine>) -> Status;
+    let event_and_continuous = Modes::of(&[EventMode, ContinuousTimeMode]);
+    let calls: [(&str, Call, Modes); 16] = [
+        ("fmi2EnterEventMode", |i| i.enter_event_mode(), event_and_continuous),
+        ("fmi2NewDiscreteStates", |i| i.new_discrete_states().err().unwrap_or(Status::Ok), Modes::of(&[EventMode])),
+        ("fmi2EnterContinuousTimeMode", |i| i.enter_continuous_time_mode(), Modes::of(&[EventMode])),
+        (
+            "fmi2CompletedIntegratorStep",
+            |i| i.completed_integrator_step().err().unwrap_or(Status::Ok),
+            Modes::of(&[ContinuousTimeMode]),
+        ),
+        ("fmi2SetTime", |i| i.set_time(1.0), event_and_continuous),
+        ("fmi2SetContinuousStates", |i| i.set_continuous_states(&[]), Modes::of(&[ContinuousTimeMode])),
+        ("fmi2GetDerivatives", |i| i.get_derivatives(&mut []), Modes::of(&[EventMode, ContinuousTimeMode, Terminated])),
+        (
+            "fmi2GetEventIndicators",
+            |i| i.get_event_indicators(&mut []),
+            Modes::of(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated]),
+        ),
+        (
+            "fmi2GetContinuousStates",
+            |i| i.get_continuous_states(&mut []),
+            Modes::of(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated]),
+        ),
+        (
+            "fmi2GetNominalsOfContinuousStates",
+            |i| i.get_nominals_of_continuous_states(&mut []),
+            Modes::of(&[Instantiated, EventMode, ContinuousTimeMode, Terminated]),
+        ),
+        ("fmi2Terminate", |i| i.terminate(), event_and_continuous),
+        ("fmi2ExitInitializationMode", |i| i.exit_initialization_mode(), Modes::of(&[InitializationMode])),
+        (
+            "fmi2GetReal",
+            |i| i.get_real(&[Y], &mut [0.0]),
+            Modes::of(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated]),
+        ),
+        // An input in every mode before termination; a tunable parameter not between events.
+        (
+            "fmi2SetReal",
+            |i| i.set_real(&[X], &[1.0]),
+            Modes::of(&[Instantiated, InitializationMode, EventMode, ContinuousTimeMode]),
+        ),
+        (
+            "fmi2SetInteger",
+            |i| i.set_integer(&[LEVEL], &[2]),
+            Modes::of(&[Instantiated, InitializationMode, EventMode]),
+        ),
+        ("fmi2DoStep", |i| i.do_step(0.0, 1e-3), NEVER),
+    ];
+    type Make = fn(&Log) -> Instance<Affine>;
+    let states: [(Mode, Make); 5] = [
+        (Instantiated, model_exchange_logging_to),
+        (InitializationMode, |log| {
+            let mut i = model_exchange_logging_to(log);
+            i.enter_initialization_mode();
+            i
+        }),
+        (EventMode, |log| {
+            let mut i = model_exchange_logging_to(log);
+            i.enter_initialization_mode();
+            assert_eq!(i.exit_initialization_mode(), Status::Ok);
+            i
+        }),
+        (ContinuousTimeMode, |log| {
+            let mut i = model_exchange_logging_to(log);
+            i.enter_initialization_mode();
+            i.exit_initialization_mode();
+            assert_eq!(i.enter_continuous_time_mode(), Status::Ok);
+            i
+        }),
+        (Terminated, |log| {
+            let mut i = model_exchange_logging_to(log);
+            i.enter_initialization_mode();
+            i.exit_initialization_mode();
+            assert_eq!(i.terminate(), Status::Ok);
+            i
+        }),
+    ];
+    for (state, make) in states {
+        for (name, call, allowed) in &calls {
+            let log = Log::default();
+            let mut instance = make(&log);
+            assert_eq!(instance.mode(), state);
+            log.borrow_mut().clear();
+            let status = call(&mut instance);
+            let message = last_message(&log);
+            if allowed.contains(state) {
+                assert!(status != Status::Error, "{name} in {state:?}: {message}");
+            } else if *name == "fmi2DoStep" {
+                assert_eq!(status, Status::Error);
+                assert_eq!(
+                    message,
+                    "fmi2DoStep: a Co-Simulation function, but this instance was instantiated for Model Exchange"
+                );
+                assert_eq!(instance.mode(), state);
+            } else {
+                assert_eq!(status, Status::Error, "{name} in {state:?}");
+                let refusal = if *name == "fmi2SetInteger" && state == ContinuousTimeMode {
+                    "fmi2SetInteger: level can be set at events, not in continuousTimeMode".to_owned()
+                } else {
+                    format!("{name}: illegal call in state {}", state.name())
+                };
+                assert_eq!(message, refusal, "{name} in {state:?}");
+                assert_eq!(instance.mode(), state);
+            }
+        }
+    }
+}
+
+/// In Model Exchange the output follows each input as soon as it is read (no step), and a
+/// Co-Simulation instance refuses the Model Exchange functions.
+#[test]
+fn model_exchange_evaluates_on_demand_and_each_interface_keeps_to_its_functions() {
+    let log = Log::default();
+    let mut me = model_exchange_logging_to(&log);
+    me.enter_initialization_mode();
+    assert_eq!(me.exit_initialization_mode(), Status::Ok);
+    assert_eq!(me.mode(), crate::mode::Mode::EventMode);
+    assert_eq!(me.enter_continuous_time_mode(), Status::Ok);
+    for x in [1.5, -4.0] {
+        assert_eq!(me.set_real(&[X], &[x]), Status::Ok);
+        assert_eq!(get(&mut me, Y), 2.0 * x, "y = gain · x + offset at the input just set");
+    }
+    let (mut cs, log) = stepping();
+    assert_eq!(cs.set_time(0.5), Status::Error);
+    assert_eq!(
+        last_message(&log),
+        "fmi2SetTime: a Model Exchange function, but this instance was instantiated for Co-Simulation"
+    );
+    assert_eq!(cs.get_derivatives(&mut []), Status::Error);
+    assert_eq!(cs.mode(), StepComplete);
 }
 
 #[test]
