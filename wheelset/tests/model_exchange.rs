@@ -247,6 +247,39 @@ fn each_interface_refuses_the_others_functions_and_the_modes_are_checked() {
     }
 }
 
+/// The states read in initialization mode follow the initial values set there; the loads alone
+/// (no state written) change the derivatives; the derivatives cannot be written; on the
+/// derailment bound itself the wheelset is still on the track (as initialization allows).
+#[test]
+fn states_follow_initial_values_and_derivatives_the_loads_alone() {
+    let log = MessageLog::default();
+    let fmu = Me::instantiate(&log, fmi2Type_fmi2ModelExchange);
+    // SAFETY: `c` is live.
+    unsafe { assert_eq!(fmi2EnterInitializationMode(fmu.c), OK) };
+    assert_eq!(fmu.set(&[vr::INITIAL_LATERAL_DISPLACEMENT, vr::INITIAL_YAW_ANGLE], &[1e-3, -2e-3]), OK);
+    assert_eq!(fmu.states(), [1e-3, -2e-3, 0.0, 0.0, SPEED / RADIUS]);
+    // SAFETY: `c` is live.
+    unsafe {
+        assert_eq!(fmi2ExitInitializationMode(fmu.c), OK);
+        assert_eq!(fmi2EnterContinuousTimeMode(fmu.c), OK);
+    }
+    let x = fmu.states();
+    assert_eq!(fmu.set(&[vr::RIGHT_TRACK_FORCE_Y, vr::LEFT_TRACK_MOMENT_Y], &[2500.0, 30.0]), OK);
+    let expected = equations_of_motion(&x, 2500.0, 0.0, 30.0);
+    let derivatives = fmu.derivatives();
+    let close = derivatives.iter().zip(&expected).all(|(a, b)| (a - b).abs() <= 1e-12 * b.abs().max(1e-9));
+    assert!(close, "{derivatives:?} against {expected:?}");
+    assert_eq!(fmu.set(&[vr::DER_WHEELSET_LATERAL_VELOCITY], &[0.0]), ERROR);
+    assert_eq!(
+        log.last_text(),
+        "fmi2SetReal: der(wheelset_lateral_velocity) is computed by the model and cannot be set"
+    );
+    assert_eq!(fmu.set_states(&[0.01, 0.0, 0.0, 0.0, 40.0]), OK);
+    let (mut enter, mut terminate) = (0, 0);
+    // SAFETY: `c` is live; valid out-pointers.
+    assert_eq!(unsafe { fmi2CompletedIntegratorStep(fmu.c, 1, &mut enter, &mut terminate) }, OK);
+}
+
 #[test]
 fn bad_states_and_lengths_are_errors_that_change_nothing() {
     let log = MessageLog::default();

@@ -180,6 +180,11 @@ impl Model for Affine {
         self.told.borrow_mut().parameters_changed += 1;
     }
 
+    /// A label that only Co-Simulation can run, to test the check.
+    fn model_exchange_problem(state: &Values) -> Option<String> {
+        (state.label == "co-simulation only").then(|| "label = co-simulation only needs Co-Simulation".to_owned())
+    }
+
     fn restoring(&mut self, _current: &Values, _restored: &Values) {
         self.told.borrow_mut().restorings += 1;
     }
@@ -288,12 +293,16 @@ fn stepping() -> (Instance<Affine>, Log) {
     (stepping_logging_to(&log), log)
 }
 
-/// A Model Exchange instance logging to `log`.
-fn model_exchange_logging_to(log: &Log) -> Instance<Affine> {
+/// A Model Exchange instance logging to `log`, with what its model is told.
+fn model_exchange_told(log: &Log) -> (Instance<Affine>, Rc<RefCell<Told>>) {
     let told = Rc::new(RefCell::new(Told::default()));
     TOLD.with(|cell| *cell.borrow_mut() = told.clone());
     let arguments = InstantiateArguments { interface: Ok(Interface::ModelExchange), ..arguments(None) };
-    Instance::instantiate(arguments, Box::new(Recorder(log.clone()))).unwrap()
+    (Instance::instantiate(arguments, Box::new(Recorder(log.clone()))).unwrap(), told)
+}
+
+fn model_exchange_logging_to(log: &Log) -> Instance<Affine> {
+    model_exchange_told(log).0
 }
 
 fn last_message(log: &Log) -> String {
@@ -429,7 +438,7 @@ fn model_exchange_calls_are_refused_outside_their_states() {
     use crate::mode::Mode::{ContinuousTimeMode, EventMode};
     type Call = fn(&mut Instance<Affine>) -> Status;
     let event_and_continuous = Modes::of(&[EventMode, ContinuousTimeMode]);
-    let calls: [(&str, Call, Modes); 16] = [
+    let calls: [(&str, Call, Modes); 17] = [
         ("fmi2EnterEventMode", |i| i.enter_event_mode(), event_and_continuous),
         ("fmi2NewDiscreteStates", |i| i.new_discrete_states().err().unwrap_or(Status::Ok), Modes::of(&[EventMode])),
         ("fmi2EnterContinuousTimeMode", |i| i.enter_continuous_time_mode(), Modes::of(&[EventMode])),
@@ -474,6 +483,7 @@ fn model_exchange_calls_are_refused_outside_their_states() {
             |i| i.set_integer(&[LEVEL], &[2]),
             Modes::of(&[Instantiated, InitializationMode, EventMode]),
         ),
+        ("fmi2SetReal", |i| i.set_real(&[OFFSET], &[1.0]), Modes::of(&[Instantiated, InitializationMode, EventMode])),
         ("fmi2DoStep", |i| i.do_step(0.0, 1e-3), NEVER),
     ];
     type Make = fn(&Log) -> Instance<Affine>;
@@ -526,6 +536,8 @@ fn model_exchange_calls_are_refused_outside_their_states() {
                 assert_eq!(status, Status::Error, "{name} in {state:?}");
                 let refusal = if *name == "fmi2SetInteger" && state == ContinuousTimeMode {
                     "fmi2SetInteger: level can be set at events, not in continuousTimeMode".to_owned()
+                } else if *name == "fmi2SetReal" && state == ContinuousTimeMode {
+                    "fmi2SetReal: offset can be set at events, not in continuousTimeMode".to_owned()
                 } else {
                     format!("{name}: illegal call in state {}", state.name())
                 };
@@ -534,6 +546,68 @@ fn model_exchange_calls_are_refused_outside_their_states() {
             }
         }
     }
+}
+
+/// The model evaluates only when what the outputs are computed from was written: in Co-Simulation
+/// an input an output depends on (a read of anything else, or a second read, evaluates nothing),
+/// in Model Exchange any input or parameter, the states or the time (fmi2GetDerivatives twice
+/// evaluates once).
+#[test]
+fn the_model_evaluates_only_after_a_write_it_depends_on() {
+    let log = Log::default();
+    let mut cs = stepping_logging_to(&log);
+    let told = TOLD.with(|cell| cell.borrow().clone());
+    let mut count = [0];
+    assert_eq!(cs.get_integer(&[COUNT], &mut count), Status::Ok);
+    assert_eq!((count[0], told.borrow().feedthroughs), (1, 0), "initialised once, nothing since");
+    get(&mut cs, Y);
+    assert_eq!(told.borrow().feedthroughs, 0);
+    // An invalid input is reported where the model computes: reading the input itself is fine.
+    assert_eq!(cs.set_real(&[X], &[f64::NAN]), Status::Ok);
+    assert!(get(&mut cs, X).is_nan());
+    assert_eq!(cs.get_real(&[Y], &mut [0.0]), Status::Error);
+    assert_eq!(last_message(&log), "fmi2GetReal: x = NaN is invalid: must be finite");
+
+    let (mut me, told) = model_exchange_told(&log);
+    me.enter_initialization_mode();
+    assert_eq!(me.exit_initialization_mode(), Status::Ok);
+    // A tunable parameter written at an event acts on the next read (y = 2 x + offset).
+    assert_eq!(me.set_real(&[X, OFFSET], &[1.0, 0.5]), Status::Ok);
+    assert_eq!(get(&mut me, Y), 2.5);
+    assert_eq!(me.set_real(&[OFFSET], &[1.5]), Status::Ok);
+    assert_eq!(get(&mut me, Y), 3.5, "a parameter alone, which no output lists, makes the outputs stale too");
+    assert_eq!(me.enter_continuous_time_mode(), Status::Ok);
+    let before = told.borrow().feedthroughs;
+    assert_eq!(me.set_real(&[X], &[3.0]), Status::Ok);
+    assert_eq!(me.get_derivatives(&mut []), Status::Ok);
+    assert_eq!(me.get_derivatives(&mut []), Status::Ok);
+    assert_eq!(get(&mut me, Y), 7.5);
+    assert_eq!(told.borrow().feedthroughs, before + 1, "one evaluation for one write");
+}
+
+/// A model's Model Exchange problem stops fmi2ExitInitializationMode of a Model Exchange
+/// instance (which stays correctable in initialization mode) and not a Co-Simulation one; an FMU
+/// state restores only into an instance of the interface it was taken in.
+#[test]
+fn model_exchange_is_checked_at_exit_initialization_and_states_keep_to_their_interface() {
+    let log = Log::default();
+    let mut me = model_exchange_logging_to(&log);
+    assert_eq!(me.set_string(&[LABEL], &[Cow::Borrowed("co-simulation only")]), Status::Ok);
+    me.enter_initialization_mode();
+    assert_eq!(me.exit_initialization_mode(), Status::Error);
+    assert_eq!(last_message(&log), "fmi2ExitInitializationMode: label = co-simulation only needs Co-Simulation");
+    assert_eq!(me.mode(), InitializationMode);
+    let mut cs = instance_logging_to(&log).0;
+    assert_eq!(cs.set_string(&[LABEL], &[Cow::Borrowed("co-simulation only")]), Status::Ok);
+    cs.enter_initialization_mode();
+    assert_eq!(cs.exit_initialization_mode(), Status::Ok);
+    let stepped = cs.get_fmu_state().unwrap();
+    assert_eq!(me.set_fmu_state(&stepped), Status::Error);
+    assert_eq!(
+        last_message(&log),
+        "fmi2SetFMUstate: FMUstate was taken in state stepComplete, which an instance of Model Exchange never is in"
+    );
+    assert_eq!(me.mode(), InitializationMode);
 }
 
 /// In Model Exchange the output follows each input as soon as it is read (no step), and a
