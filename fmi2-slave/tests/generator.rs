@@ -157,6 +157,7 @@ fn a_continuous_state_gets_its_derivative_structure_and_table() {
     assert!(source.contains("pub const CONTINUOUS_STATES: &[(u32, u32, f64)] = &[(200, 300, 0.001)];"), "{source}");
     assert!(source.contains("pub const MODEL_EXCHANGE: bool = true;"), "{source}");
     assert!(source.contains("pub der_position: f64,"), "{source}");
+    assert!(source.contains("pub const DER_POSITION: u32 = 300;"), "{source}");
     assert!(source.contains("value_reference::DER_POSITION => Some(self.locals.der_position),"), "{source}");
     assert!(source.contains("dependencies: &[0, 200] }"), "{source}");
     let (plain, _) = generate(VALID, "plain").unwrap();
@@ -173,6 +174,29 @@ fn malformed_states_are_refused_by_their_fault() {
     let not_the_state =
         "modelDescription.xml: der(position): derivative = 2 must be the index of the continuous Real it is named after";
     assert_eq!(refusal("index", "derivative=\"3\"", "derivative=\"2\""), not_the_state);
+    // The input `speed` (1) is a continuous Real, but not the one the derivative is named after.
+    let not_the_input =
+        "modelDescription.xml: der(position): derivative = 1 must be the index of the continuous Real it is named after";
+    assert_eq!(refusal("input", "derivative=\"3\"", "derivative=\"1\""), not_the_input);
+    // Named after the parameter `start` (2), a Real of fixed variability: not a state.
+    let fixed = WITH_STATE.replace("der(position)", "der(start)").replace("derivative=\"3\"", "derivative=\"2\"");
+    assert_eq!(
+        generate(&fixed, "fixed").expect_err("fixed"),
+        "modelDescription.xml: der(start): derivative = 2 must be the index of the continuous Real it is named after"
+    );
+    assert_eq!(
+        refusal(
+            "local start",
+            "<Real unit=\"m/s\" derivative=\"3\"/>",
+            "<Real unit=\"m/s\" derivative=\"3\" start=\"0\"/>"
+        ),
+        "modelDescription.xml: local der(position): initial=\"calculated\" forbids a start value"
+    );
+    assert_eq!(
+        refusal("identifier", "name=\"speed\"", "name=\"_speed\""),
+        "modelDescription.xml: variable `_speed`: names must be snake_case identifiers or der(identifier) (they become \
+         Rust fields)"
+    );
     assert_eq!(
         refusal("no derivative", " derivative=\"3\"", ""),
         "modelDescription.xml: variable der(position): the locals, and only they, are state derivatives (with `derivative`)"
