@@ -10,6 +10,16 @@ use headers::*;
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::fmi2 as own;
 
+/// The size and alignment of the struct `$type` and the offset of each field, own against the
+/// headers'.
+macro_rules! same_layout {
+    ($type:ident; $($field:ident),* $(,)?) => {
+        assert_eq!(size_of::<own::$type>(), size_of::<headers::$type>());
+        assert_eq!(align_of::<own::$type>(), align_of::<headers::$type>());
+        $(assert_eq!(offset_of!(own::$type, $field), offset_of!(headers::$type, $field), stringify!($field));)*
+    };
+}
+
 /// Every export but fmi2Instantiate and fmi2NewDiscreteStates, by its header type.
 const _: () = {
     let _: fmi2GetTypesPlatformTYPE = Some(fmi2GetTypesPlatform);
@@ -58,18 +68,8 @@ const _: () = {
 
 #[test]
 fn event_info_has_the_headers_layout_and_new_discrete_states_its_signature() {
-    assert_eq!(size_of::<own::fmi2EventInfo>(), size_of::<headers::fmi2EventInfo>());
-    assert_eq!(align_of::<own::fmi2EventInfo>(), align_of::<headers::fmi2EventInfo>());
-    macro_rules! same_offset {
-        ($($field:ident),*) => {$(
-            assert_eq!(
-                offset_of!(own::fmi2EventInfo, $field),
-                offset_of!(headers::fmi2EventInfo, $field),
-                stringify!($field)
-            );
-        )*};
-    }
-    same_offset!(
+    same_layout!(
+        fmi2EventInfo;
         newDiscreteStatesNeeded,
         terminateSimulation,
         nominalsOfContinuousStatesChanged,
@@ -93,18 +93,7 @@ fn event_info_has_the_headers_layout_and_new_discrete_states_its_signature() {
 
 #[test]
 fn callback_functions_have_the_headers_layout() {
-    assert_eq!(size_of::<own::fmi2CallbackFunctions>(), size_of::<headers::fmi2CallbackFunctions>());
-    assert_eq!(align_of::<own::fmi2CallbackFunctions>(), align_of::<headers::fmi2CallbackFunctions>());
-    macro_rules! same_offset {
-        ($($field:ident),*) => {$(
-            assert_eq!(
-                offset_of!(own::fmi2CallbackFunctions, $field),
-                offset_of!(headers::fmi2CallbackFunctions, $field),
-                stringify!($field)
-            );
-        )*};
-    }
-    same_offset!(logger, allocateMemory, freeMemory, stepFinished, componentEnvironment);
+    same_layout!(fmi2CallbackFunctions; logger, allocateMemory, freeMemory, stepFinished, componentEnvironment);
     // The field types, as the headers declare them.
     let own = own::fmi2CallbackFunctions {
         logger: None,
