@@ -24,8 +24,16 @@ rest itself:
 - errors: an FMI call that fails (fmi2Error, fmi2Fatal) ends the run with SystemRunError naming
   the component, the time and the FMU's own log messages (which name the variable and its value),
   and so does an output that is not finite.
+
+With `model_exchange=ModelExchange(...)` the same master runs the FMUs as FMI 2.0 Model Exchange
+instead: one CVODE (fmpy's, BDF with Newton iterations on a dense difference-quotient Jacobian)
+integrates every unit's continuous states, and each evaluation of its right-hand side sets the
+states, does the exchange above (so the connections are solved inside the right-hand side, not
+held over a step) and reads the derivatives; the communication step is then only the interval at
+which the result is recorded.
 """
 
+import dataclasses
 import math
 import pathlib
 import shutil
@@ -36,7 +44,7 @@ from ctypes import byref
 import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException, calloc, free
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 from fmpy.logging import addLoggerProxy
 from fmpy.ssp.ssd import find_components, ns, read_ssd, read_ssv
@@ -92,19 +100,32 @@ def default_experiment(ssp_path):
     return start, stop, step
 
 
-class _Unit:
-    """One component: its FMU2Slave, its variables by name and the log messages it sent."""
+@dataclasses.dataclass
+class ModelExchange:
+    """How `simulate` integrates Model Exchange FMUs: CVODE's relative tolerance (its absolute
+    tolerance is it times each state's nominal) and largest step [s]."""
+    relative_tolerance: float = 1e-6
+    maximum_step: float = math.inf
 
-    def __init__(self, component, ssp_directory, work_directory):
+
+class _Unit:
+    """One component: its FMU2Slave (FMU2Model for Model Exchange), its variables by name and the
+    log messages it sent."""
+
+    def __init__(self, component, ssp_directory, work_directory, model_exchange=False):
         self.name = component.name
         path = str(pathlib.Path(ssp_directory) / component.source)
         self.description = read_model_description(path)
         self.variables = {v.name: v for v in self.description.modelVariables}
         self.messages = _MESSAGES.setdefault(self.name, [])
         unzipped = extract(path, unzipdir=str(pathlib.Path(work_directory) / self.name))
-        self.fmu = FMU2Slave(guid=self.description.guid, unzipDirectory=unzipped,
-                             modelIdentifier=self.description.coSimulation.modelIdentifier,
-                             instanceName=self.name)
+        interface, kind = (self.description.modelExchange, FMU2Model) if model_exchange \
+            else (self.description.coSimulation, FMU2Slave)
+        if interface is None:
+            raise SystemRunError(self.name, math.nan, "its FMU lacks the interface asked for")
+        self.fmu = kind(guid=self.description.guid, unzipDirectory=unzipped,
+                        modelIdentifier=interface.modelIdentifier, instanceName=self.name)
+        self.states = len(self.description.derivatives)
         self.has_feedthrough = any(
             output.dependencies is None or any(d.causality == "input" for d in output.dependencies)
             for output in self.description.outputs)
@@ -200,10 +221,92 @@ def _parameter_values(components, ssp_path, parameter_sets, parameters):
     return values
 
 
-def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_size=None):
+def _model_exchange(units, call, exchange, start, settings, clock):
+    """After Model Exchange's initialization: the event iteration (one fmi2NewDiscreteStates per
+    unit while it asks for another), continuous-time mode, and one CVODE over every unit's states
+    whose right-hand side sets the states, exchanges the connections (`exchange`) and reads the
+    derivatives (`clock[0]`: the time CVODE evaluates at, for messages). Returns advance(t,
+    t_next): the integration from t to t_next, each unit told of the accepted point. A failure inside CVODE's callbacks (which cannot raise through C) ends the
+    integration and is raised after it."""
+    from ctypes import c_double
+
+    from fmpy.sundials import CVodeSolver
+
+    for unit in units:
+        while call(unit, "newDiscreteStates")[0]:
+            pass
+        call(unit, "enterContinuousTimeMode")
+    stateful = [u for u in units if u.states]
+    total = sum(u.states for u in stateful)
+    buffers = {u.name: (c_double * u.states)() for u in stateful}
+    failures = []
+
+    def each(pointer, transfer):
+        """`transfer(unit, its slice of the CVODE vector at pointer)` per unit with states."""
+        vector, at = np.ctypeslib.as_array(pointer, (total,)), 0
+        for unit in stateful:
+            transfer(unit, vector[at:at + unit.states])
+            at += unit.states
+
+    def guarded(callback):
+        def run(*arguments):
+            if failures:
+                return
+            try:
+                callback(*arguments)
+            except SystemRunError as failure:
+                failures.append(failure)
+        return run
+
+    def read(function):
+        def transfer(unit, part):
+            call(unit, function, buffers[unit.name], unit.states)
+            part[:] = buffers[unit.name]
+        return guarded(lambda pointer, _n: each(pointer, transfer))
+
+    def write(unit, part):
+        buffers[unit.name][:] = part
+        call(unit, "setContinuousStates", buffers[unit.name], unit.states)
+
+    def set_states(pointer, _n):
+        each(pointer, write)
+        exchange()
+
+    def set_time(time):
+        clock[0] = time
+        for unit in units:
+            call(unit, "setTime", time)
+
+    class NoInputs:
+        @staticmethod
+        def apply(_time):
+            pass
+
+    solver = CVodeSolver(nx=total, nz=0, get_x=read("getContinuousStates"), set_x=guarded(set_states),
+                         get_dx=read("getDerivatives"), get_z=lambda _z, _n: None,
+                         get_nominals=read("getNominalsOfContinuousStates"), set_time=guarded(set_time),
+                         input=NoInputs(), startTime=start, maxStep=settings.maximum_step,
+                         relativeTolerance=settings.relative_tolerance, maxNumSteps=1_000_000)
+
+    def advance(time, next_time):
+        try:
+            solver.step(time, next_time)
+        except RuntimeError as failure:
+            if not failures:
+                raise SystemRunError("system", time, f"CVODE: {failure}") from failure
+        if failures:
+            raise failures[0]
+        for unit in units:
+            call(unit, "completedIntegratorStep")
+
+    return advance
+
+
+def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_size=None, model_exchange=None):
     """Runs the SSP `ssp_path` from its DefaultExperiment's start to `stop_time` (default: its
     stopTime) with communication step `step_size` [s] (default: the step of its system's
-    oms:FixedStepMaster annotation, STEP_ANNOTATION).
+    oms:FixedStepMaster annotation, STEP_ANNOTATION); with `model_exchange` (a ModelExchange) as
+    Model Exchange, integrated by CVODE, `step_size` the interval of the result's rows.
 
     `parameter_sets`: paths inside the SSP of further .ssv files (names `component.variable`),
     applied after the SSD's bindings; `parameters`: {"component.variable": value} applied last.
@@ -224,12 +327,13 @@ def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_
     try:
         ssp_directory = extract(str(ssp_path), unzipdir=str(work_directory / "ssp"))
         components = find_components(system)
-        units = [_Unit(c, ssp_directory, work_directory) for c in components]
+        units = [_Unit(c, ssp_directory, work_directory, model_exchange is not None) for c in components]
         by_name = {u.name: u for u in units}
         for unit in units:
             unit.fmu.instantiate(callbacks=_CALLBACKS)
             unit.fmu.setupExperiment(startTime=start, stopTime=stop_time)
-        time = start
+        # The time messages name: the communication point, or CVODE's time inside its callbacks.
+        clock = [start]
         values = {}
 
         def call(unit, function, *arguments):
@@ -241,7 +345,7 @@ def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_
                 given = ", ".join(f"{end_connector} = {values[(start_name, start_connector)]:.6g}"
                                   for start_name, start_connector, end, end_connector in connections
                                   if end == unit.name and (start_name, start_connector) in values)
-                raise SystemRunError(unit.name, time, f"{function} failed: {unit.report()}"
+                raise SystemRunError(unit.name, clock[0], f"{function} failed: {unit.report()}"
                                      + (f" (its inputs: {given})" if given else "")) from failure
 
         overrides = _parameter_values(components, ssp_path, parameter_sets, parameters)
@@ -285,7 +389,7 @@ def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_
                     read = call(unit, "getReal", output_references[unit.name])
                     for name, value in zip(outputs[unit.name], read):
                         if not math.isfinite(value):
-                            raise SystemRunError(unit.name, time, f"output {name} = {value}: {unit.report()}")
+                            raise SystemRunError(unit.name, clock[0], f"output {name} = {value}: {unit.report()}")
                         values[(unit.name, name)] = value
             for unit in order:
                 if not unit.has_feedthrough:
@@ -296,16 +400,21 @@ def simulate(ssp_path, parameter_sets=(), parameters=None, stop_time=None, step_
         exchange()
         for unit in units:
             call(unit, "exitInitializationMode")
+        if model_exchange is not None:
+            advance = _model_exchange(units, call, exchange, start, model_exchange, clock)
         steps = round((stop_time - start) / step_size)
         dtype = [("time", np.float64)] + [(f"{c}.{n}", np.float64) for c, n in columns]
         rows = []
         try:
             for k in range(steps + 1):
-                time = start + k * step_size
+                time = clock[0] = start + k * step_size
                 exchange()
                 rows.append(tuple([time] + [values[c] for c in columns]))
                 if k == steps:
                     break
+                if model_exchange is not None:
+                    advance(time, start + (k + 1) * step_size)
+                    continue
                 for unit in units:
                     call(unit, "doStep", time, step_size)
         except SystemRunError as error:

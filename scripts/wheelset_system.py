@@ -329,6 +329,29 @@ def measure_model_exchange(speeds=(1.0, 20.0, 80.0), steps=(5e-5, 1e-4, 2e-4, 5e
             verdict = "clean" if not problems else f"{len(problems)} errors/warnings"
             per_second = f"{max(wall - overhead, 0.0) / 0.5:.2f}" if complete else "–"
             print(f"| {speed:g} | {step * 1e3:g} | {gap} | {per_second} | {verdict} |", flush=True)
+    measure_model_exchange_in_the_right_hand_side(speeds)
+
+
+def measure_model_exchange_in_the_right_hand_side(speeds, maximum_step=0.1):
+    """The second table of docs/coupling-stability.md, "Model Exchange in OMSimulator": the
+    project's master (scripts/ssp_master.py) with the FMUs as Model Exchange, the connections
+    solved inside fmpy's CVODE's right-hand side, rows every 10 ms: distance from the 10 µs
+    reference and wall time per simulated second (the 0.5 s run less a 10 ms run)."""
+    import time
+    ssp = system_ssp()
+    settings = ssp_master.ModelExchange(MODEL_EXCHANGE_RELATIVE_TOLERANCE, maximum_step)
+    print(f"\n| speed [m/s] | maximum step [ms] | distance | wall time per simulated second [s] |")
+    print("|---|---|---|---|")
+    for speed in speeds:
+        reference = run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)
+        walls = []
+        for stop in (0.01, 0.5):
+            started = time.perf_counter()
+            result = ssp_master.simulate(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=stop,
+                                         step_size=1e-2, model_exchange=settings)
+            walls.append(time.perf_counter() - started)
+        per_second = max(walls[1] - walls[0], 0.0) / 0.49
+        print(f"| {speed:g} | {maximum_step * 1e3:g} | {distance(result, reference):.2e} | {per_second:.2f} |", flush=True)
 
 
 def main(arguments=None):

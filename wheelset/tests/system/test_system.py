@@ -293,3 +293,33 @@ def test_growth_rate_of_runs_without_enough_extrema_is_none():
     sigma = -0.7
     decaying = {"time": time, ws.DISPLACEMENT: 2e-3 * np.exp(sigma * time) * np.cos(2 * np.pi * 5 * time)}
     assert ws.growth_rate([decaying], window=(1e-4, 1e-2)) == pytest.approx(sigma, rel=0.02)
+
+
+# Model Exchange with the connections solved inside the integrator's right-hand side
+# (scripts/ssp_master.py, model_exchange): one CVODE (fmpy's) over the wheelset's five states,
+# the contact units evaluated at every right-hand side, no step bound by the coupling. Measured
+# 2026-11-29 with maximum step 0.1 s, rows every 10 ms: distances 2.4e-6, 4.1e-5, 8.5e-5 of y0
+# from the 10 µs Co-Simulation reference at 1, 20, 80 m/s (docs/coupling-stability.md), where a
+# Co-Simulation master with the forces held over a step needs 0.05 ms at 1 m/s.
+@pytest.mark.parametrize("speed", [1.0, 20.0, 80.0])
+def test_model_exchange_with_cvode_follows_the_reference_at_any_step(ssp, speed):
+    reference = ws.run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)
+    result = ssp_master.simulate(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-2,
+                                 model_exchange=ssp_master.ModelExchange(relative_tolerance=1e-6, maximum_step=0.1))
+    assert len(result) == 51 and result["time"][-1] == pytest.approx(0.5)
+    assert ws.distance(result, reference) < 1e-3
+    spin = result["wheelset.wheel_angular_speed"] * 0.45990634083 / speed - 1.0
+    assert np.max(np.abs(spin)) < 1e-3, "the wheels keep rolling"
+
+
+def test_a_derailment_in_model_exchange_is_reported_with_the_unit_time_and_message(ssp):
+    """Thrown at 1 m/s towards a derailment bound of 4 mm from 3 mm: the wheelset's
+    fmi2CompletedIntegratorStep at the first accepted point beyond it ends the run, named."""
+    with pytest.raises(ssp_master.SystemRunError) as failure:
+        ssp_master.simulate(ssp, parameters={"wheelset.initial_lateral_velocity": 1.0,
+                                             "wheelset.derailment_displacement": 4e-3},
+                            stop_time=0.05, step_size=1e-2, model_exchange=ssp_master.ModelExchange())
+    error = failure.value
+    assert error.component == "wheelset" and 0 < error.time < 0.05, error
+    assert "completedIntegratorStep failed" in error.message and "derails" in error.message, error
+    assert error.result is not None and len(error.result) >= 1
