@@ -39,7 +39,7 @@ import pathlib
 import shutil
 import tempfile
 import zipfile
-from ctypes import byref
+from ctypes import byref, c_double
 
 import numpy as np
 from fmpy import extract, read_model_description
@@ -48,6 +48,7 @@ from fmpy.fmi2 import (FMU2Model, FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 from fmpy.logging import addLoggerProxy
 from fmpy.ssp.ssd import find_components, ns, read_ssd, read_ssv
+from fmpy.sundials import CVodeSolver
 from lxml import etree
 
 # Where the SSD carries the communication step (SSP 1.0 has no element for it): OMSimulator's
@@ -228,10 +229,6 @@ def _model_exchange(units, call, exchange, start, settings, clock):
     derivatives (`clock[0]`: the time CVODE evaluates at, for messages). Returns advance(t,
     t_next): the integration from t to t_next, each unit told of the accepted point. A failure inside CVODE's callbacks (which cannot raise through C) ends the
     integration and is raised after it."""
-    from ctypes import c_double
-
-    from fmpy.sundials import CVodeSolver
-
     for unit in units:
         while call(unit, "newDiscreteStates")[0]:
             pass

@@ -8,14 +8,18 @@ Units SI throughout; y the wheelset's lateral displacement [m], ψ its yaw [rad]
 forward, y right, z down, as the contact unit's)."""
 
 import argparse
+import csv
 import json
 import math
+import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
 import textwrap
+import time
 import tomllib
 
 import numpy as np
@@ -262,22 +266,39 @@ def measure():
               + f" -> {'not bracketed' if speed is None else f'{speed:.2f} m/s'}")
 
 
+# Where ../shared/tools/omsimulator builds OMSimulator's CLI.
+OMSIMULATOR_BUILT_HERE = pathlib.Path("/work/oms/OMSimulator/install/bin/OMSimulator")
+# OMSimulator names a result column model.system.component.variable; both are the SSD's name.
+OMSIMULATOR_PREFIX = "wheelset_on_track.wheelset_on_track."
+
+
 def omsimulator():
-    """The OMSimulator CLI: $OMSIMULATOR, `OMSimulator` on PATH or where ../shared/tools/omsimulator
-    builds it (/work/oms/OMSimulator/install/bin/OMSimulator); None without one."""
-    import os
-    built_here = pathlib.Path("/work/oms/OMSimulator/install/bin/OMSimulator")
+    """The OMSimulator CLI: $OMSIMULATOR, `OMSimulator` on PATH or OMSIMULATOR_BUILT_HERE; None
+    without one."""
     return (os.environ.get("OMSIMULATOR") or shutil.which("OMSimulator")
-            or (str(built_here) if built_here.exists() else None))
+            or (str(OMSIMULATOR_BUILT_HERE) if OMSIMULATOR_BUILT_HERE.exists() else None))
+
+
+def omsimulator_problems(output):
+    """The lines of OMSimulator's output that are warnings or errors."""
+    return [line for line in output.splitlines() if re.match(r"\s*(warning|error)\b", line, re.IGNORECASE)]
+
+
+def read_omsimulator_result(path):
+    """OMSimulator's CSV result at `path` as {component.variable (and time): array}, None if absent."""
+    path = pathlib.Path(path)
+    if not path.exists():
+        return None
+    with open(path) as file:
+        header = [name.strip() for name in next(csv.reader(file))]
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return {name.removeprefix(OMSIMULATOR_PREFIX): data[:, i] for i, name in enumerate(header)}
 
 
 def run_model_exchange(executable, speed, maximum_step, directory, stop_time=0.5):
     """OMSimulator's run of `model_exchange_ssp` at `speed` [m/s] and `maximum_step` [s] in
-    `directory`: (its output lines that are warnings or errors, the result as {name: array} with the
-    SSD's component.variable names (None if it wrote none), the wall time [s])."""
-    import csv
-    import re
-    import time
+    `directory`: (its warnings and errors, with a nonzero exit status among them; the result as
+    `read_omsimulator_result` gives it; the wall time [s]; its whole output)."""
     directory = pathlib.Path(directory)
     ssp = model_exchange_ssp(directory / "me.ssp", maximum_step, forward_speed=speed)
     started = time.perf_counter()
@@ -285,17 +306,10 @@ def run_model_exchange(executable, speed, maximum_step, directory, stop_time=0.5
                                cwd=directory, capture_output=True, text=True, timeout=3600)
     wall = time.perf_counter() - started
     output = completed.stdout + completed.stderr
-    problems = [line for line in output.splitlines() if re.match(r"\s*(warning|error)\b", line, re.IGNORECASE)]
+    problems = omsimulator_problems(output)
     if completed.returncode != 0:
         problems.append(f"exit status {completed.returncode}")
-    result = None
-    if (directory / "result.csv").exists():
-        with open(directory / "result.csv") as file:
-            header = [name.strip() for name in next(csv.reader(file))]
-        data = np.loadtxt(directory / "result.csv", delimiter=",", skiprows=1, ndmin=2)
-        prefix = "wheelset_on_track.wheelset_on_track."
-        result = {name.removeprefix(prefix): data[:, i] for i, name in enumerate(header)}
-    return problems, result, wall
+    return problems, read_omsimulator_result(directory / "result.csv"), wall, output
 
 
 def distance(result, reference, start=3e-3, stop_time=0.5):
@@ -323,7 +337,7 @@ def measure_model_exchange(speeds=(1.0, 20.0, 80.0), steps=(5e-5, 1e-4, 2e-4, 5e
         reference = run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)
         for step in steps:
             with tempfile.TemporaryDirectory() as directory:
-                problems, result, wall = run_model_exchange(executable, speed, step, directory)
+                problems, result, wall, _ = run_model_exchange(executable, speed, step, directory)
             complete = result is not None and result["time"][-1] >= 0.5 - 1e-9
             gap = f"{distance(result, reference):.2e}" if complete else "–"
             verdict = "clean" if not problems else f"{len(problems)} errors/warnings"
@@ -337,10 +351,9 @@ def measure_model_exchange_in_the_right_hand_side(speeds, maximum_step=0.1):
     project's master (scripts/ssp_master.py) with the FMUs as Model Exchange, the connections
     solved inside fmpy's CVODE's right-hand side, rows every 10 ms: distance from the 10 µs
     reference and wall time per simulated second (the 0.5 s run less a 10 ms run)."""
-    import time
     ssp = system_ssp()
     settings = ssp_master.ModelExchange(MODEL_EXCHANGE_RELATIVE_TOLERANCE, maximum_step)
-    print(f"\n| speed [m/s] | maximum step [ms] | distance | wall time per simulated second [s] |")
+    print("\n| speed [m/s] | maximum step [ms] | distance | wall time per simulated second [s] |")
     print("|---|---|---|---|")
     for speed in speeds:
         reference = run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)

@@ -532,22 +532,13 @@ impl<M: Model> Instance<M> {
 
     #[cold]
     fn wrong_interface(&mut self, call: Call) -> Status {
-        let (interface, other) = match self.interface {
-            Interface::CoSimulation => (Interface::CoSimulation, Interface::ModelExchange),
-            Interface::ModelExchange => (Interface::ModelExchange, Interface::CoSimulation),
-        };
-        let reason =
-            format!("a {} function, but this instance was instantiated for {}", other.name(), interface.name());
-        self.log.fail(call, &reason)
+        let (own, other) = (self.interface.name(), self.interface.other().name());
+        self.log.fail(call, &format!("a {other} function, but this instance was instantiated for {own}"))
     }
 
     /// Whether an instance of this interface can be in `mode` (a restored FMU state's).
     fn holds(&self, mode: Mode) -> bool {
-        match mode {
-            Mode::StepComplete => self.interface == Interface::CoSimulation,
-            Mode::EventMode | Mode::ContinuousTimeMode => self.interface == Interface::ModelExchange,
-            _ => true,
-        }
+        !self.interface.other().own_modes().contains(mode)
     }
 
     /// Like [`Instance::require`] with other modes than the call's own (an argument error is
@@ -838,10 +829,7 @@ impl<M: Model> Slave for Instance<M> {
         }
         match self.evaluate(CALL, Evaluation::Initialise) {
             Ok(status) => {
-                self.run.mode = match self.interface {
-                    Interface::CoSimulation => Mode::StepComplete,
-                    Interface::ModelExchange => Mode::EventMode,
-                };
+                self.run.mode = self.interface.after_initialization();
                 // Model Exchange: the derivatives are computed at the first read, from the
                 // inputs the master has set by then.
                 self.outputs_stale = self.interface == Interface::ModelExchange;

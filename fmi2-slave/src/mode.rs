@@ -74,6 +74,8 @@ pub const INITIALIZED: Modes = Modes::of(&[StepComplete, EventMode, ContinuousTi
 /// Where the continuous states, their derivatives and the event indicators may be read (Model
 /// Exchange; the states are computed in initialization mode on demand).
 pub const STATES_READABLE: Modes = Modes::of(&[InitializationMode, EventMode, ContinuousTimeMode, Terminated]);
+/// Nowhere.
+pub const NEVER: Modes = Modes::of(&[]);
 
 /// The interface an instance was instantiated for (fmi2Instantiate's `fmuType`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -89,9 +91,30 @@ impl Interface {
             Interface::CoSimulation => "Co-Simulation",
         }
     }
+
+    pub fn other(self) -> Interface {
+        match self {
+            Interface::ModelExchange => Interface::CoSimulation,
+            Interface::CoSimulation => Interface::ModelExchange,
+        }
+    }
+
+    /// The mode fmi2ExitInitializationMode leaves an instance of this interface in.
+    pub fn after_initialization(self) -> Mode {
+        match self {
+            Interface::ModelExchange => EventMode,
+            Interface::CoSimulation => StepComplete,
+        }
+    }
+
+    /// The modes only an instance of this interface is ever in.
+    pub fn own_modes(self) -> Modes {
+        match self {
+            Interface::ModelExchange => Modes::of(&[EventMode, ContinuousTimeMode]),
+            Interface::CoSimulation => Modes::of(&[StepComplete]),
+        }
+    }
 }
-/// Nowhere.
-pub const NEVER: Modes = Modes::of(&[]);
 
 /// The FMI 2.0 calls an instance answers, each with the modes that allow it: the standard's
 /// state-machine table (FMI 2.0.4, section 4.2.4) in one place.

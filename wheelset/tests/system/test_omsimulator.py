@@ -8,11 +8,9 @@ PATH, else /work/oms/OMSimulator/install/bin/OMSimulator (where ../shared/tools/
 builds it); without one the tests skip, saying so. OMSimulator exits with 0 after a failed run
 too, so its output is read for warnings and errors."""
 
-import csv
 import os
 import pathlib
 import re
-import shutil
 import subprocess
 import sys
 
@@ -24,9 +22,6 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 import wheelset_system as ws  # noqa: E402
 
-BUILT_HERE = pathlib.Path("/work/oms/OMSimulator/install/bin/OMSimulator")
-# OMSimulator names a result column model.system.component.variable; both are the SSD's name.
-PREFIX = "wheelset_on_track.wheelset_on_track."
 # OMSimulator steps from t to t + h with h = (t + h) - t, accumulating t, where the project's
 # master takes t = k h and h as given: the step sizes differ in the last bits, and the runs by
 # at most 7.7e-12 m in y and 3.1e-6 of a force's peak (measured 2026-11-28; with the master's
@@ -39,13 +34,6 @@ Y_TOLERANCE = 1e-9
 RELATIVE_TOLERANCE = 1e-4
 
 
-def omsimulator():
-    """The OMSimulator CLI, or None."""
-    if os.environ.get("OMSIMULATOR"):
-        return os.environ["OMSIMULATOR"]
-    return shutil.which("OMSimulator") or (str(BUILT_HERE) if BUILT_HERE.exists() else None)
-
-
 @pytest.fixture(scope="module")
 def ssp(tmp_path_factory):
     return ws.system_ssp(tmp_path_factory.mktemp("ssp") / "wheelset_on_track.ssp")
@@ -54,7 +42,7 @@ def ssp(tmp_path_factory):
 @pytest.fixture(scope="module")
 def omsimulator_run(ssp, tmp_path_factory):
     """(exit status, output, result as {column: array}) of OMSimulator's run of the SSP."""
-    executable = omsimulator()
+    executable = ws.omsimulator()
     if executable is None:
         pytest.skip("OMSimulator not found: set OMSIMULATOR to its CLI or put OMSimulator on PATH "
                     "(built by ../shared/tools/omsimulator/build.sh)")
@@ -64,13 +52,7 @@ def omsimulator_run(ssp, tmp_path_factory):
     completed = subprocess.run([executable, "--resultFile=result.csv", str(ssp)], cwd=directory,
                                capture_output=True, text=True, timeout=600)
     output = completed.stdout + completed.stderr
-    result = None
-    if (directory / "result.csv").exists():
-        with open(directory / "result.csv") as file:
-            header = [name.strip() for name in next(csv.reader(file))]
-        data = np.loadtxt(directory / "result.csv", delimiter=",", skiprows=1, ndmin=2)
-        result = {name.removeprefix(PREFIX): data[:, i] for i, name in enumerate(header)}
-    return completed.returncode, output, result
+    return completed.returncode, output, ws.read_omsimulator_result(directory / "result.csv")
 
 
 def communication_points(result):
@@ -86,7 +68,7 @@ def communication_points(result):
 def test_omsimulator_runs_the_packaged_ssp_without_a_warning_or_an_error(omsimulator_run):
     status, output, result = omsimulator_run
     assert status == 0, output
-    problems = [line for line in output.splitlines() if re.match(r"\s*(warning|error)\b", line, re.IGNORECASE)]
+    problems = ws.omsimulator_problems(output)
     assert problems == [], output
     # The summary OMSimulator prints when there were any ("info:    1 warnings").
     assert not re.search(r"\b[1-9]\d* (warnings|errors)\b", output), output
@@ -128,27 +110,17 @@ def test_omsimulator_runs_the_model_exchange_system_with_cvode_within_1_percent_
         ssp, tmp_path, speed, maximum_step):
     """The distance of docs/coupling-stability.md: max over t = 10, 20, …, 500 ms of
     |y(t) − y_ref(t)| / y0, y_ref the project's master at 10 µs (Co-Simulation, the same FMUs)."""
-    executable = omsimulator()
+    executable = ws.omsimulator()
     if executable is None:
         pytest.skip("OMSimulator not found: set OMSIMULATOR to its CLI or put OMSimulator on PATH")
-    model_exchange = ws.model_exchange_ssp(tmp_path / "me.ssp", maximum_step, forward_speed=speed)
-    completed = subprocess.run([executable, "--resultFile=result.csv", "--stopTime=0.5", str(model_exchange)],
-                               cwd=tmp_path, capture_output=True, text=True, timeout=600)
-    output = completed.stdout + completed.stderr
-    problems = [line for line in output.splitlines() if re.match(r"\s*(warning|error)\b", line, re.IGNORECASE)]
-    assert completed.returncode == 0 and problems == [], output
+    problems, result, _, output = ws.run_model_exchange(executable, speed, maximum_step, tmp_path)
+    # No warning, no error, exit status 0.
+    assert problems == [], output
     # CVODE ran (its final statistics), so the FMUs were Model Exchange instances.
     assert "NumSteps" in output and "NumRhsEvals" in output, output
-    with open(tmp_path / "result.csv") as file:
-        header = [name.strip() for name in next(csv.reader(file))]
-    data = np.loadtxt(tmp_path / "result.csv", delimiter=",", skiprows=1, ndmin=2)
-    result = {name.removeprefix(PREFIX): data[:, i] for i, name in enumerate(header)}
     assert result["time"][-1] == pytest.approx(0.5, abs=1e-9)
     reference = ws.run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)
-    times = np.arange(1, 51) * 0.01
-    y = np.interp(times, result["time"], result[ws.DISPLACEMENT])
-    y_reference = np.interp(times, reference["time"], reference[ws.DISPLACEMENT])
-    distance = np.max(np.abs(y - y_reference)) / 3e-3
+    distance = ws.distance(result, reference)
     assert distance < MODEL_EXCHANGE_DISTANCE, f"{speed} m/s: distance {distance:.3e}"
     # The wheels' spin stays in rolling (|Ω r_c/V − 1| ≪ 1): a held-connection instability shows there first.
     creepage = result["wheelset.wheel_angular_speed"] * 0.45990634083 / speed - 1.0
