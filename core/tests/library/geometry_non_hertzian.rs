@@ -443,3 +443,26 @@ fn every_answer_is_finite_or_an_error() {
     println!("{answered} answered, {refused} refused");
     assert!(answered >= 150, "{answered}");
 }
+
+/// The equivalent ellipse spans the patch's strips: its edges lie beyond the centres of the
+/// outermost strips in contact and within their neighbours' (the zero of the virtual penetration
+/// is found between them), so 2b lies between the strips' width less half the outermost ones and
+/// their width plus half of them (strips of one region abut: their centres are a width apart).
+#[test]
+fn the_equivalent_ellipse_spans_the_strips_in_contact() {
+    let pair = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    for (lateral, load) in [(2e-3, 10e3), (2e-3, 60e3), (7e-3, 10e3), (7e-3, 60e3)] {
+        let position = WheelsetPosition { lateral, ..WheelsetPosition::default() };
+        let contact = pair.non_hertzian_patches_for_force(load, &position).unwrap();
+        assert_eq!(contact.patches.len(), 1, "y_ws {lateral}, {load} N");
+        let patch = &contact.patches[0];
+        let widths: f64 = patch.strips.iter().map(|s| s.width).sum();
+        let ends = 0.5 * (patch.strips[0].width + patch.strips[patch.strips.len() - 1].width);
+        let span = 2.0 * patch.patch.ellipse.semi_axis_b;
+        println!("y_ws {lateral}, {load} N: 2b {span:e}, strips {widths:e} ± {ends:e}");
+        assert!(
+            span > widths - ends && span < widths + ends,
+            "y_ws {lateral}, {load} N: 2b {span} against {widths} ± {ends}"
+        );
+    }
+}
