@@ -27,7 +27,8 @@ enum Causality {
     Input,
     Parameter,
     Output,
-    /// A state derivative (the only locals this generator accepts).
+    /// A state derivative, or a continuous state that is neither input nor output (the only
+    /// locals this generator accepts).
     Local,
 }
 
@@ -297,8 +298,8 @@ fn read_variables(
                 .parse::<usize>()
                 .unwrap_or_else(|_| fail(format!("variable {name}: derivative = {index} is not an index")))
         });
-        if (causality == Causality::Local) != derivative.is_some() {
-            fail(format!("variable {name}: the locals, and only they, are state derivatives (with `derivative`)"));
+        if derivative.is_some() && causality != Causality::Local {
+            fail(format!("variable {name}: only locals can be state derivatives (with `derivative`)"));
         }
         let nominal = type_element.attribute("nominal").map(|nominal| match nominal.parse::<f64>() {
             Ok(value) if value.is_finite() && value > 0.0 => value,
@@ -355,6 +356,14 @@ fn read_variables(
             )),
         }
     }
+    for v in variables.iter().filter(|v| v.causality == Causality::Local && v.derivative.is_none()) {
+        if !variables.iter().any(|d| d.derivative == Some(v.index)) {
+            fail(format!(
+                "local {}: a local is a state derivative (with `derivative`) or the continuous state of one",
+                v.name
+            ));
+        }
+    }
     variables
 }
 
@@ -377,49 +386,50 @@ fn write_continuous_states(source: &mut String, variables: &[Variable]) {
 }
 
 /// The dependencies declared by name in `<ModelStructure>`: one `<Output name dependsOn>` per
-/// output, in the order of the outputs, each on inputs and parameters; one `<Derivative name
+/// output, in the order of the outputs, each on inputs, parameters and continuous states; one `<Derivative name
 /// dependsOn>` per state derivative, in order, each on inputs and continuous states. Unknown
 /// names, an entry missing or out of order, or a dependency of another kind stop the build.
 fn read_model_structure(root: roxmltree::Node, variables: &[Variable]) -> Dependencies {
     let structure = child(root, "ModelStructure").unwrap_or_else(|| fail("no <ModelStructure>".into()));
     let by_name: BTreeMap<&str, &Variable> = variables.iter().map(|v| (v.name.as_str(), v)).collect();
     let states: BTreeSet<usize> = variables.iter().filter_map(|v| v.derivative).collect();
-    let declared = |element: &str, causality: Causality, known: &dyn Fn(&Variable) -> bool, kinds: &str| {
-        let expected: Vec<&str> =
-            variables.iter().filter(|v| v.causality == causality).map(|v| v.name.as_str()).collect();
-        let entries: Vec<(&str, Vec<usize>)> = elements(structure, element)
-            .map(|entry| {
-                let name = entry.attribute("name").unwrap_or_else(|| fail(format!("an <{element}> lacks its name")));
-                let depends_on = entry
-                    .attribute("dependsOn")
-                    .unwrap_or_else(|| fail(format!("<{element} name=\"{name}\"> must list what it dependsOn")));
-                let mut indices: Vec<usize> = depends_on
-                    .split_whitespace()
-                    .map(|dependency| match by_name.get(dependency) {
-                        Some(v) if known(v) => v.index,
-                        _ => fail(format!("{name} cannot depend on `{dependency}`: not {kinds}")),
-                    })
-                    .collect();
-                indices.sort_unstable();
-                indices.dedup();
-                (name, indices)
-            })
-            .collect();
-        if entries.iter().map(|(name, _)| *name).collect::<Vec<_>>() != expected {
-            fail(format!("<ModelStructure> must declare exactly the {element}s {expected:?}, in order"));
-        }
-        entries.into_iter().map(|(_, indices)| indices).collect()
-    };
+    let declared =
+        |element: &str, selected: &dyn Fn(&Variable) -> bool, known: &dyn Fn(&Variable) -> bool, kinds: &str| {
+            let expected: Vec<&str> = variables.iter().filter(|v| selected(v)).map(|v| v.name.as_str()).collect();
+            let entries: Vec<(&str, Vec<usize>)> = elements(structure, element)
+                .map(|entry| {
+                    let name =
+                        entry.attribute("name").unwrap_or_else(|| fail(format!("an <{element}> lacks its name")));
+                    let depends_on = entry
+                        .attribute("dependsOn")
+                        .unwrap_or_else(|| fail(format!("<{element} name=\"{name}\"> must list what it dependsOn")));
+                    let mut indices: Vec<usize> = depends_on
+                        .split_whitespace()
+                        .map(|dependency| match by_name.get(dependency) {
+                            Some(v) if known(v) => v.index,
+                            _ => fail(format!("{name} cannot depend on `{dependency}`: not {kinds}")),
+                        })
+                        .collect();
+                    indices.sort_unstable();
+                    indices.dedup();
+                    (name, indices)
+                })
+                .collect();
+            if entries.iter().map(|(name, _)| *name).collect::<Vec<_>>() != expected {
+                fail(format!("<ModelStructure> must declare exactly the {element}s {expected:?}, in order"));
+            }
+            entries.into_iter().map(|(_, indices)| indices).collect()
+        };
     Dependencies {
         outputs: declared(
             "Output",
-            Causality::Output,
-            &|v| matches!(v.causality, Causality::Input | Causality::Parameter),
-            "an input or parameter",
+            &|v| v.causality == Causality::Output,
+            &|v| matches!(v.causality, Causality::Input | Causality::Parameter) || states.contains(&v.index),
+            "an input, parameter or continuous state",
         ),
         derivatives: declared(
             "Derivative",
-            Causality::Local,
+            &|v| v.derivative.is_some(),
             &|v| v.causality == Causality::Input || states.contains(&v.index),
             "an input or continuous state",
         ),
@@ -427,15 +437,17 @@ fn read_model_structure(root: roxmltree::Node, variables: &[Variable]) -> Depend
 }
 
 /// The standard's `<ModelStructure>` (FMI 2.0, §2.2.8) from the declared dependencies: under
-/// `<Outputs>` each output's inputs (an output that is a continuous state: that state, what it
-/// is in Model Exchange), under `<Derivatives>` each state derivative's inputs and states, under
-/// `<InitialUnknowns>` (the outputs and derivatives: all have initial="calculated", in index
-/// order) an output's inputs and parameters, a derivative's everything (no list).
+/// `<Outputs>` each output's inputs and continuous states (an output that is a continuous state:
+/// that state, what it is in Model Exchange), under `<Derivatives>` each state derivative's
+/// inputs and states, under `<InitialUnknowns>` (the outputs, derivatives and local states: all
+/// have initial="calculated", in index order) an output's inputs and parameters (its states are
+/// calculated too, so not knowns there), a derivative's or local state's everything (no list).
 fn standard_model_structure(variables: &[Variable], dependencies: &Dependencies) -> String {
     let by_index: BTreeMap<usize, &Variable> = variables.iter().map(|v| (v.index, v)).collect();
     let states: BTreeSet<usize> = variables.iter().filter_map(|v| v.derivative).collect();
     let outputs: Vec<&Variable> = variables.iter().filter(|v| v.causality == Causality::Output).collect();
-    let derivatives: Vec<&Variable> = variables.iter().filter(|v| v.causality == Causality::Local).collect();
+    let derivatives: Vec<&Variable> = variables.iter().filter(|v| v.derivative.is_some()).collect();
+    let local_states = variables.iter().filter(|v| v.causality == Causality::Local && v.derivative.is_none());
     let unknown = |xml: &mut String, index: usize, on: &[usize]| {
         let on: Vec<String> = on.iter().map(usize::to_string).collect();
         let kinds = vec!["dependent"; on.len()].join(" ");
@@ -451,7 +463,7 @@ fn standard_model_structure(variables: &[Variable], dependencies: &Dependencies)
         let on: Vec<usize> = if states.contains(&output.index) {
             vec![output.index]
         } else {
-            all.iter().copied().filter(|i| by_index[i].causality == Causality::Input).collect()
+            all.iter().copied().filter(|i| by_index[i].causality == Causality::Input || states.contains(i)).collect()
         };
         unknown(&mut xml, output.index, &on);
     }
@@ -467,11 +479,12 @@ fn standard_model_structure(variables: &[Variable], dependencies: &Dependencies)
     let mut initial: Vec<(usize, Option<&Vec<usize>>)> =
         outputs.iter().zip(&dependencies.outputs).map(|(v, all)| (v.index, Some(all))).collect();
     initial.extend(derivatives.iter().map(|v| (v.index, None)));
+    initial.extend(local_states.map(|v| (v.index, None)));
     initial.sort_unstable_by_key(|(index, _)| *index);
     for (index, all) in initial {
         match all {
             Some(all) => {
-                let all: Vec<String> = all.iter().map(usize::to_string).collect();
+                let all: Vec<String> = all.iter().filter(|i| !states.contains(i)).map(usize::to_string).collect();
                 writeln!(xml, "      <Unknown index=\"{index}\" dependencies=\"{}\"/>", all.join(" ")).unwrap();
             }
             None => writeln!(xml, "      <Unknown index=\"{index}\"/>").unwrap(),
@@ -573,7 +586,12 @@ fn write_structs(source: &mut String, variables: &[Variable]) {
         ("Inputs", Causality::Input, "The inputs (causality = input)."),
         ("Parameters", Causality::Parameter, "The parameters (causality = parameter)."),
         ("Outputs", Causality::Output, "The outputs (causality = output), as last computed."),
-        ("Locals", Causality::Local, "The state derivatives (causality = local), as last computed."),
+        (
+            "Locals",
+            Causality::Local,
+            "The state derivatives and the continuous states that are neither inputs nor outputs (causality = \
+             local), as last computed.",
+        ),
     ];
     for (struct_name, causality, doc) in groups {
         writeln!(
@@ -757,9 +775,8 @@ fn write_table(source: &mut String, variables: &[Variable], dependencies: &Depen
                 .filter(|i| by_index[*i].causality == Causality::Input)
                 .map(|i| by_index[i].value_reference)
                 .collect()
-        } else if v.causality == Causality::Local {
-            let position =
-                variables.iter().filter(|o| o.causality == Causality::Local).position(|o| o.index == v.index);
+        } else if v.derivative.is_some() {
+            let position = variables.iter().filter(|o| o.derivative.is_some()).position(|o| o.index == v.index);
             dependencies.derivatives[position.unwrap()].iter().map(|i| by_index[i].value_reference).collect()
         } else {
             Vec::new()

@@ -248,11 +248,18 @@ pub trait Model: Sized {
     fn model_exchange_problem(_state: &Self::State) -> Option<String> {
         None
     }
-    /// fmi2CompletedIntegratorStep (Model Exchange): whether the model can go on from `state`,
-    /// the master's accepted point at `time`, or why not (the reason names the variable and its
+    /// fmi2CompletedIntegratorStep (Model Exchange), with the outputs and derivatives up to date
+    /// at `state`, the master's accepted point at `time`: `Ok(true)` if the model asks for event
+    /// mode there (a step event: a continuous state to reset, [`Model::new_discrete_states`]),
+    /// `Ok(false)` to go on, or why it cannot go on (the reason names the variable and its
     /// value).
-    fn completed_integrator_step(&mut self, _state: &Self::State, _time: f64) -> Result<(), String> {
-        Ok(())
+    fn completed_integrator_step(&mut self, _state: &Self::State, _time: f64) -> Result<bool, String> {
+        Ok(false)
+    }
+    /// fmi2NewDiscreteStates (Model Exchange, event mode), with the outputs up to date at
+    /// `state`: resets the continuous states the event calls for, in place; whether any changed.
+    fn new_discrete_states(&mut self, _state: &mut Self::State) -> bool {
+        false
     }
     /// fmi2SetFMUstate is about to replace `current` by `restored`.
     fn restoring(&mut self, _current: &Self::State, _restored: &Self::State) {}
@@ -1128,25 +1135,31 @@ impl<M: Model> Slave for Instance<M> {
         self.enter(Call::EnterEventMode, Mode::EventMode)
     }
 
-    /// Nothing discrete to update and no time events: the event iteration ends at once.
+    /// The model resets what the event calls for ([`Model::new_discrete_states`]); no discrete
+    /// states and no time events, so the event iteration ends at once.
     fn new_discrete_states(&mut self) -> Result<EventInfo, Status> {
-        self.require(Call::NewDiscreteStates)?;
-        self.log.trace(|| Call::NewDiscreteStates.name().to_owned());
-        Ok(EventInfo::default())
+        const CALL: Call = Call::NewDiscreteStates;
+        self.require(CALL)?;
+        self.refresh(CALL)?;
+        let values_of_continuous_states_changed = self.model.new_discrete_states(&mut self.run.model);
+        self.outputs_stale |= values_of_continuous_states_changed;
+        self.log.trace(|| format!("{CALL}: continuous states changed: {values_of_continuous_states_changed}"));
+        Ok(EventInfo { values_of_continuous_states_changed, ..EventInfo::default() })
     }
 
     fn enter_continuous_time_mode(&mut self) -> Status {
         self.enter(Call::EnterContinuousTimeMode, Mode::ContinuousTimeMode)
     }
 
-    /// The model checks the accepted point ([`Model::completed_integrator_step`]); no step
-    /// events, so neither flag is ever set.
+    /// The model checks the accepted point and may ask for a step event
+    /// ([`Model::completed_integrator_step`]); the simulation is never terminated here.
     fn completed_integrator_step(&mut self) -> Result<(bool, bool), Status> {
         const CALL: Call = Call::CompletedIntegratorStep;
         self.require(CALL)?;
         self.log.trace(|| format!("{CALL}: time {}", self.run.time));
+        self.refresh(CALL)?;
         match self.model.completed_integrator_step(&self.run.model, self.run.time) {
-            Ok(()) => Ok((false, false)),
+            Ok(enter_event_mode) => Ok((enter_event_mode, false)),
             Err(reason) => Err(self.log.fail(CALL, &reason)),
         }
     }

@@ -165,6 +165,42 @@ fn a_continuous_state_gets_its_derivative_structure_and_table() {
     assert!(plain.contains("pub const MODEL_EXCHANGE: bool = false;"), "{plain}");
 }
 
+/// A continuous state that is neither input nor output (a local, as the contact FMU's relaxed
+/// forces): a continuous state of Model Exchange, not an output, and an initial unknown.
+#[test]
+fn a_local_continuous_state_is_a_state_and_an_initial_unknown() {
+    let local = WITH_STATE
+        .replace(
+            "name=\"position\" valueReference=\"200\" causality=\"output\"",
+            "name=\"position\" valueReference=\"250\" causality=\"local\"",
+        )
+        .replace(
+            "  </ModelVariables>",
+            "    <ScalarVariable name=\"reading\" valueReference=\"200\" causality=\"output\" variability=\"continuous\" description=\"A reading of the position\">\n      <Real unit=\"m\"/>\n    </ScalarVariable>\n  </ModelVariables>",
+        )
+        .replace("<Output name=\"position\" dependsOn=\"start\"/>", "<Output name=\"reading\" dependsOn=\"start position speed\"/>");
+    let (source, packaged) = generate(&local, "local state").unwrap();
+    // The output (5) depends on the input (1) and the state (3) in <Outputs>; as an initial
+    // unknown on the input and the parameter (2) only: the state is calculated too.
+    let structure = "<ModelStructure>\n    <Outputs>\n      <Unknown index=\"5\" dependencies=\"1 3\" dependenciesKind=\"dependent dependent\"/>\n    </Outputs>\n    <Derivatives>\n      <Unknown index=\"4\" dependencies=\"1 3\" dependenciesKind=\"dependent dependent\"/>\n    </Derivatives>\n    <InitialUnknowns>\n      <Unknown index=\"3\"/>\n      <Unknown index=\"4\"/>\n      <Unknown index=\"5\" dependencies=\"1 2\"/>\n    </InitialUnknowns>\n  </ModelStructure>";
+    assert!(packaged.contains(structure), "{packaged}");
+    assert!(source.contains("pub const CONTINUOUS_STATES: &[(u32, u32, f64)] = &[(250, 300, 0.001)];"), "{source}");
+    assert!(source.contains("value_reference::POSITION => Some(self.locals.position),"), "{source}");
+    // The state's row has no dependencies (it is no output); its derivative's has its own.
+    assert!(source.contains("name: \"position\", value_reference: 250, causality: Causality::Local"), "{source}");
+    assert!(source.contains("dependencies: &[0, 250] }"), "{source}");
+    // A second local that is neither a derivative nor the state of one.
+    let stray = local.replace(
+        "  </ModelVariables>",
+        "    <ScalarVariable name=\"stray\" valueReference=\"251\" causality=\"local\" variability=\"continuous\" description=\"?\">\n      <Real unit=\"m\"/>\n    </ScalarVariable>\n  </ModelVariables>",
+    );
+    assert_eq!(
+        generate(&stray, "stray").expect_err("stray"),
+        "modelDescription.xml: local stray: a local is a state derivative (with `derivative`) or the continuous state \
+         of one"
+    );
+}
+
 #[test]
 fn malformed_states_are_refused_by_their_fault() {
     let refusal = |name: &str, from: &str, to: &str| -> String {
@@ -199,7 +235,16 @@ fn malformed_states_are_refused_by_their_fault() {
     );
     assert_eq!(
         refusal("no derivative", " derivative=\"3\"", ""),
-        "modelDescription.xml: variable der(position): the locals, and only they, are state derivatives (with `derivative`)"
+        "modelDescription.xml: local der(position): a local is a state derivative (with `derivative`) or the \
+         continuous state of one"
+    );
+    assert_eq!(
+        refusal(
+            "derivative output",
+            "valueReference=\"300\" causality=\"local\"",
+            "valueReference=\"300\" causality=\"output\""
+        ),
+        "modelDescription.xml: variable der(position): only locals can be state derivatives (with `derivative`)"
     );
     assert_eq!(
         refusal("parameter", "dependsOn=\"speed position\"", "dependsOn=\"speed start\""),

@@ -22,7 +22,7 @@ use fmi2_slave::instance::{Evaluation, FmuState, Model};
 use wheel_rail_contact::scene::Evaluation as SceneEvaluation;
 
 use crate::mode::Mode;
-use crate::model_description::{self, access_of, Switch, Variable, VARIABLES};
+use crate::model_description::{self, access_of, ContactGeometry, Switch, Variable, VARIABLES};
 use crate::resources::resource_directory;
 use crate::scene::{update_outputs, ContactCache};
 use crate::snapshot::{self, ContactState};
@@ -55,6 +55,7 @@ impl Model for ContactModel {
     const PROVIDES_DIRECTIONAL_DERIVATIVE: bool = true;
     const MODEL_EXCHANGE: bool = model_description::MODEL_EXCHANGE;
     const EVENT_INDICATORS: usize = model_description::EVENT_INDICATORS;
+    const CONTINUOUS_STATES: &'static [(u32, u32, f64)] = model_description::CONTINUOUS_STATES;
 
     /// Refused with a missing or corrupted `exact_table` table in the resources directory. A
     /// resource location that names no directory is not an error: only a relative profile path
@@ -126,10 +127,16 @@ impl Model for ContactModel {
     /// and the contact's state change only if every output is finite. Direct feedthrough (new
     /// inputs read back before the next step) is a step of zero length whose state is dropped:
     /// the outputs at the new inputs, with the relaxed forces and the exact theory's warm start
-    /// as the last step left them.
+    /// as the last step left them. So is every evaluation of Model Exchange, at the continuous
+    /// states the master set: the relaxed forces' rate is the state derivative.
+    ///
+    /// The relaxed forces are the locals `relaxed_force_*` (Model Exchange's continuous states):
+    /// the scene starts from them and, when a step or the start moves them, they take the
+    /// scene's.
     #[inline]
     fn evaluate(&mut self, state: &mut ContactState, evaluation: Evaluation) -> Result<Option<String>, String> {
         let ContactState { values, strings, scene, wheel, profiles } = state;
+        scene.relaxed_forces = [values.locals.relaxed_force_longitudinal, values.locals.relaxed_force_lateral];
         let warning = match evaluation {
             Evaluation::Initialise => {
                 update_outputs(values, strings, &mut self.cache, scene, wheel, SceneEvaluation::Initialise)?
@@ -139,23 +146,57 @@ impl Model for ContactModel {
             }
             Evaluation::Feedthrough { .. } => {
                 let (mut scene, mut wheel) = (scene.clone(), wheel.clone());
-                update_outputs(values, strings, &mut self.cache, &mut scene, &mut wheel, SceneEvaluation::Step(0.0))?
+                let warning = update_outputs(
+                    values,
+                    strings,
+                    &mut self.cache,
+                    &mut scene,
+                    &mut wheel,
+                    SceneEvaluation::Step(0.0),
+                )?;
+                *profiles = self.cache.profile_digest();
+                return Ok(warning);
             }
         };
+        [values.locals.relaxed_force_longitudinal, values.locals.relaxed_force_lateral] = scene.relaxed_forces;
         *profiles = self.cache.profile_digest();
         Ok(warning)
     }
 
-    /// The relaxed forces advance only over Co-Simulation steps: Model Exchange would hold them.
+    /// With profiles each patch relaxes on its own, and patches come and go: not continuous
+    /// states of a fixed number.
     fn model_exchange_problem(state: &ContactState) -> Option<String> {
-        (state.values.parameters.creep_relaxation != Switch::Off as i32).then(|| {
-            format!(
-                "creep_relaxation = {} is not available in Model Exchange: its relaxed forces advance over \
-                 Co-Simulation steps, and Model Exchange evaluates the contact algebraically (no continuous states); \
-                 set creep_relaxation = 0 (off) or instantiate for Co-Simulation",
-                state.values.parameters.creep_relaxation
-            )
-        })
+        let parameters = &state.values.parameters;
+        (parameters.creep_relaxation != Switch::Off as i32
+            && parameters.contact_geometry == ContactGeometry::Profiles as i32)
+            .then(|| {
+                format!(
+                    "creep_relaxation = {} with contact_geometry = {} (profiles) is not available in Model \
+                     Exchange: each patch's relaxed forces are its own, and patches appear, merge and vanish as \
+                     the wheelset moves, so they are no fixed set of continuous states; set creep_relaxation = 0 \
+                     (off), use contact_geometry = 1 (ellipse), or instantiate for Co-Simulation",
+                    parameters.creep_relaxation, parameters.contact_geometry
+                )
+            })
+    }
+
+    /// A step event where the relaxed forces (the continuous states) lie beyond the friction
+    /// limit μQ of the accepted point: the outputs are already their projection onto it (the
+    /// scene's [`within_friction_limit`](wheel_rail_contact::scene)), and the event moves the
+    /// states there, as a Co-Simulation step does at its end.
+    fn completed_integrator_step(&mut self, state: &ContactState, _time: f64) -> Result<bool, String> {
+        Ok(beyond_friction_limit(state))
+    }
+
+    /// The relaxed forces set to their projection onto the friction limit (the outputs).
+    fn new_discrete_states(&mut self, state: &mut ContactState) -> bool {
+        let beyond = beyond_friction_limit(state);
+        if beyond {
+            let values = &mut state.values;
+            values.locals.relaxed_force_longitudinal = values.outputs.force_longitudinal;
+            values.locals.relaxed_force_lateral = values.outputs.force_lateral;
+        }
+        beyond
     }
 
     #[inline]
@@ -198,6 +239,17 @@ impl Model for ContactModel {
     fn check_state(state: &ContactState, mode: Mode) -> Result<(), String> {
         snapshot::check_state(state, mode)
     }
+}
+
+/// Whether the relaxed forces (one patch, relaxation on) differ from the output forces, their
+/// projection onto the friction limit: bit for bit equal within the limit (a step of zero length
+/// leaves them exactly), so any difference is the projection (or a lift-off, which zeroes them).
+fn beyond_friction_limit(state: &ContactState) -> bool {
+    let ContactState { values, .. } = state;
+    values.parameters.creep_relaxation != Switch::Off as i32
+        && values.parameters.contact_geometry != ContactGeometry::Profiles as i32
+        && (values.locals.relaxed_force_longitudinal != values.outputs.force_longitudinal
+            || values.locals.relaxed_force_lateral != values.outputs.force_lateral)
 }
 
 #[cfg(test)]

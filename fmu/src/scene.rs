@@ -359,6 +359,8 @@ pub(crate) fn update_outputs(
                 values.outputs = outputs(&SceneOutput::default(), &WheelOutputs::default());
             }
             write_patch_outputs(&mut values.outputs, &output);
+            [values.locals.der_relaxed_force_longitudinal, values.locals.der_relaxed_force_lateral] =
+                output.relaxation_rate.map(|rate| rate + 0.0);
             *scene_state = next_state;
             Ok(unconverged_warning(&output))
         }
@@ -372,6 +374,8 @@ pub(crate) fn update_outputs(
             let outputs = outputs(&SceneOutput::default(), &WheelOutputs::of(&output));
             finite(&outputs)?;
             values.outputs = outputs;
+            // The patches' relaxed forces are in the wheel's state, not continuous states.
+            [values.locals.der_relaxed_force_longitudinal, values.locals.der_relaxed_force_lateral] = [0.0; 2];
             *wheel_state = next_state;
             Ok(warning)
         }
@@ -403,6 +407,7 @@ fn patch_outputs_finite(scene: &SceneOutput) -> bool {
         contact_semi_axis_b,
         max_pressure,
         approach,
+        relaxation_rate: [rate_longitudinal, rate_lateral],
         unconverged_grid: _,
     } = *scene;
     all_finite(&[
@@ -419,6 +424,8 @@ fn patch_outputs_finite(scene: &SceneOutput) -> bool {
         contact_semi_axis_b,
         max_pressure,
         approach,
+        rate_longitudinal,
+        rate_lateral,
     ])
 }
 

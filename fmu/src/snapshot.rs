@@ -98,9 +98,12 @@ pub(crate) fn decode_payload(payload: &[u8]) -> Result<Snapshot, String> {
 /// a valid scene state. Inputs and parameters may hold any value, as after
 /// fmi2SetReal/fmi2SetInteger: an invalid one is reported by the next evaluation, naming it.
 pub(crate) fn check_state(state: &ContactState, _mode: Mode) -> Result<(), String> {
-    for variable in VARIABLES.iter().filter(|variable| variable.causality == Causality::Output) {
+    // The outputs, and the locals (the relaxed forces and their rates).
+    for variable in
+        VARIABLES.iter().filter(|variable| matches!(variable.causality, Causality::Output | Causality::Local))
+    {
         if let Some(value) = state.values.real(variable.value_reference).filter(|value| !value.is_finite()) {
-            return Err(format!("{} = {value} is invalid: an output is always finite", variable.name));
+            return Err(format!("{} = {value} is invalid: an output or local is always finite", variable.name));
         }
     }
     state.scene.validate().map_err(|error| error.to_string())?;

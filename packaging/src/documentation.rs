@@ -304,11 +304,16 @@ on was set within a step is computed at the new inputs, without advancing the ti
 feedthrough, as <code>&lt;ModelStructure&gt;</code> declares), so a master can solve an algebraic loop through
 the unit.</p>
 <p><b>Model Exchange.</b> The same binary is also an FMI 2.0 Model Exchange FMU (<code>&lt;ModelExchange&gt;</code>
-beside <code>&lt;CoSimulation&gt;</code>, one modelIdentifier): the unit is algebraic — no continuous states, no
-event indicators — and an output read in event or continuous-time mode is computed at the inputs set at that
-moment, bit for bit what a Co-Simulation step at those inputs gives. <code>creep_relaxation</code> = on, whose
-relaxed forces advance over Co-Simulation steps, is refused at fmi2ExitInitializationMode with the reason. Each
-interface refuses the other's functions (fmi2Error naming both).</p>
+beside <code>&lt;CoSimulation&gt;</code>, one modelIdentifier): the unit is algebraic in its inputs — no event
+indicators — and an output read in event or continuous-time mode is computed at the inputs set at that moment, bit
+for bit what a Co-Simulation step at those inputs gives. Its two continuous states are the relaxed forces
+<code>relaxed_force_longitudinal</code>, <code>relaxed_force_lateral</code> of <code>creep_relaxation</code>, with
+the relaxation law dF/dt = (V<sub>r</sub>/L)(F<sub>ss</sub> − F) as their derivatives (0 with relaxation off); the
+output forces are the states projected onto the friction limit μQ, and where that moves them a step event
+(fmi2CompletedIntegratorStep) lets fmi2NewDiscreteStates move the states onto the limit. With
+<code>contact_geometry</code> = profiles, <code>creep_relaxation</code> = on is refused at
+fmi2ExitInitializationMode (each patch relaxes on its own, and patches come and go). Each interface refuses the
+other's functions (fmi2Error naming both).</p>
 
 <h2>Sign convention and units</h2>
 <p>Kalker's and CONTACT's convention: x in the rolling direction, y lateral, z the contact normal into the wheel;

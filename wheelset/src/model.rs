@@ -231,14 +231,14 @@ impl Model for WheelsetModel {
     }
 
     /// Model Exchange's accepted point must lie within the derailment bound, where a step of
-    /// Co-Simulation stops too.
-    fn completed_integrator_step(&mut self, state: &Wheelset, time: f64) -> Result<(), String> {
+    /// Co-Simulation stops too; no step events.
+    fn completed_integrator_step(&mut self, state: &Wheelset, time: f64) -> Result<bool, String> {
         let (lateral_displacement, limit) =
             (state.values.outputs.wheelset_lateral_displacement, state.values.parameters.derailment_displacement);
         if lateral_displacement.abs() > limit {
             return Err(describe(WheelsetError::Derailed { lateral_displacement, limit }, time));
         }
-        Ok(())
+        Ok(false)
     }
 
     fn encode(state: &FmuState<Wheelset>) -> Vec<u8> {

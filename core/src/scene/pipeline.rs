@@ -205,6 +205,10 @@ pub struct SceneOutput {
     pub max_pressure: f64,
     /// Hertz's approach δ \[m\] (0 with the ellipse from the inputs).
     pub approach: f64,
+    /// d[F_x, F_y]/dt of the relaxed forces at the state this evaluation leaves, (V_r/L)(F_ss − F)
+    /// [N/s] ([`super::relaxation`]): Model Exchange's state derivative. 0 without creep
+    /// relaxation, at the start (F = F_ss) and where the contact transmits no force.
+    pub relaxation_rate: [f64; 2],
     /// The exact theory's grid when its iteration stopped at its limits
     /// ([`crate::models::exact::MAX_ITERATIONS`] Newton steps or
     /// [`crate::models::exact::MAX_PRODUCTS`] products) without converging: the outputs are
@@ -435,7 +439,7 @@ impl Scene {
         let step = model
             .creep_forces_in_sequence(&contact, &state.model, &mut cache.model)
             .map_err(|refusal| self.attributed(refusal, input, &ellipse))?;
-        let (forces, relaxed_forces) = match self.relaxation {
+        let (forces, relaxed_forces, relaxation_rate) = match self.relaxation {
             Relaxation::On { length } => relax_forces(
                 &contact,
                 &step.forces,
@@ -445,7 +449,7 @@ impl Scene {
                 length,
                 evaluation,
             )?,
-            Relaxation::Off => (step.forces, state.relaxed_forces),
+            Relaxation::Off => (step.forces, state.relaxed_forces, [0.0; 2]),
         };
         let output = SceneOutput {
             force_longitudinal: forces.force_longitudinal,
@@ -461,6 +465,7 @@ impl Scene {
             contact_semi_axis_b: ellipse.semi_axis_b,
             max_pressure: ellipse.max_pressure,
             approach: ellipse.approach,
+            relaxation_rate,
             unconverged_grid: step.unconverged_grid,
         };
         Ok((output, SceneState { relaxed_forces, model: step.memory }))
@@ -537,6 +542,7 @@ impl Scene {
             contact_semi_axis_b: d.semi_axis_b,
             max_pressure: max_pressure.eps,
             approach: 0.0,
+            relaxation_rate: [0.0; 2],
             unconverged_grid: None,
         })
     }
@@ -602,8 +608,9 @@ fn relaxation_lengths(contact: &ContactInput, length: f64) -> Result<RelaxationL
     }
 }
 
-/// The relaxed forces at the end of this evaluation, and the output forces from them: F_x and
-/// F_y relaxed, M_z the steady state's, the utilisation against the friction `friction` applied.
+/// The relaxed forces at the end of this evaluation, the output forces from them, and their rate
+/// there: F_x and F_y relaxed, M_z the steady state's, the utilisation against the friction
+/// `friction` applied; the rate (V_r/L)(F_ss − F) of [`RelaxationLengths::rate`].
 ///
 /// The relaxed force never exceeds the friction limit μQ of this evaluation's μ and Q
 /// ([`within_friction_limit`]): relaxation lags the build-up of the elastic deformation, but no
@@ -618,17 +625,17 @@ fn relax_forces(
     renewal_speed: f64,
     relaxation_length: f64,
     evaluation: Evaluation,
-) -> Result<(CreepForces, [f64; 2]), InvalidInput> {
+) -> Result<(CreepForces, [f64; 2], [f64; 2]), InvalidInput> {
     if contact.transmits_no_force() {
         // Lift-off or no friction: the contact holds no elastic deformation to relax.
-        return Ok((CreepForces { spin_moment: steady.spin_moment, ..CreepForces::default() }, [0.0; 2]));
+        return Ok((CreepForces { spin_moment: steady.spin_moment, ..CreepForces::default() }, [0.0; 2], [0.0; 2]));
     }
     let steady_forces = [steady.force_longitudinal, steady.force_lateral];
     // Checked at initialisation too, so that a bad length is reported at the start.
     let lengths = relaxation_lengths(contact, relaxation_length)?;
     let relaxed = match evaluation {
         // Initialised at the steady state: the outputs are the model's, exactly.
-        Evaluation::Initialise => return Ok((*steady, steady_forces)),
+        Evaluation::Initialise => return Ok((*steady, steady_forces, [0.0; 2])),
         Evaluation::Step(step) => lengths.advance(relaxed_forces, steady_forces, renewal_speed, step)?,
     };
     let friction_limit = contact.normal_force * friction;
@@ -636,7 +643,8 @@ fn relax_forces(
     // force is then bounded by the steady force it relaxes towards.
     let limit = friction_limit.max(steady.force_longitudinal.hypot(steady.force_lateral));
     let relaxed = within_friction_limit(relaxed, limit);
-    Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed))
+    let rate = lengths.rate(relaxed, steady_forces, renewal_speed);
+    Ok((CreepForces::new(relaxed[0], relaxed[1], steady.spin_moment, friction_limit), relaxed, rate))
 }
 
 /// `forces` scaled onto the circle |F| = `friction_limit` if they lie outside it, unchanged

@@ -33,6 +33,15 @@ fn directional_derivative_is_the_core_models_along_the_given_rates() {
     let mut lateral = [f64::NAN];
     instance.get_directional_derivative(&[vr::FORCE_LATERAL], &knowns, &rates, &mut lateral);
     assert_eq!(lateral[0], derivative[1]);
+    // The continuous states (the relaxed forces, inert with creep_relaxation off) add nothing,
+    // and the state derivatives' rates are 0.
+    let with_states = [&knowns[..], &[vr::RELAXED_FORCE_LONGITUDINAL, vr::RELAXED_FORCE_LATERAL]].concat();
+    let with_state_rates = [&rates[..], &[5e3, -7e3]].concat();
+    let unknowns =
+        [OUTPUTS[0], OUTPUTS[1], OUTPUTS[2], vr::DER_RELAXED_FORCE_LONGITUDINAL, vr::DER_RELAXED_FORCE_LATERAL];
+    let mut full = [f64::NAN; 5];
+    assert_eq!(instance.get_directional_derivative(&unknowns, &with_states, &with_state_rates, &mut full), Status::Ok);
+    assert_eq!(full, [derivative[0], derivative[1], derivative[2], 0.0, 0.0]);
     // No knowns: zero.
     instance.get_directional_derivative(&OUTPUTS, &[], &[], &mut derivative);
     assert_eq!(derivative, [0.0; 3]);
@@ -42,26 +51,34 @@ fn directional_derivative_is_the_core_models_along_the_given_rates() {
 fn directional_derivative_refuses_parameters_outputs_and_bad_rates_by_name() {
     let (mut instance, log) = at_a_general_point();
     let mut out = [0.0];
-    let cases: [(&[u32], &[u32], f64, &str); 5] = [
+    let cases: [(&[u32], &[u32], f64, &str); 6] = [
         (
             &[vr::FORCE_LATERAL],
             &[vr::SHEAR_MODULUS],
             1.0,
             "fmi2GetDirectionalDerivative: shear_modulus (value reference 100) cannot be a known: derivatives are \
-             taken with respect to the continuous Real inputs only",
+             taken with respect to the continuous Real inputs and the continuous states only",
         ),
         (
             &[vr::FORCE_LATERAL],
             &[vr::FORCE_LONGITUDINAL],
             1.0,
             "fmi2GetDirectionalDerivative: force_longitudinal (value reference 200) cannot be a known: \
-             derivatives are taken with respect to the continuous Real inputs only",
+             derivatives are taken with respect to the continuous Real inputs and the continuous states only",
         ),
         (
             &[vr::NORMAL_FORCE],
             &[vr::SEMI_AXIS_A],
             1.0,
-            "fmi2GetDirectionalDerivative: normal_force (value reference 3) cannot be an unknown: not an output",
+            "fmi2GetDirectionalDerivative: normal_force (value reference 3) cannot be an unknown: not an output or a \
+             state derivative",
+        ),
+        (
+            &[vr::RELAXED_FORCE_LATERAL],
+            &[vr::SEMI_AXIS_A],
+            1.0,
+            "fmi2GetDirectionalDerivative: relaxed_force_lateral (value reference 301) cannot be an unknown: not an \
+             output or a state derivative",
         ),
         (
             &[vr::FORCE_LATERAL],

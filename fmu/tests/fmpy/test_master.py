@@ -175,7 +175,8 @@ def test_parameters_as_knowns_and_inputs_as_unknowns_are_errors_naming_them(new_
     slave, callbacks = at_point(new_slave, vr, POINTS["round"])
     expect_error(slave.getDirectionalDerivative, [vr["force_lateral"]], [vr["poisson_ratio"]], [1.0])
     assert callbacks.texts()[-1] == ("fmi2GetDirectionalDerivative: poisson_ratio (value reference 101) cannot be a "
-                                     "known: derivatives are taken with respect to the continuous Real inputs only")
+                                     "known: derivatives are taken with respect to the continuous Real inputs and the "
+                                     "continuous states only")
     expect_error(slave.getDirectionalDerivative, [vr["normal_force"]], [vr["semi_axis_a"]], [1.0])
     assert "normal_force (value reference 3) cannot be an unknown: not an output" in callbacks.texts()[-1]
 
