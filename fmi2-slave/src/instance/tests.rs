@@ -624,6 +624,10 @@ fn model_exchange_evaluates_on_demand_and_each_interface_keeps_to_its_functions(
         assert_eq!(me.set_real(&[X], &[x]), Status::Ok);
         assert_eq!(get(&mut me, Y), 2.0 * x, "y = gain · x + offset at the input just set");
     }
+    // A model without step events (the trait's defaults): no event asked, none to handle.
+    assert_eq!(me.completed_integrator_step(), Ok((false, false)));
+    assert_eq!(me.enter_event_mode(), Status::Ok);
+    assert_eq!(me.new_discrete_states(), Ok(crate::EventInfo::default()));
     let (mut cs, log) = stepping();
     assert_eq!(cs.set_time(0.5), Status::Error);
     assert_eq!(

@@ -2,9 +2,7 @@
 //! core's ([`wheel_rail_contact::scene::Scene::directional_derivative`], through
 //! [`crate::scene::directional_derivative`]).
 
-use crate::model_description::{
-    self, variable, Causality, Kind, Locals, Values, Variability, Variable, CONTINUOUS_STATES,
-};
+use crate::model_description::{self, variable, Causality, Kind, Values, Variability, Variable, CONTINUOUS_STATES};
 use crate::scene::{directional_derivative as scene_derivative, finite, ContactCache};
 use crate::snapshot::ContactState;
 
@@ -61,8 +59,9 @@ pub(super) fn directional_derivative(
     }
     let outputs = scene_derivative(&state.values, &state.strings, cache, &state.wheel, &rates.inputs)?;
     finite(&outputs)?;
-    // The state derivatives' rates are 0 (the function's documentation): `Values::default()`'s.
-    let derivative = Values { outputs, locals: Locals::default(), ..rates };
+    // The state derivatives' rates are 0 (the function's documentation): `rates`' own, which no
+    // known writes (the knowns are inputs and states).
+    let derivative = Values { outputs, ..rates };
     for (&value_reference, slot) in unknowns.iter().zip(unknown_rates.iter_mut()) {
         *slot = derivative.real(value_reference).unwrap_or(f64::NAN);
     }

@@ -199,10 +199,26 @@ fn relaxed_forces_beyond_the_friction_limit_are_projected_at_a_step_event() {
     enter_continuous_time_mode(&me);
     let forces = [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL];
     let steady = me.get_real(&forces);
+    let limit = 1e5 * 0.3;
+    let mut info = fmi2EventInfo::default();
+    // Beyond the limit along x alone: F_y stays 0, and the event is asked all the same.
+    set_states(&me, [-5e4, 0.0]);
+    assert_eq!(me.get_real(&forces), [-limit, 0.0]);
+    // The model's steady F_y of η = 0 is −0 (−(0 + 0); the output shows +0), the state +0: their
+    // difference is −0, and the derivative is written as +0 like every zero output (masters
+    // print −0 as `-0`).
+    assert_eq!(derivatives(&me)[1].to_bits(), 0.0_f64.to_bits());
+    assert!(completed_step_asks_for_an_event(&me));
+    // SAFETY: `me.c` is live.
+    unsafe {
+        assert_eq!(fmi2EnterEventMode(me.c), OK);
+        assert_eq!(fmi2NewDiscreteStates(me.c, &mut info), OK);
+        assert_eq!(fmi2EnterContinuousTimeMode(me.c), OK);
+    }
+    assert_eq!(states(&me), [-limit, 0.0]);
     let beyond = [-4e4, 3e4]; // |F| = 50 kN
     set_states(&me, beyond);
     let projected = me.get_real(&forces);
-    let limit = 1e5 * 0.3;
     for k in 0..2 {
         assert!((projected[k] - beyond[k] * limit / 5e4).abs() <= 1e-12 * limit, "{projected:?}");
     }
@@ -212,7 +228,6 @@ fn relaxed_forces_beyond_the_friction_limit_are_projected_at_a_step_event() {
         assert!((dx[k] - law).abs() <= 1e-12 * law.abs(), "{dx:?}");
     }
     assert!(completed_step_asks_for_an_event(&me));
-    let mut info = fmi2EventInfo::default();
     // SAFETY: `me.c` is live.
     unsafe {
         assert_eq!(fmi2EnterEventMode(me.c), OK);
