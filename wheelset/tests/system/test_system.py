@@ -300,11 +300,15 @@ def test_growth_rate_of_runs_without_enough_extrema_is_none():
 # the contact units evaluated at every right-hand side, no step bound by the coupling. Measured
 # 2026-11-29 with maximum step 0.1 s, rows every 10 ms: distances 2.4e-6, 4.1e-5, 8.5e-5 of y0
 # from the 10 µs Co-Simulation reference at 1, 20, 80 m/s (docs/coupling-stability.md), where a
-# Co-Simulation master with the forces held over a step needs 0.05 ms at 1 m/s.
-@pytest.mark.parametrize("speed", [1.0, 20.0, 80.0])
-def test_model_exchange_with_cvode_follows_the_reference_at_any_step(ssp, speed):
-    reference = ws.run(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-5)
-    result = ssp_master.simulate(ssp, parameters={"wheelset.forward_speed": speed}, stop_time=0.5, step_size=1e-2,
+# Co-Simulation master with the forces held over a step needs 0.05 ms at 1 m/s. With polach and
+# exact_table at 20 m/s: 7.2e-5 and 6.0e-5 of y0.
+@pytest.mark.parametrize("speed, model", [(1.0, "kalker_linear"), (20.0, "kalker_linear"), (80.0, "kalker_linear"),
+                                          (20.0, "polach"), (20.0, "exact_table")])
+def test_model_exchange_with_cvode_follows_the_reference_at_any_step(ssp, speed, model):
+    parameters = {"wheelset.forward_speed": speed, "left_wheel.creep_force_model": model,
+                  "right_wheel.creep_force_model": model}
+    reference = ws.run(ssp, parameters=parameters, stop_time=0.5, step_size=1e-5)
+    result = ssp_master.simulate(ssp, parameters=parameters, stop_time=0.5, step_size=1e-2,
                                  model_exchange=ssp_master.ModelExchange(relative_tolerance=1e-6, maximum_step=0.1))
     assert len(result) == 51 and result["time"][-1] == pytest.approx(0.5)
     assert ws.distance(result, reference) < 1e-3
