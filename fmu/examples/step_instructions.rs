@@ -7,7 +7,9 @@
 //! - `wheel_polach`, `wheel_exact_table`: a wheel on its rail from the built-in profiles
 //!   (S1002 on UIC60 1:40), model `polach` or `exact_table`: the wheelset's lateral displacement
 //!   and yaw angle set + fmi2DoStep + the force on the track (3 values) read; the displacement
-//!   runs over 2.0–2.1 mm on the tread, a new contact search every step.
+//!   runs over 2.0–2.1 mm on the tread, a new contact search every step;
+//! - `wheel_non_hertzian_polach`: the same with `contact_method = non_hertzian` (the patches from
+//!   the profiles' interpenetration, its strip table built at initialisation).
 //!
 //! The script runs each workload with two step counts and divides the difference of the counts
 //! by the difference of the steps: the instructions of one step, without the set-up.
@@ -17,7 +19,7 @@
 use fmu_test_master::{Fmu, INPUTS, OK, OUTPUTS};
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::model_description::value_reference as vr;
-use wheel_rail_contact_fmu::model_description::{ContactGeometry, Model};
+use wheel_rail_contact_fmu::model_description::{ContactGeometry, ContactMethod, Model};
 
 /// The step size \[s\].
 const STEP: f64 = 1e-4;
@@ -43,11 +45,11 @@ fn patch(model: Model, steps: usize) -> f64 {
     sink
 }
 
-/// Steps a wheel on the built-in profiles with `model`.
-fn wheel(model: Model, steps: usize) -> f64 {
+/// Steps a wheel on the built-in profiles with `model` and the patches of `method`.
+fn wheel(model: Model, method: ContactMethod, steps: usize) -> f64 {
     let fmu = Fmu::instantiate("instruction budget, wheel", None);
     assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
-    assert_eq!(fmu.set_integer(&[vr::CREEP_FORCE_MODEL], &[model as i32]), OK);
+    assert_eq!(fmu.set_integer(&[vr::CREEP_FORCE_MODEL, vr::CONTACT_METHOD], &[model as i32, method as i32]), OK);
     assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE, vr::RAIL_PROFILE], &["MBench_S1002", "MBench_UIC60"]), OK);
     fmu.initialise(0.0);
     let (pose, forces) = (
@@ -72,14 +74,18 @@ fn wheel(model: Model, steps: usize) -> f64 {
 fn main() {
     let mut arguments = std::env::args().skip(1);
     let (Some(workload), Some(steps)) = (arguments.next(), arguments.next().and_then(|n| n.parse().ok())) else {
-        eprintln!("usage: step_instructions patch_polach|patch_exact_table|wheel_polach|wheel_exact_table STEPS");
+        eprintln!(
+            "usage: step_instructions patch_polach|patch_exact_table|wheel_polach|wheel_exact_table|\
+             wheel_non_hertzian_polach STEPS"
+        );
         std::process::exit(2);
     };
     let sink = match workload.as_str() {
         "patch_polach" => patch(Model::Polach, steps),
         "patch_exact_table" => patch(Model::ExactTable, steps),
-        "wheel_polach" => wheel(Model::Polach, steps),
-        "wheel_exact_table" => wheel(Model::ExactTable, steps),
+        "wheel_polach" => wheel(Model::Polach, ContactMethod::Hertz, steps),
+        "wheel_exact_table" => wheel(Model::ExactTable, ContactMethod::Hertz, steps),
+        "wheel_non_hertzian_polach" => wheel(Model::Polach, ContactMethod::NonHertzian, steps),
         other => {
             eprintln!("step_instructions: unknown workload {other}");
             std::process::exit(2);
