@@ -146,6 +146,11 @@ const FIRST_REACH: f64 = 0.25e-3;
 /// at 10 kN 0.25 mm reach 335 strips, of which 120 are in contact.
 const TABLE_FIRST_REACH: f64 = 0.02e-3;
 
+/// Secant steps of the vertical balance's root search at most before it brackets the root
+/// ([`NonHertzianPose::vertical_for_force`]): r(z_ws) is nearly linear, so a few reach the
+/// balance's tolerance, and more would only follow a jump of the carried force.
+const SECANT_STEPS: usize = 4;
+
 /// One strip of a patch, on the wheel's side.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Strip {
@@ -1077,29 +1082,24 @@ impl<'a> NonHertzianPose<'a> {
         // the secant lines below nearly meet its root.
         let target = vertical_force.powf(2.0 / 3.0);
         let met = |carried: f64| (carried - vertical_force).abs() <= tolerance * vertical_force;
-        // A bracket [low, high] of the root, from `start` (`near`, or 10 µm into the rail from the touch):
-        // first to the root of the line through the touch (r = −F_z^(2/3)) and the start, half as
-        // far again so that it passes the root, then on with doubled steps; the touch bounds it
-        // below.
+        // From `start` (`near`, or 10 µm into the rail from the touch), secant steps first: r
+        // being nearly linear, the root of the line through the touch (r = −F_z^(2/3)) and the
+        // start, then of the line through the last two points, lands next to the root, so that a
+        // solve started from the last step's z_ws meets the force in a few evaluations. They go on
+        // while each at least halves |r|; one that passes the root brackets it.
         let start = near.filter(|&z| z > touch && z - touch <= MAX_PENETRATION).unwrap_or(touch + 1e-5);
         let at_start = carried(self, start)?;
         if met(at_start) {
             return Ok(start);
         }
-        let (mut z, mut f) = (start, at_start.powf(2.0 / 3.0) - target);
-        let mut step = if at_start > 0.0 {
-            1.5 * (start - touch) * ((vertical_force / at_start).powf(2.0 / 3.0) - 1.0).abs()
-        } else {
-            start - touch
-        };
-        let (mut low, mut high, mut f_low, mut f_high);
-        loop {
-            let next = if f < 0.0 { (z + step).min(touch + MAX_PENETRATION) } else { (z - step).max(touch) };
-            if next == z {
-                return Err(ProfileError::whole(format!(
-                    "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
-                ))
-                .into());
+        let (mut z, mut at_z) = (start, at_start);
+        let mut f = at_start.powf(2.0 / 3.0) - target;
+        let (mut before, mut f_before) = (touch, -target);
+        let mut bracket = None;
+        for _ in 0..SECANT_STEPS {
+            let next = z - f * (z - before) / (f - f_before);
+            if !(next > touch && next <= touch + MAX_PENETRATION && next != z) {
+                break;
             }
             let at_next = carried(self, next)?;
             if met(at_next) {
@@ -1107,12 +1107,47 @@ impl<'a> NonHertzianPose<'a> {
             }
             let f_next = at_next.powf(2.0 / 3.0) - target;
             if (f_next >= 0.0) != (f >= 0.0) {
-                (low, high, f_low, f_high) = if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) };
+                bracket = Some(if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) });
                 break;
             }
-            (z, f) = (next, f_next);
-            step *= 2.0;
+            let converging = f_next.abs() <= 0.5 * f.abs();
+            (before, f_before, z, at_z, f) = (z, f, next, at_next, f_next);
+            if !converging {
+                break;
+            }
         }
+        // Else a bracket [low, high] of the root from z: first to the root of the line through
+        // the touch and z, half as far again so that it passes the root, then on with doubled
+        // steps; the touch bounds it below.
+        let (mut low, mut high, mut f_low, mut f_high) = match bracket {
+            Some(bracket) => bracket,
+            None => {
+                let mut step = if at_z > 0.0 {
+                    1.5 * (z - touch) * ((vertical_force / at_z).powf(2.0 / 3.0) - 1.0).abs()
+                } else {
+                    z - touch
+                };
+                loop {
+                    let next = if f < 0.0 { (z + step).min(touch + MAX_PENETRATION) } else { (z - step).max(touch) };
+                    if next == z {
+                        return Err(ProfileError::whole(format!(
+                            "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
+                        ))
+                        .into());
+                    }
+                    let at_next = carried(self, next)?;
+                    if met(at_next) {
+                        return Ok(next);
+                    }
+                    let f_next = at_next.powf(2.0 / 3.0) - target;
+                    if (f_next >= 0.0) != (f >= 0.0) {
+                        break if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) };
+                    }
+                    (z, f) = (next, f_next);
+                    step *= 2.0;
+                }
+            }
+        };
         // Regula falsi, Illinois variant (the retained end's residual halved when it is kept
         // twice), until the force is met or the bracket can be halved no more; the ends' true
         // residuals kept for the answer.
