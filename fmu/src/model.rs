@@ -146,18 +146,11 @@ impl Model for ContactModel {
             }
             Evaluation::Feedthrough { .. } => {
                 let (mut scene, mut wheel) = (scene.clone(), wheel.clone());
-                let warning = update_outputs(
-                    values,
-                    strings,
-                    &mut self.cache,
-                    &mut scene,
-                    &mut wheel,
-                    SceneEvaluation::Step(0.0),
-                )?;
-                *profiles = self.cache.profile_digest();
-                return Ok(warning);
+                update_outputs(values, strings, &mut self.cache, &mut scene, &mut wheel, SceneEvaluation::Step(0.0))?
             }
         };
+        // The scene's relaxed forces are the state after the start or a step; a feedthrough
+        // dropped its own.
         [values.locals.relaxed_force_longitudinal, values.locals.relaxed_force_lateral] = scene.relaxed_forces;
         *profiles = self.cache.profile_digest();
         Ok(warning)
@@ -241,13 +234,13 @@ impl Model for ContactModel {
     }
 }
 
-/// Whether the relaxed forces (one patch, relaxation on) differ from the output forces, their
-/// projection onto the friction limit: bit for bit equal within the limit (a step of zero length
-/// leaves them exactly), so any difference is the projection (or a lift-off, which zeroes them).
+/// Whether the relaxed forces (relaxation on) differ from the output forces, their projection
+/// onto the friction limit: bit for bit equal within the limit (a step of zero length leaves them
+/// exactly), so any difference is the projection (or a lift-off, which zeroes them). (With
+/// profiles, which Model Exchange refuses with relaxation on, both stay 0.)
 fn beyond_friction_limit(state: &ContactState) -> bool {
     let ContactState { values, .. } = state;
     values.parameters.creep_relaxation != Switch::Off as i32
-        && values.parameters.contact_geometry != ContactGeometry::Profiles as i32
         && (values.locals.relaxed_force_longitudinal != values.outputs.force_longitudinal
             || values.locals.relaxed_force_lateral != values.outputs.force_lateral)
 }

@@ -1092,61 +1092,58 @@ impl<'a> NonHertzianPose<'a> {
         if met(at_start) {
             return Ok(start);
         }
-        let (mut z, mut at_z) = (start, at_start);
-        let mut f = at_start.powf(2.0 / 3.0) - target;
+        let (mut z, mut at_z, mut f) = (start, at_start, at_start.powf(2.0 / 3.0) - target);
         let (mut before, mut f_before) = (touch, -target);
-        let mut bracket = None;
-        for _ in 0..SECANT_STEPS {
-            let next = z - f * (z - before) / (f - f_before);
-            if !(next > touch && next <= touch + MAX_PENETRATION && next != z) {
-                break;
-            }
+        let mut secant_steps = 0;
+        // Once the secant steps end (their limit, a step out of range, one that did not halve
+        // |r|): a bracket from z, first to the root of the line through the touch and z, half as
+        // far again so that it passes the root, then on with doubled steps; the touch bounds it
+        // below.
+        let mut step: Option<f64> = None;
+        let (mut low, mut high, mut f_low, mut f_high) = loop {
+            let secant = z - f * (z - before) / (f - f_before);
+            let next = if step.is_none()
+                && secant_steps < SECANT_STEPS
+                && secant > touch
+                && secant <= touch + MAX_PENETRATION
+                && secant != z
+            {
+                secant_steps += 1;
+                secant
+            } else {
+                let size = step.map_or_else(
+                    || {
+                        if at_z > 0.0 {
+                            1.5 * (z - touch) * ((vertical_force / at_z).powf(2.0 / 3.0) - 1.0).abs()
+                        } else {
+                            z - touch
+                        }
+                    },
+                    |last| 2.0 * last,
+                );
+                step = Some(size);
+                let next = if f < 0.0 { (z + size).min(touch + MAX_PENETRATION) } else { (z - size).max(touch) };
+                if next == z {
+                    return Err(ProfileError::whole(format!(
+                        "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
+                    ))
+                    .into());
+                }
+                next
+            };
             let at_next = carried(self, next)?;
             if met(at_next) {
                 return Ok(next);
             }
             let f_next = at_next.powf(2.0 / 3.0) - target;
             if (f_next >= 0.0) != (f >= 0.0) {
-                bracket = Some(if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) });
-                break;
+                break if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) };
             }
             let converging = f_next.abs() <= 0.5 * f.abs();
-            (before, f_before, z, at_z, f) = (z, f, next, at_next, f_next);
             if !converging {
-                break;
+                secant_steps = SECANT_STEPS; // on by bracketing
             }
-        }
-        // Else a bracket [low, high] of the root from z: first to the root of the line through
-        // the touch and z, half as far again so that it passes the root, then on with doubled
-        // steps; the touch bounds it below.
-        let (mut low, mut high, mut f_low, mut f_high) = match bracket {
-            Some(bracket) => bracket,
-            None => {
-                let mut step = if at_z > 0.0 {
-                    1.5 * (z - touch) * ((vertical_force / at_z).powf(2.0 / 3.0) - 1.0).abs()
-                } else {
-                    z - touch
-                };
-                loop {
-                    let next = if f < 0.0 { (z + step).min(touch + MAX_PENETRATION) } else { (z - step).max(touch) };
-                    if next == z {
-                        return Err(ProfileError::whole(format!(
-                            "vertical_force = {vertical_force} N is not carried within {MAX_PENETRATION} m of penetration"
-                        ))
-                        .into());
-                    }
-                    let at_next = carried(self, next)?;
-                    if met(at_next) {
-                        return Ok(next);
-                    }
-                    let f_next = at_next.powf(2.0 / 3.0) - target;
-                    if (f_next >= 0.0) != (f >= 0.0) {
-                        break if f < 0.0 { (z, next, f, f_next) } else { (next, z, f_next, f) };
-                    }
-                    (z, f) = (next, f_next);
-                    step *= 2.0;
-                }
-            }
+            (before, f_before, z, at_z, f) = (z, f, next, at_next, f_next);
         };
         // Regula falsi, Illinois variant (the retained end's residual halved when it is kept
         // twice), until the force is met or the bracket can be halved no more; the ends' true
