@@ -79,7 +79,10 @@
 
 use std::fmt;
 
-use crate::geometry::{ContactCandidates, ContactPatch, ContactPoint, ProfileError, WheelOnRail, WheelsetPosition};
+use crate::geometry::non_hertzian::Regions;
+use crate::geometry::{
+    ContactCandidates, ContactPatch, ContactPoint, ProfileError, SwitchingFunctions, WheelOnRail, WheelsetPosition,
+};
 use crate::scene::kinematics::DEFAULT_REGULARISATION_SPEED;
 use crate::scene::{
     CreepageSource, EllipseSource, Evaluation, Scene, SceneCache, SceneError, SceneInput, SceneOutput, SceneState,
@@ -178,6 +181,9 @@ pub struct WheelOutput {
     pub track_force: [f64; 3],
     /// Their moment about the wheelset's centre, track axes [N·m].
     pub track_moment: [f64; 3],
+    /// The switching functions of the patches at this pose (`geometry/switching.rs`): their signs
+    /// change where the patches jump.
+    pub switching: SwitchingFunctions,
 }
 
 /// What a patch carries to the next evaluation.
@@ -410,23 +416,32 @@ impl WheelRailContact {
         evaluation: Evaluation,
     ) -> Result<(WheelOutput, WheelState), WheelContactError> {
         check_velocity(&input.velocity)?;
-        let (vertical, patches, states) = match input.vertical {
+        let (vertical, patches, states, switching) = match input.vertical {
             VerticalContact::PrescribedPosition => {
-                let patches = match self.method {
+                let vertical = input.position.vertical;
+                let (patches, switching) = match self.method {
                     ContactMethod::Hertz => {
-                        self.geometry.candidates(&input.position)?.patches_at(input.position.vertical)?
+                        let candidates = self.geometry.candidates(&input.position)?;
+                        (candidates.patches_at(vertical)?, candidates.switching_functions(vertical))
                     }
                     ContactMethod::NonHertzian => {
-                        self.geometry.non_hertzian_pose(&input.position)?.summaries_at(input.position.vertical)?
+                        let mut pose = self.geometry.non_hertzian_pose(&input.position)?;
+                        let (patches, regions) = pose.summaries_at(vertical)?;
+                        (patches, pose.switching_functions(vertical, &regions)?)
                     }
                 };
                 let no_hints = WheelState::default();
                 let (forces, states) =
                     self.patch_forces(input, &input.position, &patches, state, &no_hints, cache, evaluation)?;
-                (input.position.vertical, forces, states)
+                (vertical, forces, states, switching)
             }
             VerticalContact::PrescribedForce(force) => match self.method {
-                ContactMethod::Hertz => self.balance_vertical_force(force, input, state, cache, evaluation)?,
+                ContactMethod::Hertz => {
+                    let candidates = self.geometry.candidates(&input.position)?;
+                    let (vertical, forces, states) =
+                        self.balance_vertical_force(&candidates, force, input, state, cache, evaluation)?;
+                    (vertical, forces, states, candidates.switching_functions(vertical))
+                }
                 ContactMethod::NonHertzian => self.balance_non_hertzian(force, input, state, cache, evaluation)?,
             },
         };
@@ -449,7 +464,9 @@ impl WheelRailContact {
                 track_moment[axis] += moment[axis] + patch.output.spin_moment * normal[axis];
             }
         }
-        Ok((WheelOutput { patches, wheelset_vertical_position: vertical, track_force, track_moment }, states))
+        let output =
+            WheelOutput { patches, wheelset_vertical_position: vertical, track_force, track_moment, switching };
+        Ok((output, states))
     }
 
     /// Prescribed vertical force: rounds of normal problem and creep forces (module doc). A
@@ -467,13 +484,13 @@ impl WheelRailContact {
     /// force more closely is the answer.
     fn balance_vertical_force(
         &self,
+        candidates: &ContactCandidates,
         force: f64,
         input: &WheelInput,
         state: &WheelState,
         cache: &mut WheelCache,
         evaluation: Evaluation,
     ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
-        let candidates = self.geometry.candidates(&input.position)?;
         // The first round without creep forces: each patch's share is cos δ.
         let (mut vertical, mut patches) =
             candidates.patches_for_force(force, |point| point.contact_angle_sin_cos().1)?;
@@ -488,7 +505,7 @@ impl WheelRailContact {
         // The rounds' z_ws with a residual ≥ 0 and < 0, closest to each other: the bracket.
         let (mut below, mut above): (Option<f64>, Option<f64>) = (None, None);
         for _ in 0..VERTICAL_ROUNDS {
-            let round = self.round(&candidates, force, input, vertical, &patches, state, &hints, cache, evaluation)?;
+            let round = self.round(candidates, force, input, vertical, &patches, state, &hints, cache, evaluation)?;
             let Round { forces, states, next, .. } = round;
             // Settled when the rail carries F_z through these normal and creep forces.
             let Some((next, next_patches)) = next else { return Ok((vertical, forces, states)) };
@@ -532,7 +549,7 @@ impl WheelRailContact {
                 break;
             }
             let patches = candidates.patches_at(middle)?;
-            let round = self.round(&candidates, force, input, middle, &patches, state, &hints, cache, evaluation)?;
+            let round = self.round(candidates, force, input, middle, &patches, state, &hints, cache, evaluation)?;
             let Some((next, _)) = round.next else { return Ok((middle, round.forces, round.states)) };
             let miss = (round.carried - force).abs();
             if next >= middle {
@@ -577,29 +594,31 @@ impl WheelRailContact {
         state: &WheelState,
         cache: &mut WheelCache,
         evaluation: Evaluation,
-    ) -> Result<(f64, Vec<PatchForces>, WheelState), WheelContactError> {
+    ) -> Result<(f64, Vec<PatchForces>, WheelState, SwitchingFunctions), WheelContactError> {
         let mut pose = self.geometry.non_hertzian_pose(&input.position)?;
         // Each round's model memory starts the next round's (the exact theory's warm start: the
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
-        let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState)> = Vec::new();
+        let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState, Regions)> = Vec::new();
         let near = cache.vertical;
         let vertical = pose.vertical_for_force(force, near, BALANCE_TOLERANCE, |pose, vertical| {
-            let patches = pose.summaries_at(vertical)?;
+            let (patches, regions) = pose.summaries_at(vertical)?;
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
             let carried = forces.iter().map(|patch| -patch.track_force()[2]).sum();
             hints = states.clone();
-            rounds.push((vertical, forces, states));
+            rounds.push((vertical, forces, states, regions));
             Ok::<_, WheelContactError>(carried)
         })?;
         cache.vertical = Some(vertical);
         // The answer is a round's z_ws, but at lift-off (the touch, no patch).
-        Ok(rounds.into_iter().rev().find(|round| round.0 == vertical).unwrap_or((
-            vertical,
-            Vec::new(),
-            WheelState::default(),
-        )))
+        match rounds.into_iter().rev().find(|round| round.0 == vertical) {
+            Some((vertical, forces, states, regions)) => {
+                let switching = pose.switching_functions(vertical, &regions)?;
+                Ok((vertical, forces, states, switching))
+            }
+            None => Ok((vertical, Vec::new(), WheelState::default(), SwitchingFunctions::default())),
+        }
     }
 
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep

@@ -261,6 +261,10 @@ pub trait Model: Sized {
     fn new_discrete_states(&mut self, _state: &mut Self::State) -> bool {
         false
     }
+    /// fmi2GetEventIndicators (Model Exchange), with the outputs up to date at `state`: the
+    /// [`Model::EVENT_INDICATORS`] values, whose sign changes where the model's outputs jump.
+    /// Only called with a non-zero count.
+    fn event_indicators(&self, _state: &Self::State, _indicators: &mut [f64]) {}
     /// fmi2SetFMUstate is about to replace `current` by `restored`.
     fn restoring(&mut self, _current: &Self::State, _restored: &Self::State) {}
     /// fmi2GetDirectionalDerivative (only called with [`Model::PROVIDES_DIRECTIONAL_DERIVATIVE`]):
@@ -1215,16 +1219,32 @@ impl<M: Model> Slave for Instance<M> {
         status
     }
 
-    /// `numberOfEventIndicators` values (none: both FMUs declare 0, so only n = 0 succeeds).
+    /// The `numberOfEventIndicators` values ([`Model::event_indicators`]) at the current inputs
+    /// and states; in initialization mode first computed from the values set, as the states.
     fn get_event_indicators(&mut self, indicators: &mut [f64]) -> Status {
         const CALL: Call = Call::GetEventIndicators;
         if let Err(status) = self.require(CALL) {
             return status;
         }
-        match self.require_length(CALL, indicators.len(), M::EVENT_INDICATORS, "numberOfEventIndicators") {
-            Ok(()) => Status::Ok,
-            Err(status) => status,
+        if let Err(status) = self.require_length(CALL, indicators.len(), M::EVENT_INDICATORS, "numberOfEventIndicators")
+        {
+            return status;
         }
+        if indicators.is_empty() {
+            return Status::Ok;
+        }
+        let evaluated = if self.run.mode == Mode::InitializationMode {
+            self.evaluate(CALL, Evaluation::Initialise)
+        } else {
+            self.refresh(CALL)
+        };
+        let status = match evaluated {
+            Ok(status) => status,
+            Err(status) => return status,
+        };
+        self.model.event_indicators(&self.run.model, indicators);
+        self.log.trace(|| format!("{CALL}: {indicators:?}"));
+        status
     }
 
     /// In initialization mode the states are first computed from the values set.

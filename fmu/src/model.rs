@@ -19,6 +19,7 @@
 use std::path::PathBuf;
 
 use fmi2_slave::instance::{Evaluation, FmuState, Model};
+use wheel_rail_contact::geometry::{SwitchingFunctions, NO_SWITCH, SWITCHING_FUNCTIONS};
 use wheel_rail_contact::scene::Evaluation as SceneEvaluation;
 
 use crate::mode::Mode;
@@ -41,7 +42,13 @@ pub struct ContactModel {
     resources: Option<PathBuf>,
     /// Derived from the parameters (not state: it is rebuilt whenever they differ).
     cache: ContactCache,
+    /// The switching functions of the last evaluation (the event indicators): not state, as the
+    /// outputs they go with are recomputed before they are read again after a restored state.
+    switching: SwitchingFunctions,
 }
+
+// The event indicators are the wheel's switching functions, one for one.
+const _: () = assert!(model_description::EVENT_INDICATORS == SWITCHING_FUNCTIONS);
 
 impl Model for ContactModel {
     type State = ContactState;
@@ -69,11 +76,17 @@ impl Model for ContactModel {
             _ => None,
         };
         let resources = resources.and_then(Result::ok);
-        Ok((ContactModel { cache: ContactCache::new(resources.clone()), resources }, note))
+        let model = ContactModel {
+            cache: ContactCache::new(resources.clone()),
+            resources,
+            switching: SwitchingFunctions::default(),
+        };
+        Ok((model, note))
     }
 
     fn reset(&mut self) {
         self.cache = ContactCache::new(self.resources.clone());
+        self.switching = SwitchingFunctions::default();
     }
 
     fn start() -> ContactState {
@@ -137,16 +150,18 @@ impl Model for ContactModel {
     fn evaluate(&mut self, state: &mut ContactState, evaluation: Evaluation) -> Result<Option<String>, String> {
         let ContactState { values, strings, scene, wheel, profiles } = state;
         scene.relaxed_forces = [values.locals.relaxed_force_longitudinal, values.locals.relaxed_force_lateral];
+        let switching = &mut self.switching;
         let warning = match evaluation {
             Evaluation::Initialise => {
-                update_outputs(values, strings, &mut self.cache, scene, wheel, SceneEvaluation::Initialise)?
+                update_outputs(values, strings, &mut self.cache, scene, wheel, switching, SceneEvaluation::Initialise)?
             }
             Evaluation::Step { size, .. } => {
-                update_outputs(values, strings, &mut self.cache, scene, wheel, SceneEvaluation::Step(size))?
+                update_outputs(values, strings, &mut self.cache, scene, wheel, switching, SceneEvaluation::Step(size))?
             }
             Evaluation::Feedthrough { .. } => {
                 let (mut scene, mut wheel) = (scene.clone(), wheel.clone());
-                update_outputs(values, strings, &mut self.cache, &mut scene, &mut wheel, SceneEvaluation::Step(0.0))?
+                let feedthrough = SceneEvaluation::Step(0.0);
+                update_outputs(values, strings, &mut self.cache, &mut scene, &mut wheel, switching, feedthrough)?
             }
         };
         // The scene's relaxed forces are the state after the start or a step; a feedthrough
@@ -154,6 +169,18 @@ impl Model for ContactModel {
         [values.locals.relaxed_force_longitudinal, values.locals.relaxed_force_lateral] = scene.relaxed_forces;
         *profiles = self.cache.profile_digest();
         Ok(warning)
+    }
+
+    /// The switching functions of the wheel's patches (`wheel_rail_contact::geometry::switching`)
+    /// as event indicators: with `contact_geometry = profiles` their signs change where the
+    /// patches join, part or pass to another gap minimum (or region), where the outputs jump;
+    /// with one patch (`ellipse`, whose evaluation leaves them alone) they are [`NO_SWITCH`].
+    fn event_indicators(&self, state: &ContactState, indicators: &mut [f64]) {
+        if state.values.parameters.contact_geometry == ContactGeometry::Profiles as i32 {
+            indicators.copy_from_slice(self.switching.values());
+        } else {
+            indicators.fill(NO_SWITCH);
+        }
     }
 
     /// With profiles each patch relaxes on its own, and patches come and go: not continuous

@@ -17,6 +17,7 @@ use super::model_description::{
     TractionLaw as TractionLawChoice, Values, Variability, VARIABLES,
 };
 use super::profiles::{ProfileContact, ProfileDigest, WheelOutputs};
+use wheel_rail_contact::geometry::SwitchingFunctions;
 use wheel_rail_contact::models::exact::{MAX_ITERATIONS, MAX_PRODUCTS};
 use wheel_rail_contact::scene::{
     CreepageSource, EllipseSource, Evaluation, Relaxation, Scene, SceneCache, SceneError, SceneInput, SceneOutput,
@@ -333,7 +334,8 @@ fn contact_of(parameters: &Parameters, strings: &Strings, resources: Option<&Pat
 /// computes is finite, writes the outputs into `values` and the state after this evaluation
 /// (advanced or initialised) into the contact's own; on error nothing is changed. `Ok` holds a
 /// warning for the master when the outputs are an unconverged exact solve's last iterate; the
-/// error names the variable and value.
+/// error names the variable and value. With profiles the wheel's switching functions go to
+/// `switching` (one patch has none, and does not pay for them: it leaves them alone).
 ///
 /// The one-patch path is the hot path of a co-simulation step: it writes the patch's outputs in
 /// place (the wheel's stay zero) and moves no state it does not advance.
@@ -343,6 +345,7 @@ pub(crate) fn update_outputs(
     cache: &mut ContactCache,
     scene_state: &mut SceneState,
     wheel_state: &mut WheelState,
+    switching: &mut SwitchingFunctions,
     evaluation: Evaluation,
 ) -> Result<Option<String>, String> {
     let (contact, scene_cache, wheel_cache, rebuilt) = cache.plan(&values.parameters, strings)?;
@@ -377,6 +380,7 @@ pub(crate) fn update_outputs(
             // The patches' relaxed forces are in the wheel's state, not continuous states.
             [values.locals.der_relaxed_force_longitudinal, values.locals.der_relaxed_force_lateral] = [0.0; 2];
             *wheel_state = next_state;
+            *switching = output.switching;
             Ok(warning)
         }
     }
@@ -785,7 +789,16 @@ mod tests {
         let mut state = SceneState::with_relaxed_forces(*relaxed_forces);
         let mut values = *values;
         let strings = Strings::default();
-        update_outputs(&mut values, &strings, cache, &mut state, &mut WheelState::default(), evaluation)?;
+        let mut switching = SwitchingFunctions::default();
+        update_outputs(
+            &mut values,
+            &strings,
+            cache,
+            &mut state,
+            &mut WheelState::default(),
+            &mut switching,
+            evaluation,
+        )?;
         *relaxed_forces = state.relaxed_forces;
         Ok(values.outputs)
     }

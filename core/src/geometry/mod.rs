@@ -18,6 +18,8 @@
 //!   (Kik–Piotrowski's virtual penetration, strip by strip), both modes;
 //! - [`conicity`]: the wheelset's rolling-radius difference Δr(y) and its equivalent conicity
 //!   tan γ_e(A) by EN 15302's principle (the kinematic wavelength of the nonlinear motion);
+//! - [`switching`]: the switching functions whose signs change where a wheel's patches jump
+//!   (joining, parting, or passing to another gap minimum), for integrators' event detection;
 //! - `patch`: what the search and the normal problem find: the side, a contact point, a
 //!   loaded patch.
 //!
@@ -38,6 +40,7 @@ pub mod profile_file;
 mod sampled_profile;
 pub mod smooth_profile;
 mod strip_table;
+pub mod switching;
 
 pub use builtin::{builtin_profile, BUILTIN_PROFILE_NAMES};
 pub use conicity::{first_touch, ConicityError, RollingRadiusDifference};
@@ -52,3 +55,4 @@ pub use profile_file::{
     parse_profile, parse_profile_as, ProfileError, ProfileFormat, ProfileKind, ProfilePoints, MAX_COORDINATE,
 };
 pub use smooth_profile::{ProfilePoint, SmoothProfile};
+pub use switching::{SwitchingFunctions, NO_SWITCH, SWITCHING_CONTACTS, SWITCHING_FUNCTIONS, SWITCHING_PAIRS};

@@ -109,6 +109,7 @@ use super::patch::{ContactPatch, WheelSide};
 use super::profile_file::ProfileError;
 use super::sampled_profile::hermite_height;
 use super::strip_table::StripTable;
+use super::switching::{SwitchingFunctions, NO_SWITCH};
 use crate::hertz::HertzContact;
 use std::collections::VecDeque;
 use std::f64::consts::PI;
@@ -189,6 +190,8 @@ pub struct NonHertzianContact {
     pub vertical: f64,
     /// The patches, tread first.
     pub patches: Vec<NonHertzianPatch>,
+    /// The switching functions of the regions' splits (`switching.rs`), tread first.
+    pub switching: SwitchingFunctions,
 }
 
 /// One strip's geometry at its centre at z_ws = 0 (right side), from the exact splines
@@ -366,6 +369,10 @@ struct Region {
     approach: f64,
     scale: f64,
 }
+
+/// The regions a solve's patches were made of ([`NonHertzianPose::summaries_at`]): what their
+/// switching functions are computed from, for the solve that is kept alone.
+pub(crate) struct Regions(Vec<Region>);
 
 impl<'a> Strips<'a> {
     /// Cuts the strips of the pose `right` over the stretch where the gap lies within `reach`
@@ -614,24 +621,71 @@ impl<'a> Strips<'a> {
         (strips[low].arc - 0.5 * strips[low].width, strips[high].arc + 0.5 * strips[high].width)
     }
 
-    /// The patch of each of `regions` (field side first) at z_ws, numbered from 0: regions
+    /// The patch of each of `regions` (in the strips' order) at z_ws, numbered from 0: regions
     /// whose real interpenetrations lie within [`JOIN_DISTANCE`] of each other are one patch
     /// (module doc, 6).
     fn patch_of_each(&self, regions: &[Region], vertical: f64) -> Vec<usize> {
-        let mut patch_of = Vec::with_capacity(regions.len());
-        let mut last_end = f64::NEG_INFINITY;
+        let mut patch = 0;
+        let joins = self.joins(regions, vertical).into_iter().map(|join| {
+            patch += usize::from(join > 0.0);
+            patch
+        });
+        regions.first().map(|_| 0).into_iter().chain(joins).collect()
+    }
+
+    /// The reference function of the region of strips [first, end) (`switching.rs`): of its two
+    /// highest local maxima of virtual penetration, the gauge side's less the field side's (the
+    /// strips run from the gauge side); [`NO_SWITCH`] with one. The region's reference strip,
+    /// its highest, passes from one to the other where this changes sign.
+    fn reference_switch(&self, first: usize, end: usize, vertical: f64) -> f64 {
+        let v = |j: usize| self.virtual_penetration(j, vertical);
+        // (index, v) of the highest and the second highest local maximum.
+        let mut highest: Option<(usize, f64)> = None;
+        let mut second: Option<(usize, f64)> = None;
+        for j in first..end {
+            let here = v(j);
+            let peak = (j == first || here > v(j - 1)) && (j + 1 == end || here >= v(j + 1));
+            if !peak {
+                continue;
+            }
+            if highest.is_none_or(|(_, top)| here > top) {
+                (highest, second) = (Some((j, here)), highest);
+            } else if second.is_none_or(|(_, next)| here > next) {
+                second = Some((j, here));
+            }
+        }
+        match (highest, second) {
+            (Some(a), Some(b)) => {
+                let ((_, gauge), (_, field)) = if a.0 < b.0 { (a, b) } else { (b, a) };
+                gauge - field
+            }
+            _ => NO_SWITCH,
+        }
+    }
+
+    /// The join function between each of `regions` but the first and the patch of the regions
+    /// before it (`switching.rs`): the distance along the surface from that patch's real
+    /// interpenetrations to the region's, less [`JOIN_DISTANCE`]; the region joins the patch
+    /// where it is ≤ 0.
+    fn joins(&self, regions: &[Region], vertical: f64) -> Vec<f64> {
+        let mut joins = Vec::with_capacity(regions.len().saturating_sub(1));
+        let mut patch_end = None;
         for region in regions {
             let (low, high) = self.interpenetration_extent(region.first, region.end, vertical);
-            let joined = low - last_end <= JOIN_DISTANCE;
-            let patch = match patch_of.last() {
-                Some(&last) if joined => last,
-                Some(&last) => last + 1,
-                None => 0,
-            };
-            last_end = if joined { last_end.max(high) } else { high };
-            patch_of.push(patch);
+            patch_end = Some(match patch_end {
+                Some(end) => {
+                    let join = low - end - JOIN_DISTANCE;
+                    joins.push(join);
+                    if join <= 0.0 {
+                        high.max(end)
+                    } else {
+                        high
+                    }
+                }
+                None => high,
+            });
         }
-        patch_of
+        joins
     }
 
     /// Where the virtual penetration falls to zero between strip `inside` (in contact) and its
@@ -656,23 +710,41 @@ impl<'a> Strips<'a> {
     }
 
     /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6); their
-    /// strips listed if `with_strips`.
-    fn patches(&self, vertical: f64, with_strips: bool) -> Result<Vec<NonHertzianPatch>, ProfileError> {
+    /// strips listed if `with_strips`; and the switching functions of the regions' splits.
+    fn patches(&self, vertical: f64, with_strips: bool) -> Result<(Vec<NonHertzianPatch>, Regions), ProfileError> {
         let regions = self.regions(vertical);
         let patch_of = self.patch_of_each(&regions, vertical);
-        let mut groups: Vec<Vec<Region>> = Vec::new();
-        for (region, &patch) in regions.into_iter().zip(&patch_of) {
-            match groups.get_mut(patch) {
-                Some(group) => group.push(region),
-                None => groups.push(vec![region]),
+        // A patch's regions are neighbours (the patch numbers only grow along the strips).
+        let mut patches = Vec::with_capacity(patch_of.last().map_or(0, |last| last + 1));
+        let mut first = 0;
+        for end in 1..=regions.len() {
+            if end == regions.len() || patch_of[end] != patch_of[first] {
+                patches.push(self.patch(&regions[first..end], vertical, with_strips)?);
+                first = end;
             }
         }
         // The strips are cut along the wheel profile's y, which runs from the flange (the rail's
         // gauge side) to the field side: the patches tread first, as the Hertz ones.
-        let mut patches =
-            groups.iter().map(|regions| self.patch(regions, vertical, with_strips)).collect::<Result<Vec<_>, _>>()?;
         patches.reverse();
-        Ok(patches)
+        Ok((patches, Regions(regions)))
+    }
+
+    /// The switching functions (`switching.rs`) of the patches made of `regions` at z_ws, field
+    /// side first: per region its onset (its deepest virtual penetration, negated) and its
+    /// reference function; per neighbouring pair its join function and, joined, its deepest
+    /// function.
+    fn switching_functions(&self, regions: &[Region], vertical: f64) -> SwitchingFunctions {
+        let joins = self.joins(regions, vertical);
+        let count = regions.len();
+        // Field side first: the strips run from the gauge side.
+        let region = |k: usize| &regions[count - 1 - k];
+        SwitchingFunctions::new(
+            count,
+            |k| -self.virtual_penetration(region(k).deepest, vertical),
+            |k| joins[count - 2 - k],
+            |join| join <= 0.0,
+            |k| self.reference_switch(region(k).first, region(k).end, vertical),
+        )
     }
 
     /// One patch from its regions at z_ws, on the wheel's side; its strips listed if
@@ -1010,15 +1082,28 @@ impl<'a> NonHertzianPose<'a> {
     /// The patches at z_ws = `vertical` ([`WheelOnRail::non_hertzian_patches_at`]). A z_ws more
     /// than [`MAX_PENETRATION`] below the touch is refused.
     pub fn patches_at(&mut self, vertical: f64) -> Result<NonHertzianContact, ProfileError> {
-        Ok(NonHertzianContact { vertical, patches: self.strips_at(vertical)?.patches(vertical, true)? })
+        let strips = self.strips_at(vertical)?;
+        let (patches, Regions(regions)) = strips.patches(vertical, true)?;
+        Ok(NonHertzianContact { vertical, patches, switching: strips.switching_functions(&regions, vertical) })
     }
 
     /// The patches' summaries at z_ws = `vertical` (contact point, normal force, equivalent
     /// ellipse; [`Self::patches_at`] without the strips): what the wheel's creep forces are
-    /// computed on.
-    pub(crate) fn summaries_at(&mut self, vertical: f64) -> Result<Vec<ContactPatch>, ProfileError> {
-        let patches = self.strips_at(vertical)?.patches(vertical, false)?;
-        Ok(patches.into_iter().map(|patch| patch.patch).collect())
+    /// computed on; with the regions they were made of ([`Self::switching_functions`]).
+    pub(crate) fn summaries_at(&mut self, vertical: f64) -> Result<(Vec<ContactPatch>, Regions), ProfileError> {
+        let (patches, regions) = self.strips_at(vertical)?.patches(vertical, false)?;
+        Ok((patches.into_iter().map(|patch| patch.patch).collect(), regions))
+    }
+
+    /// The switching functions of the patches of [`Self::summaries_at`] at the same z_ws, from
+    /// the regions it returned: computed for the one solve a wheel step keeps, not for each
+    /// round of its balance.
+    pub(crate) fn switching_functions(
+        &mut self,
+        vertical: f64,
+        regions: &Regions,
+    ) -> Result<SwitchingFunctions, ProfileError> {
+        Ok(self.strips_at(vertical)?.switching_functions(&regions.0, vertical))
     }
 
     /// The strips z_ws = `vertical` is solved on; a z_ws more than [`MAX_PENETRATION`] below the
@@ -1047,12 +1132,11 @@ impl<'a> NonHertzianPose<'a> {
         let vertical =
             self.vertical_for_force(vertical_force, near, 1e-12, |pose, vertical| Ok(pose.carried(vertical)))?;
         if vertical_force <= 0.0 {
-            return Ok(NonHertzianContact { vertical, patches: Vec::new() });
+            return Ok(NonHertzianContact { vertical, patches: Vec::new(), switching: SwitchingFunctions::default() });
         }
-        Ok(NonHertzianContact {
-            vertical,
-            patches: self.strips(self.source.reach_for(vertical - self.source.touch())).patches(vertical, true)?,
-        })
+        let strips = self.strips(self.source.reach_for(vertical - self.source.touch()));
+        let (patches, Regions(regions)) = strips.patches(vertical, true)?;
+        Ok(NonHertzianContact { vertical, patches, switching: strips.switching_functions(&regions, vertical) })
     }
 
     /// z_ws where `carried(z_ws)`, the vertical force the patches at z_ws carry (the normal

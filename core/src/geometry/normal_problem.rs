@@ -14,6 +14,7 @@
 
 use super::patch::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
+use super::switching::{SwitchingFunctions, NO_SWITCH};
 use std::cell::{Cell, OnceCell};
 
 use crate::hertz::table::unit_solution;
@@ -103,6 +104,36 @@ impl ContactCandidates {
     /// z_ws where the wheel first touches: the lowest gap.
     pub fn touch(&self) -> f64 {
         self.candidates.iter().map(|c| c.point.gap_at_zero).fold(f64::INFINITY, f64::min)
+    }
+
+    /// The switching functions at z_ws ([`SwitchingFunctions`]), tread first: per gap minimum its
+    /// gap less z_ws (in contact below 0); per split between neighbouring minima the barrier
+    /// between them less z_ws (they join below 0) and, joined, the lowest gap of their group on
+    /// the split's field side less that on its gauge side (the patch sits at the field side's
+    /// below 0). At the S1002 wheel's tread–flange
+    /// transition on UIC60 (y_ws = 5 mm) its two interpenetrations join as the wheel sinks,
+    /// where the first split's join function passes 0:
+    ///
+    /// ```
+    /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition, SWITCHING_CONTACTS};
+    ///
+    /// let right = WheelOnRail::manchester_benchmark(WheelSide::Right);
+    /// let candidates = right.candidates(&WheelsetPosition { lateral: 5e-3, ..Default::default() }).unwrap();
+    /// let barrier = candidates.switching_functions(candidates.touch()).values()[SWITCHING_CONTACTS] + candidates.touch();
+    /// let patches = |z: f64| candidates.patches_at(z).unwrap().len();
+    /// assert_eq!((patches(barrier - 1e-9), patches(barrier + 1e-9)), (2, 1));
+    /// assert!(candidates.switching_functions(barrier + 1e-9).values()[SWITCHING_CONTACTS] < 0.0);
+    /// ```
+    pub fn switching_functions(&self, vertical: f64) -> SwitchingFunctions {
+        // In contact, and joined, as `for_each_patch` decides: the gap, or the barrier, below z_ws.
+        SwitchingFunctions::new(
+            self.candidates.len(),
+            |k| self.candidates[k].point.gap_at_zero - vertical,
+            |k| self.barriers[k] - vertical,
+            |join| join < 0.0,
+            // One gap minimum each.
+            |_| NO_SWITCH,
+        )
     }
 
     /// The loaded patches at the wheelset's vertical position z_ws (module doc), tread first.

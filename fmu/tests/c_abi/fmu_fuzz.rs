@@ -331,7 +331,10 @@ impl Fuzzer {
                     let mut values = vec![0.0; self.rng.random_range(0..3)];
                     let (n, p) = (values.len(), self.pointer_mut(&mut values));
                     self.check(fmi2GetDerivatives(c, p, n), "fmi2GetDerivatives");
-                    self.check(fmi2GetEventIndicators(c, p, n), "fmi2GetEventIndicators");
+                    // The event indicators' count, now and then (their values: anything).
+                    let mut indicators = vec![0.0; if self.rng.random_bool(0.5) { 18 } else { n }];
+                    let (m, q) = (indicators.len(), self.pointer_mut(&mut indicators));
+                    self.check(fmi2GetEventIndicators(c, q, m), "fmi2GetEventIndicators");
                     self.check(fmi2GetContinuousStates(c, p, n), "fmi2GetContinuousStates");
                     self.check(fmi2GetNominalsOfContinuousStates(c, p, n), "fmi2GetNominalsOfContinuousStates");
                 }

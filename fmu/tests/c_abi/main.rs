@@ -4,6 +4,7 @@
 //! c_abi <module>` runs one module, e.g. `fmu_fuzz`.
 
 mod creep_relaxation;
+mod event_indicators;
 mod exact_table_fold_derivatives;
 mod exact_table_resources;
 mod feedthrough;
