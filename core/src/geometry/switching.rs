@@ -120,6 +120,7 @@ impl SwitchingFunctions {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::NonHertzianContact;
 
     const C: usize = SWITCHING_CONTACTS;
 
@@ -146,6 +147,66 @@ mod tests {
         let depths = [-3.0, -1.0, -4.0, -5.0];
         let functions = of(&depths, &joins, &references);
         assert_eq!(&functions.values()[C..C + 4], &[-0.5, 1.0, -0.25, 1.0]);
+    }
+
+    /// Hertz on S1002/UIC60 (right wheel, y_ws = 5 mm, two gap minima): each onset passes 0
+    /// where its minimum comes into touch, the join where the two patches become one, and the
+    /// deepest function, defined once joined, is the tread's gap less the flange's.
+    #[test]
+    fn the_hertz_functions_switch_where_the_patches_change() {
+        use crate::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+        let wheel = WheelOnRail::manchester_benchmark(WheelSide::Right);
+        let candidates = wheel.candidates(&WheelsetPosition { lateral: 5e-3, ..Default::default() }).unwrap();
+        let at = |z: f64| *candidates.switching_functions(z).values();
+        let count = |z: f64| candidates.patches_at(z).unwrap().len();
+        let touch = candidates.touch();
+        let [first, second] = [at(touch)[0] + touch, at(touch)[1] + touch];
+        let barrier = at(touch)[C] + touch;
+        assert!(first < barrier && second < barrier && (first == touch || second == touch));
+        let onset = first.max(second);
+        for (z, patches, signs) in [
+            (onset - 1e-9, 1, [first > onset - 1e-9, second > onset - 1e-9, true]),
+            (onset + 1e-9, 2, [false, false, true]),
+            (barrier + 1e-9, 1, [false, false, false]),
+        ] {
+            let values = at(z);
+            assert_eq!(count(z), patches, "z_ws = {z:e}");
+            assert_eq!([values[0] > 0.0, values[1] > 0.0, values[C] > 0.0], signs, "z_ws = {z:e}: {values:?}");
+        }
+        let joined = at(barrier + 1e-9);
+        assert!((joined[C + 1] - (first - second)).abs() < 1e-15, "{joined:?}");
+        assert_eq!(at(onset + 1e-9)[C + 1], NO_SWITCH);
+        assert_eq!(&joined[2..C], &[NO_SWITCH; C - 2]);
+        assert_eq!(&joined[C + 2..], &[NO_SWITCH; SWITCHING_FUNCTIONS - C - 2]);
+    }
+
+    /// Non-Hertzian at the centred wheelset (right wheel, 10 kN): the region's reference passes
+    /// between its two maxima of virtual penetration at y_ws = 0.2143 mm, where its reference
+    /// function changes sign and the patch's approach jumps; one region, one patch: no pair.
+    #[test]
+    fn the_non_hertzian_reference_function_switches_where_the_reference_jumps() {
+        use crate::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+        let wheel = WheelOnRail::manchester_benchmark(WheelSide::Right).with_strip_table();
+        let at = |lateral: f64| {
+            let position = WheelsetPosition { lateral, ..Default::default() };
+            wheel.non_hertzian_patches_for_force(10e3, &position).unwrap()
+        };
+        let jump = 2.14289194032935e-4;
+        let (below, above) = (at(jump - 1e-12), at(jump + 1e-12));
+        let reference = C + 2 * SWITCHING_PAIRS;
+        let (f_below, f_above) = (below.switching.values(), above.switching.values());
+        assert!(f_below[reference] < 0.0 && f_above[reference] > 0.0, "{f_below:?} {f_above:?}");
+        let approach = |contact: &NonHertzianContact| contact.patches[0].patch.penetration;
+        assert!((approach(&below) - approach(&above)).abs() > 1e-6, "the jump: {} {}", approach(&below), approach(&above));
+        // Away from the jump the function keeps its sign; its onset is the region's deepest
+        // virtual penetration, negated.
+        assert!(at(jump - 20e-6).switching.values()[reference] < 0.0);
+        assert!(at(jump + 20e-6).switching.values()[reference] > 0.0);
+        for contact in [&below, &above] {
+            let values = contact.switching.values();
+            assert!(values[0] < 0.0 && values[1] == NO_SWITCH && values[C] == NO_SWITCH, "{values:?}");
+            assert_eq!(contact.patches.len(), 1);
+        }
     }
 
     /// More contacts than [`SWITCHING_CONTACTS`]: the first ones are kept.
