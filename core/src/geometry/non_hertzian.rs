@@ -109,7 +109,7 @@ use super::patch::{ContactPatch, WheelSide};
 use super::profile_file::ProfileError;
 use super::sampled_profile::hermite_height;
 use super::strip_table::StripTable;
-use super::switching::{SwitchingFunctions, NO_SWITCH};
+use super::switching::{self, SwitchingFunctions};
 use crate::hertz::HertzContact;
 use std::collections::VecDeque;
 use std::f64::consts::PI;
@@ -633,34 +633,11 @@ impl<'a> Strips<'a> {
         regions.first().map(|_| 0).into_iter().chain(joins).collect()
     }
 
-    /// The reference function of the region of strips [first, end) (`switching.rs`): of its two
-    /// highest local maxima of virtual penetration, the gauge side's less the field side's (the
-    /// strips run from the gauge side); [`NO_SWITCH`] with one. The region's reference strip,
-    /// its highest, passes from one to the other where this changes sign.
+    /// The reference function of the region of strips [first, end) (`switching.rs`), from its
+    /// virtual penetrations in the strips' order (from the gauge side).
     fn reference_switch(&self, first: usize, end: usize, vertical: f64) -> f64 {
-        let v = |j: usize| self.virtual_penetration(j, vertical);
-        // (index, v) of the highest and the second highest local maximum.
-        let mut highest: Option<(usize, f64)> = None;
-        let mut second: Option<(usize, f64)> = None;
-        for j in first..end {
-            let here = v(j);
-            let peak = (j == first || here > v(j - 1)) && (j + 1 == end || here >= v(j + 1));
-            if !peak {
-                continue;
-            }
-            if highest.is_none_or(|(_, top)| here > top) {
-                (highest, second) = (Some((j, here)), highest);
-            } else if second.is_none_or(|(_, next)| here > next) {
-                second = Some((j, here));
-            }
-        }
-        match (highest, second) {
-            (Some(a), Some(b)) => {
-                let ((_, gauge), (_, field)) = if a.0 < b.0 { (a, b) } else { (b, a) };
-                gauge - field
-            }
-            _ => NO_SWITCH,
-        }
+        let penetrations: Vec<f64> = (first..end).map(|j| self.virtual_penetration(j, vertical)).collect();
+        switching::reference_function(&penetrations)
     }
 
     /// The join function between each of `regions` but the first and the patch of the regions

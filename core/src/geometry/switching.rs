@@ -117,6 +117,36 @@ impl SwitchingFunctions {
     }
 }
 
+/// The reference function of a non-Hertzian region (module doc) from its virtual penetrations
+/// strip by strip, from the gauge side: of its two highest local maxima, the gauge side's less
+/// the field side's (negative while the field side holds the reference, the highest);
+/// [`NO_SWITCH`] with one. A plateau's first strip is its maximum, as the region's reference is
+/// its first highest strip.
+pub(super) fn reference_function(penetrations: &[f64]) -> f64 {
+    let last = penetrations.len().saturating_sub(1);
+    let mut highest: Option<(usize, f64)> = None;
+    let mut second: Option<(usize, f64)> = None;
+    for (j, &here) in penetrations.iter().enumerate() {
+        let rising = j == 0 || here > penetrations[j - 1];
+        let not_falling = j == last || here >= penetrations[j + 1];
+        if !(rising && not_falling) {
+            continue;
+        }
+        if highest.is_none_or(|(_, top)| here > top) {
+            (highest, second) = (Some((j, here)), highest);
+        } else if second.is_none_or(|(_, next)| here > next) {
+            second = Some((j, here));
+        }
+    }
+    match (highest, second) {
+        (Some(a), Some(b)) => {
+            let ((_, gauge), (_, field)) = if a.0 < b.0 { (a, b) } else { (b, a) };
+            gauge - field
+        }
+        _ => NO_SWITCH,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -197,7 +227,12 @@ mod tests {
         let (f_below, f_above) = (below.switching.values(), above.switching.values());
         assert!(f_below[reference] < 0.0 && f_above[reference] > 0.0, "{f_below:?} {f_above:?}");
         let approach = |contact: &NonHertzianContact| contact.patches[0].patch.penetration;
-        assert!((approach(&below) - approach(&above)).abs() > 1e-6, "the jump: {} {}", approach(&below), approach(&above));
+        assert!(
+            (approach(&below) - approach(&above)).abs() > 1e-6,
+            "the jump: {} {}",
+            approach(&below),
+            approach(&above)
+        );
         // Away from the jump the function keeps its sign; its onset is the region's deepest
         // virtual penetration, negated.
         assert!(at(jump - 20e-6).switching.values()[reference] < 0.0);
@@ -207,6 +242,44 @@ mod tests {
             assert!(values[0] < 0.0 && values[1] == NO_SWITCH && values[C] == NO_SWITCH, "{values:?}");
             assert_eq!(contact.patches.len(), 1);
         }
+    }
+
+    /// The reference function takes the two highest local maxima wherever they lie (the lower
+    /// third one, the shoulders and the plateau's later strips are no maxima), the gauge side's
+    /// (first) less the field side's.
+    #[test]
+    fn the_reference_function_compares_the_two_highest_maxima() {
+        // Maxima 3 (j = 1), 5 (j = 4, a plateau to j = 5) and 4 (j = 8): 5 and 4.
+        let penetrations = [1.0, 3.0, 2.0, 2.5, 5.0, 5.0, 4.5, 3.0, 4.0, 1.0];
+        assert_eq!(reference_function(&penetrations), 5.0 - 4.0);
+        // The same mirrored: the highest on the field side.
+        let mirrored: Vec<f64> = penetrations.iter().rev().copied().collect();
+        assert_eq!(reference_function(&mirrored), 4.0 - 5.0);
+        // Maxima at both ends, the higher one last.
+        assert_eq!(reference_function(&[2.0, 1.0, 0.5, 1.0, 3.0]), 2.0 - 3.0);
+        // The third maximum lower than both, in between and the first one highest.
+        assert_eq!(reference_function(&[6.0, 1.0, 2.0, 1.0, 3.0, 1.0]), 6.0 - 3.0);
+        // One maximum (rising, then falling; or a plateau alone): nothing to switch.
+        assert_eq!(reference_function(&[1.0, 2.0, 3.0, 2.0]), NO_SWITCH);
+        assert_eq!(reference_function(&[2.0, 2.0, 2.0]), NO_SWITCH);
+        assert_eq!(reference_function(&[]), NO_SWITCH);
+    }
+
+    /// Non-Hertzian at the tread–flange transition (right wheel, y_ws = 5 mm, 10 kN): two
+    /// regions, the tread's and the flange root's, whose real interpenetrations lie 6.1 mm apart,
+    /// within JOIN_DISTANCE: one patch; the join function is that distance less 8 mm, and the
+    /// deepest function the tread region's onset less the flange root's.
+    #[test]
+    fn the_non_hertzian_functions_of_two_joined_regions() {
+        use crate::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
+        let wheel = WheelOnRail::manchester_benchmark(WheelSide::Right).with_strip_table();
+        let position = WheelsetPosition { lateral: 5e-3, ..Default::default() };
+        let contact = wheel.non_hertzian_patches_for_force(10e3, &position).unwrap();
+        let values = contact.switching.values();
+        assert_eq!(contact.patches.len(), 1, "{values:?}");
+        assert!(values[0] < 0.0 && values[1] < 0.0 && values[2] == NO_SWITCH, "{values:?}");
+        assert!(values[C] < 0.0 && values[C] > -8e-3 && values[C + 1] == values[0] - values[1], "{values:?}");
+        assert_eq!(values[C + 2], NO_SWITCH);
     }
 
     /// More contacts than [`SWITCHING_CONTACTS`]: the first ones are kept.
