@@ -9,17 +9,30 @@ use num_dual::{Dual64, DualNum};
 pub trait Scalar: DualNum<Primitive = f64> + Copy {
     /// The rate along the direction of differentiation (0 for a plain value).
     fn rate(self) -> f64;
+
+    /// This number with its value replaced and its rate kept (a plain value is `value` itself).
+    /// Formed as `self + (value − self)` it would cost a plain value two dependent additions
+    /// where it needs none.
+    fn with_value(self, value: f64) -> Self;
 }
 
 impl Scalar for f64 {
     fn rate(self) -> f64 {
         0.0
     }
+
+    fn with_value(self, value: f64) -> Self {
+        value
+    }
 }
 
 impl Scalar for Dual64 {
     fn rate(self) -> f64 {
         self.eps
+    }
+
+    fn with_value(self, value: f64) -> Self {
+        Dual64::new(value, self.eps)
     }
 }
 

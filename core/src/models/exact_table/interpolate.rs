@@ -29,20 +29,18 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
         return Err(InvalidInput::new("semi_axis_a", value(input.semi_axis_a), requirement)
             .involving([Some(("semi_axis_b", value(input.semi_axis_b))), None]));
     }
-    let [ab_map, nu_map, beta_map, alpha_map, t_map] = table.maps;
+    let [ab_map, nu_map, beta_map, alpha_map, t_map] = &table.maps;
     let (i_ab, w_ab) = cell(a_over_b.ln(), ab_map);
     let (i_nu, w_nu) = cell(D::from(value(input.poisson_ratio)), nu_map);
 
     // Scale factors k, bilinear over the (a/b, ν) cell like the values.
     let n_nu = nu_map.nodes;
-    let scale_at = |i: usize, j: usize| table.scales[i * n_nu + j];
-    let blend2 = |low: f64, high: f64, w: D| w * (high - low) + low;
-    let mut k = [D::from(0.0); 3];
-    for (c, k_c) in k.iter_mut().enumerate() {
-        let lower = blend2(scale_at(i_ab, i_nu)[c], scale_at(i_ab, i_nu + 1)[c], w_nu);
-        let upper = blend2(scale_at(i_ab + 1, i_nu)[c], scale_at(i_ab + 1, i_nu + 1)[c], w_nu);
-        *k_c = (upper - lower) * w_ab + lower;
-    }
+    let [lower_ab, upper_ab] = [i_ab, i_ab + 1].map(|i| adjacent(&table.scales, i * n_nu + i_nu));
+    let blend2 = |[low, high]: [[f64; 3]; 2], c: usize| w_nu * (high[c] - low[c]) + low[c];
+    let k: [D; 3] = std::array::from_fn(|c| {
+        let (lower, upper) = (blend2(lower_ab, c), blend2(upper_ab, c));
+        (upper - lower) * w_ab + lower
+    });
     let c = (input.semi_axis_a * input.semi_axis_b).sqrt();
     let bounded = |x: D| if value(x).abs() <= 1e300 { x } else { D::from(1e300_f64.copysign(value(x))) };
     let direction = [
@@ -59,43 +57,32 @@ pub(crate) fn forces<D: Scalar>(table: &Table, input: &ContactInput<D>) -> Resul
     let (i_beta, w_beta) = cell(folded.beta, beta_map);
     let (i_alpha, w_alpha) = cell(folded.alpha, alpha_map);
 
-    // The 16 corner rays of the (a/b, ν, β, α) cell and their weights.
-    let [stride_ab, stride_nu, stride_beta, stride_alpha] = table.ray_strides;
-    let base = i_ab * stride_ab + i_nu * stride_nu + i_beta * stride_beta + i_alpha;
-    let one = D::from(1.0);
-    let mut corners = [(0, one); 16];
-    let mut next = corners.iter_mut();
-    for (o_ab, f_ab) in [(0, one - w_ab), (stride_ab, w_ab)] {
-        for (o_nu, f_nu) in [(0, one - w_nu), (stride_nu, w_nu)] {
-            let f_shape = f_ab * f_nu;
-            for (o_beta, f_beta) in [(0, one - w_beta), (stride_beta, w_beta)] {
-                let f_spin = f_shape * f_beta;
-                for (o_alpha, f_alpha) in [(0, one - w_alpha), (stride_alpha, w_alpha)] {
-                    *next.next().expect("16 corners") = (base + o_ab + o_nu + o_beta + o_alpha, f_spin * f_alpha);
-                }
-            }
-        }
-    }
+    // The 16 corner rays of the (a/b, ν, β, α) cell: 8 pairs of rays adjacent along α.
+    let [stride_ab, stride_nu, stride_beta, _] = table.ray_strides;
+    let first_ray = i_ab * stride_ab + i_nu * stride_nu + i_beta * stride_beta + i_alpha;
+    let weights = corner_weights(w_ab, w_nu, w_beta, w_alpha);
     // The query's collapse, interpolated like the values, and its kink-fitted size τ: every
     // corner's collapse sits on the node τ_c, and so does the query's (`coordinates.rs`).
     // Below IDENTITY_END τ = t whatever the collapse.
     let tau = if value(folded.t) <= IDENTITY_END {
         folded.t
     } else {
-        // Four partial sums: independent chains instead of one of 16 additions.
-        let mut partial = [D::from(0.0); 4];
-        for quad in corners.chunks_exact(4) {
-            for (sum, &(ray, f)) in partial.iter_mut().zip(quad) {
-                *sum += f * f64::from(table.collapse[ray]);
+        // Four partial sums (by β side, then α side): independent chains instead of one of 16
+        // additions.
+        let mut partial = [[D::from(0.0); 2]; 2];
+        for (pair, (&offset, pair_weights)) in table.alpha_pairs.iter().zip(&weights).enumerate() {
+            let collapse = adjacent(&table.collapse, first_ray + offset);
+            for ((sum, &f), t_c) in partial[pair % 2].iter_mut().zip(pair_weights).zip(collapse) {
+                *sum += f * f64::from(t_c);
             }
         }
-        kink_fitted(folded.t, (partial[0] + partial[1]) + (partial[2] + partial[3]))
+        kink_fitted(folded.t, (partial[0][0] + partial[0][1]) + (partial[1][0] + partial[1][1]))
     };
     let (i_t, w_t) = cell(tau, t_map);
     // In the first cell (inside the identity piece, τ = t) the forces are linear in s (see
     // `small_creepage`): it needs the node t₁ alone.
     let w_t = if i_t == 0 { D::from(1.0) } else { w_t };
-    let sum = blend(table, &corners, i_t, w_t);
+    let sum = blend(table, first_ray, &weights, i_t, w_t);
     let (resize, utilisation) = chord_correction(sum[0], sum[1], sum[3]);
     let limit = input.friction_limit() * folded.sign_all;
     let lateral_limit = limit * folded.sign_lateral;
@@ -203,16 +190,28 @@ fn small_creepage<D: Scalar>(
     Some(std::array::from_fn(|k| table[k] * weight + linear[k] * (-weight + 1.0)))
 }
 
-/// The weighted sum of the 32 nodes of a cell: 16 corner rays (index, weight), each at its nodes
-/// `i_t` and `i_t` + 1, the upper one weighted by `w_t`.
-fn blend<D: Scalar>(table: &Table, corners: &[(usize, D); 16], i_t: usize, w_t: D) -> [D; 4] {
+/// The weights of the 16 corner rays of an (a/b, ν, β, α) cell, in the order of
+/// [`Table::alpha_pairs`]: for each (a/b, ν, β) corner, its rays at the lower and the upper α node.
+fn corner_weights<D: Scalar>(w_ab: D, w_nu: D, w_beta: D, w_alpha: D) -> [[D; 2]; 8] {
+    let across = |w: D| [D::from(1.0) - w, w];
+    std::array::from_fn(|pair| {
+        let f_spin = across(w_ab)[pair / 4] * across(w_nu)[pair / 2 % 2] * across(w_beta)[pair % 2];
+        across(w_alpha).map(|f_alpha| f_spin * f_alpha)
+    })
+}
+
+/// The weighted sum of the 32 nodes of a cell: its 16 corner rays (the pairs of
+/// [`Table::alpha_pairs`] from `first_ray` on, weighted by [`corner_weights`]), each at its
+/// nodes `i_t` and `i_t` + 1, the upper one weighted by `w_t`.
+fn blend<D: Scalar>(table: &Table, first_ray: usize, weights: &[[D; 2]; 8], i_t: usize, w_t: D) -> [D; 4] {
     let n_t = table.maps[4].nodes;
-    // Two sums over alternate corners: two independent chains of 8 additions instead of one of 16.
+    // Two sums, over the lower and the upper α rays: two independent chains of 8 additions
+    // instead of one of 16.
     let mut sums = [[[D::from(0.0); 4]; 2]; 2];
-    for pair in corners.chunks_exact(2) {
-        for (sum, &(ray, weight)) in sums.iter_mut().zip(pair) {
-            let index = ray * n_t + i_t;
-            let (low, high) = (table.nodes[index], table.nodes[index + 1]);
+    for (&offset, pair_weights) in table.alpha_pairs.iter().zip(weights) {
+        let lower_ray = (first_ray + offset) * n_t + i_t;
+        for ((sum, &weight), node) in sums.iter_mut().zip(pair_weights).zip([lower_ray, lower_ray + n_t]) {
+            let [low, high] = adjacent(&table.nodes, node);
             for k in 0..4 {
                 sum[0][k] += weight * f64::from(low[k]);
                 sum[1][k] += weight * f64::from(high[k]);
@@ -225,9 +224,15 @@ fn blend<D: Scalar>(table: &Table, corners: &[(usize, D); 16], i_t: usize, w_t: 
     })
 }
 
+/// `values[index]` and `values[index + 1]`, with one range check for both.
+fn adjacent<T: Copy>(values: &[T], index: usize) -> [T; 2] {
+    let pair: &[T; 2] = values[index..index + 2].try_into().expect("a range of two");
+    *pair
+}
+
 /// The cell of `x` along `axis` and the fraction across it, both kept in the cell (rounding
 /// only: callers bring x into the axis's range).
-fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
+fn cell<D: Scalar>(x: D, axis: &AxisMap) -> (usize, D) {
     let position = (x - axis.origin) * axis.inverse_step;
     // Truncation is the floor here (≥ 0), without a libm call; NaN cannot occur (finite inputs).
     // u32: its conversion to f64 is one instruction (usize's is several on x86-64).
@@ -238,7 +243,7 @@ fn cell<D: Scalar>(x: D, axis: AxisMap) -> (usize, D) {
     // derivative from inside, like the value (a constant here gave a/b's derivative of the
     // values but not of the weights: ∂M_z/∂a 0.709 at a/b = 0.1 against 0.404 just inside).
     let clamped = value(fraction).clamp(0.0, 1.0);
-    let fraction = fraction + (clamped - value(fraction));
+    let fraction = fraction.with_value(clamped);
     // On a node the cell is the one the derivative's direction moves into (the cell above for
     // a plain value): the same side as the folds take (`coordinates::fold`), so that where a
     // node and a fold coincide (β = 0 and |u_φ|) the derivative is one side's, not a mix.
@@ -295,12 +300,12 @@ mod tests {
     #[test]
     fn on_a_node_the_direction_picks_the_cell() {
         let axis = AxisMap { origin: 0.0, inverse_step: 4.0, nodes: 5 };
-        let (up, fraction_up) = cell(Dual64::new(0.5, 1.0), axis);
-        let (down, fraction_down) = cell(Dual64::new(0.5, -1.0), axis);
+        let (up, fraction_up) = cell(Dual64::new(0.5, 1.0), &axis);
+        let (down, fraction_down) = cell(Dual64::new(0.5, -1.0), &axis);
         assert_eq!((up, fraction_up.re, fraction_up.eps), (2, 0.0, 4.0));
         assert_eq!((down, fraction_down.re, fraction_down.eps), (1, 1.0, -4.0));
         // A value a rounding below the axis stays in the first cell at 0, its rate kept.
-        let (first, fraction) = cell(Dual64::new(-1e-17, 1.0), axis);
+        let (first, fraction) = cell(Dual64::new(-1e-17, 1.0), &axis);
         assert_eq!((first, fraction.re, fraction.eps), (0, 0.0, 4.0));
     }
 }

@@ -168,6 +168,12 @@ pub struct Table {
     /// Distances between neighbouring rays along a/b, ν, β and α ([`TableAxes::ray_strides`]),
     /// kept so that the evaluation pays no integer division.
     pub(crate) ray_strides: [usize; 4],
+    /// The 16 corner rays of an interpolation cell (a/b, ν, β, α) relative to its first ray, as
+    /// 8 pairs: for each (a/b, ν, β) corner (a/b slowest, β fastest) the first of its two rays,
+    /// which are adjacent (α is the fastest ray index, stride 1), so that the pair's two t_c are
+    /// read with one range check. Kept, like `ray_strides`, so that the evaluation derives no
+    /// corner index of its own.
+    pub(crate) alpha_pairs: [usize; 8],
 }
 
 /// Why a table was refused.
@@ -248,6 +254,9 @@ impl Table {
             AxisMap::new(0.0, 1.0, n_t),
         ];
         let ray_strides = axes.ray_strides();
+        let [stride_ab, stride_nu, stride_beta, _] = ray_strides;
+        let alpha_pairs =
+            std::array::from_fn(|pair| (pair / 4) * stride_ab + (pair / 2 % 2) * stride_nu + (pair % 2) * stride_beta);
         if stored.len() != 3 * axes.len() || collapse.len() != axes.len() / n_t {
             return Err(TableError(format!(
                 "{} values and {} rays for {} nodes",
@@ -282,7 +291,7 @@ impl Table {
                 [x, y, m, length].map(|value| value as f32)
             })
             .collect();
-        let table = Self { provenance, axes, scales, collapse, nodes, units, maps, ray_strides };
+        let table = Self { provenance, axes, scales, collapse, nodes, units, maps, ray_strides, alpha_pairs };
         table.check()?;
         Ok(table)
     }
