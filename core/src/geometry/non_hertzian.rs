@@ -711,14 +711,14 @@ impl<'a> Strips<'a> {
     /// reference function; per neighbouring pair its join function and, joined, its deepest
     /// function.
     fn switching_functions(&self, regions: &[Region], vertical: f64) -> SwitchingFunctions {
-        let joins = self.joins(regions, vertical);
-        let count = regions.len();
         // Field side first: the strips run from the gauge side.
+        let joins: Vec<f64> = self.joins(regions, vertical).into_iter().rev().collect();
+        let count = regions.len();
         let region = |k: usize| &regions[count - 1 - k];
         SwitchingFunctions::new(
             count,
             |k| -self.virtual_penetration(region(k).deepest, vertical),
-            |k| joins[count - 2 - k],
+            |k| joins[k],
             |join| join <= 0.0,
             |k| self.reference_switch(region(k).first, region(k).end, vertical),
         )
