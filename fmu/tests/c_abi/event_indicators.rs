@@ -6,7 +6,7 @@
 use fmi2_slave::ffi::message_log::MessageLog;
 use fmi2_slave::fmi2::*;
 use fmu_test_master::{Fmu, ERROR, OK};
-use wheel_rail_contact::geometry::{NO_SWITCH, SWITCHING_FUNCTIONS};
+use wheel_rail_contact::geometry::{NO_SWITCH, SWITCHING_CONTACTS, SWITCHING_FUNCTIONS};
 use wheel_rail_contact_fmu::ffi::*;
 use wheel_rail_contact_fmu::model_description::{value_reference as vr, ContactGeometry, ContactMethod};
 
@@ -134,6 +134,36 @@ fn the_structural_jumps_of_the_non_hertzian_patches_are_located_by_an_event_indi
     assert!(reference.is_some_and(|jump| jump.located), "{jumps:?}");
     let unlocated: Vec<&Jump> = jumps.iter().filter(|jump| jump.patches_change && !jump.located).collect();
     assert!(unlocated.is_empty(), "patches that change without an event: {unlocated:?}");
+}
+
+/// In initialization mode the indicators are computed from the values set, as the states are:
+/// a wheel centred at 10 kN touches at both its tread's gap minima, joined into one patch; at
+/// y_ws = 5 mm at its tread and its flange root apart (both onsets below 0, the join above).
+#[test]
+fn in_initialization_mode_the_indicators_follow_the_values_set() {
+    let log = MessageLog::default();
+    let fmu = Fmu::model_exchange_logged("initialization", &log);
+    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+    let mut indicators = [f64::NAN; SWITCHING_FUNCTIONS];
+    let mut read = || {
+        // SAFETY: `fmu.c` is live; `indicators` holds numberOfEventIndicators values.
+        assert_eq!(unsafe { fmi2GetEventIndicators(fmu.c, indicators.as_mut_ptr(), SWITCHING_FUNCTIONS) }, OK);
+        indicators
+    };
+    // SAFETY: `fmu.c` is live.
+    unsafe {
+        assert_eq!(fmi2SetupExperiment(fmu.c, 0, 0.0, 0.0, 0, 0.0), OK);
+        assert_eq!(fmi2EnterInitializationMode(fmu.c), OK);
+    }
+    let centred = read();
+    let c = SWITCHING_CONTACTS;
+    // Both tread minima in contact and joined; the deepest is their onsets' difference.
+    assert!(centred[0] < 0.0 && centred[1] < 0.0 && centred[c] < 0.0, "{centred:?}");
+    assert_eq!(centred[c + 1], centred[0] - centred[1]);
+    assert_eq!(fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[5e-3]), OK);
+    let two = read();
+    assert!(two[0] < 0.0 && two[1] < 0.0 && two[c] > 0.0 && two[c + 1] == NO_SWITCH, "{two:?}");
+    assert!(log.0.lock().unwrap().is_empty(), "{:?}", log.texts());
 }
 
 /// One patch: nothing switches; the count is the model description's, and another is refused.
