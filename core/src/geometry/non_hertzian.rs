@@ -370,9 +370,13 @@ struct Region {
     scale: f64,
 }
 
-/// The regions a solve's patches were made of ([`NonHertzianPose::summaries_at`]): what their
+/// The regions a solve's patches were made of, in the strips' order, and the join functions
+/// between neighbours that grouped them ([`NonHertzianPose::summaries_at`]): what their
 /// switching functions are computed from, for the solve that is kept alone.
-pub(crate) struct Regions(Vec<Region>);
+pub(crate) struct Regions {
+    regions: Vec<Region>,
+    joins: Vec<f64>,
+}
 
 impl<'a> Strips<'a> {
     /// Cuts the strips of the pose `right` over the stretch where the gap lies within `reach`
@@ -687,15 +691,15 @@ impl<'a> Strips<'a> {
     }
 
     /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6); their
-    /// strips listed if `with_strips`; and the switching functions of the regions' splits.
+    /// strips listed if `with_strips`; and the regions with the joins that grouped them.
     fn patches(&self, vertical: f64, with_strips: bool) -> Result<(Vec<NonHertzianPatch>, Regions), ProfileError> {
         let regions = self.regions(vertical);
-        let patch_of = self.patch_of_each(&regions, vertical);
-        // A patch's regions are neighbours (the patch numbers only grow along the strips).
-        let mut patches = Vec::with_capacity(patch_of.last().map_or(0, |last| last + 1));
+        let joins = self.joins(&regions, vertical);
+        // A patch is a run of neighbouring regions: a region whose join is > 0 starts the next.
+        let mut patches = Vec::new();
         let mut first = 0;
         for end in 1..=regions.len() {
-            if end == regions.len() || patch_of[end] != patch_of[first] {
+            if joins.get(end - 1).is_none_or(|&join| join > 0.0) {
                 patches.push(self.patch(&regions[first..end], vertical, with_strips)?);
                 first = end;
             }
@@ -703,22 +707,21 @@ impl<'a> Strips<'a> {
         // The strips are cut along the wheel profile's y, which runs from the flange (the rail's
         // gauge side) to the field side: the patches tread first, as the Hertz ones.
         patches.reverse();
-        Ok((patches, Regions(regions)))
+        Ok((patches, Regions { regions, joins }))
     }
 
     /// The switching functions (`switching.rs`) of the patches made of `regions` at z_ws, field
     /// side first: per region its onset (its deepest virtual penetration, negated) and its
     /// reference function; per neighbouring pair its join function and, joined, its deepest
     /// function.
-    fn switching_functions(&self, regions: &[Region], vertical: f64) -> SwitchingFunctions {
+    fn switching_functions(&self, Regions { regions, joins }: &Regions, vertical: f64) -> SwitchingFunctions {
         // Field side first: the strips run from the gauge side.
-        let joins: Vec<f64> = self.joins(regions, vertical).into_iter().rev().collect();
         let count = regions.len();
         let region = |k: usize| &regions[count - 1 - k];
         SwitchingFunctions::new(
             count,
             |k| -self.virtual_penetration(region(k).deepest, vertical),
-            |k| joins[k],
+            |k| *joins.iter().rev().nth(k).expect("a join between each two neighbours"),
             |join| join <= 0.0,
             |k| self.reference_switch(region(k).first, region(k).end, vertical),
         )
@@ -1060,7 +1063,7 @@ impl<'a> NonHertzianPose<'a> {
     /// than [`MAX_PENETRATION`] below the touch is refused.
     pub fn patches_at(&mut self, vertical: f64) -> Result<NonHertzianContact, ProfileError> {
         let strips = self.strips_at(vertical)?;
-        let (patches, Regions(regions)) = strips.patches(vertical, true)?;
+        let (patches, regions) = strips.patches(vertical, true)?;
         Ok(NonHertzianContact { vertical, patches, switching: strips.switching_functions(&regions, vertical) })
     }
 
@@ -1080,7 +1083,7 @@ impl<'a> NonHertzianPose<'a> {
         vertical: f64,
         regions: &Regions,
     ) -> Result<SwitchingFunctions, ProfileError> {
-        Ok(self.strips_at(vertical)?.switching_functions(&regions.0, vertical))
+        Ok(self.strips_at(vertical)?.switching_functions(regions, vertical))
     }
 
     /// The strips z_ws = `vertical` is solved on; a z_ws more than [`MAX_PENETRATION`] below the
@@ -1112,7 +1115,7 @@ impl<'a> NonHertzianPose<'a> {
             return Ok(NonHertzianContact { vertical, patches: Vec::new(), switching: SwitchingFunctions::default() });
         }
         let strips = self.strips(self.source.reach_for(vertical - self.source.touch()));
-        let (patches, Regions(regions)) = strips.patches(vertical, true)?;
+        let (patches, regions) = strips.patches(vertical, true)?;
         Ok(NonHertzianContact { vertical, patches, switching: strips.switching_functions(&regions, vertical) })
     }
 

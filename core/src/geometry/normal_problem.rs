@@ -110,16 +110,16 @@ impl ContactCandidates {
     /// gap less z_ws (in contact below 0); per split between neighbouring minima the barrier
     /// between them less z_ws (they join below 0) and, joined, the lowest gap of their group on
     /// the split's field side less that on its gauge side (the patch sits at the field side's
-    /// below 0). At the S1002 wheel's tread–flange
-    /// transition on UIC60 (y_ws = 5 mm) its two interpenetrations join as the wheel sinks,
-    /// where the first split's join function passes 0:
+    /// below 0). At the S1002 wheel's tread–flange transition on UIC60 (y_ws = 5 mm) its two
+    /// interpenetrations join as the wheel sinks, where the first split's join function passes 0:
     ///
     /// ```
     /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition, SWITCHING_CONTACTS};
     ///
     /// let right = WheelOnRail::manchester_benchmark(WheelSide::Right);
     /// let candidates = right.candidates(&WheelsetPosition { lateral: 5e-3, ..Default::default() }).unwrap();
-    /// let barrier = candidates.switching_functions(candidates.touch()).values()[SWITCHING_CONTACTS] + candidates.touch();
+    /// let touch = candidates.touch();
+    /// let barrier = candidates.switching_functions(touch).values()[SWITCHING_CONTACTS] + touch;
     /// let patches = |z: f64| candidates.patches_at(z).unwrap().len();
     /// assert_eq!((patches(barrier - 1e-9), patches(barrier + 1e-9)), (2, 1));
     /// assert!(candidates.switching_functions(barrier + 1e-9).values()[SWITCHING_CONTACTS] < 0.0);

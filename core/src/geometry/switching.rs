@@ -33,9 +33,11 @@
 //! (tread first); then pair by pair (pair k is the split between contacts k and k + 1) its join
 //! and deepest functions; then the contacts' reference functions. A deepest function is defined
 //! where its pair is joined; apart, and for contacts and pairs the wheel does not have, the
-//! functions are [`NO_SWITCH`]. They are continuous while the contacts along the profile stay the same; where a
-//! gap minimum or a region appears or vanishes (no jump of the patches: it appears at its
-//! barrier's height, joined but not deepest), the pairs behind it are renumbered and may change
+//! functions are [`NO_SWITCH`].
+//!
+//! They are continuous while the contacts along the profile stay the same. Where a gap minimum
+//! appears or vanishes (a contact's onset, or none: a minimum appears at its barrier's height,
+//! joined but not deepest), the contacts behind it are renumbered and their functions may change
 //! sign without a jump (a spurious event, harmless to an integrator). A deepest function jumps
 //! where its pair joins or parts, at the join function's own sign change.
 //!
@@ -233,8 +235,7 @@ mod tests {
             approach(&below),
             approach(&above)
         );
-        // Away from the jump the function keeps its sign; its onset is the region's deepest
-        // virtual penetration, negated.
+        // Away from the jump the function keeps its sign. One region in contact, no pair.
         assert!(at(jump - 20e-6).switching.values()[reference] < 0.0);
         assert!(at(jump + 20e-6).switching.values()[reference] > 0.0);
         for contact in [&below, &above] {
