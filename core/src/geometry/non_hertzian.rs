@@ -40,15 +40,19 @@
 //!    proportional to the strip's half-length, p(x, y) = k √(L(y)² − x²) — Hertz's own
 //!    distribution when the region is an ellipse. A region is a run of consecutive strips with
 //!    v > 0. Its scale k follows from the elastic approach at its reference point (KP: the
-//!    point of deepest virtual penetration; here the vertex of the parabola through the deepest
-//!    strip and its neighbours, so that it moves continuously from strip to strip):
+//!    point of deepest virtual penetration; here the mean position of the strips whose v lies
+//!    within [`REFERENCE_BAND`] of the region's highest, weighted by their height above that
+//!    band's floor, squared: on a single peak within 0.03 strip widths of its vertex, and
+//!    continuous where two maxima of v trade places, as the deepest point is not):
 //!    Boussinesq's displacement of the two half-spaces under the pressure (Johnson, *Contact
 //!    Mechanics*, 1985, eq. 3.20 per body; both of one material: 1/(π E*), E* = G/(1 − ν))
 //!    equals the real normal approach there, (z_ws − g) cos γ. The inner integral over a strip
 //!    is ∫ √(L² − x²)/√(x² + η²) dx = 2c (K(m) − E(m)) with c² = L² + η², m = L²/c² (x = L sin t),
 //!    and K − E = (m/3) R_D(0, 1 − m, 1) (Carlson; DLMF 19.25.1), evaluated by the
-//!    arithmetic-geometric mean (DLMF 19.8); it is log-singular at η = 0,
-//!    where its asymptote 2L (ln(4L/|η|) − 1) is integrated in closed form. The regions of one
+//!    arithmetic-geometric mean (DLMF 19.8); it is log-singular at η = 0. Across a strip's width
+//!    it is integrated exactly near the reference point (through its primitive, tabulated) and
+//!    by the midpoint rule from 2.5 widths on (`strip_kernel.rs`), so that the displacement is
+//!    continuous in the reference point's position. The regions of one
 //!    patch (6) press on each other: the displacement at each reference point sums the pressure
 //!    of every region of its patch, a small linear system for their scales (KP solve each
 //!    region alone); a region the others would lift (k ≤ 0) is dropped. Regions of different
@@ -65,8 +69,18 @@
 //!    differs from N sin δ where the patch is curved, as CONTACT's planar patch does); an
 //!    equivalent ellipse for the creep-force models: b half the patch's width along the
 //!    surface (between the zero crossings of v beside its outer strips, so that it grows
-//!    continuously as strips enter), a from the same area (π a b = Σ 2 L ds), the peak pressure its highest, the
-//!    approach at its deepest region's reference point.
+//!    continuously as strips enter), a from the same area (π a b = ∫ 2 L ds, with L² = 2 R v
+//!    linear between the strips' centres: the area grows smoothly as a strip enters, where
+//!    Σ 2 L ds grew like √v), the peak pressure its highest, the approach at its deepest
+//!    region's reference point.
+//!
+//! Continuity: at a prescribed z_ws the patches are continuous in the pose and z_ws but where
+//! their structure changes (a region comes into contact, regions merge or part, a patch joins
+//! or parts: the switching functions' events, `switching.rs`); the carried force has a kink
+//! where a strip enters. With the creep forces in the vertical balance, its root is unique
+//! where the area grows smoothly: the √v growth made the carried force fall as z_ws rose just
+//! after a strip entered, and the balance had two roots there, which one found depending on
+//! where the search started.
 //!
 //! Prescribed vertical position: the above at z_ws. Prescribed vertical force (frictionless,
 //! Σ N cos δ = F_z): z_ws by bracketing and the Illinois variant of regula falsi on the carried
@@ -79,20 +93,21 @@
 //! a table and the pose in closed form, the rail from its samples (within 2 nm of the exact gap;
 //! 600 random poses within 0.5 nm in the contact point and 1.2e-7 in N,
 //! `core/tests/library/strip_table.rs`). Per z_ws one kernel per strip in contact and region,
-//! read from a table (`KernelTable`, within 1.6e-8 of the arithmetic-geometric mean) but next to
-//! the reference point. The wheel's balance ([`crate::wheel`]) is one root search whose every
+//! read from a table (`strip_kernel.rs`, within 1.6e-8 of the arithmetic-geometric mean), the
+//! strips within 2.5 widths of the reference point integrated exactly through the kernel's
+//! tabulated primitive. The wheel's balance ([`crate::wheel`]) is one root search whose every
 //! evaluation includes the creep forces, from the last step's z_ws: 6–8 evaluations from a cold
 //! start, one where the step repeats the last. A wheel step with a prescribed force, one criterion
-//! run (`cargo bench -p wheel-rail-contact --bench geometry -- wheel_step`), Polach, tread 2 mm /
-//! centred / two minima 5 mm / flange 7 mm: Hertz 3.0 / 4.9 / 5.2 / 4.8 µs; non-Hertzian, exact
-//! strips 177 / 159 / 131 / 21 µs; with the strip table 11.3 / 21.3 / 16.3 / 5.3 µs (3.8 / 4.3 /
-//! 3.1 / 1.1 × Hertz) where the step starts from the last one's z_ws (the benchmark repeats its
-//! step), 31 / 83 / 55 / 19 µs from a cold cache (`exact_table` alike). Before the tables, the
-//! warm start and the one root search (another run, Hertz 3.2 / 5.4 / 5.2 / 4.6 µs): 234 / 343 /
-//! 276 / 95 µs. The goal of 10 µs is met on the flange alone. What remains grows with the
-//! strips: the flange's patch, 5 strips in contact of 10 cut, costs 5 µs, the centred wheelset's
-//! 10 kN patch, 121 of 189, 21 µs (the cut's bookkeeping, each strip's kernel and force, the 48
-//! sub-strips next to the reference point by the mean).
+//! run (`cargo bench -p wheel-rail-contact --bench geometry -- 'wheel_step_(non_hertzian_table_)?polach_'`),
+//! Polach, tread 2 mm / centred / two minima 5 mm / flange 7 mm: Hertz 2.8 / 4.6 / 4.7 / 4.3 µs;
+//! non-Hertzian with the strip table 9.6 / 19.2 / 12.6 / 4.0 µs (3.4 / 4.2 / 2.7 / 0.95 × Hertz)
+//! where the step starts from the last one's z_ws (the benchmark repeats its step); 4–10 % less
+//! than with the reference point's neighbours cut into 16 sub-strips each (the run before,
+//! against the same build of Hertz). Without the strip table (exact strips), an earlier run:
+//! 177 / 159 / 131 / 21 µs; from a cold cache 31 / 83 / 55 / 19 µs (`exact_table` alike). The
+//! goal of 10 µs is met on the tread and the flange. What remains grows with the strips: the
+//! flange's patch, 5 strips in contact of 10 cut, costs 4 µs, the centred wheelset's 10 kN
+//! patch, 121 of 189, 19 µs (the cut's bookkeeping, each strip's kernel and force).
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
@@ -107,13 +122,12 @@ use super::contact::{LocusFrame, WheelOnRail, WheelsetPosition};
 use super::normal_problem::MAX_PENETRATION;
 use super::patch::{ContactPatch, WheelSide};
 use super::profile_file::ProfileError;
-use super::sampled_profile::hermite_height;
+use super::strip_kernel::strip_influence;
 use super::strip_table::StripTable;
-use super::switching::{self, SwitchingFunctions};
+use super::switching::SwitchingFunctions;
 use crate::hertz::HertzContact;
 use std::collections::VecDeque;
 use std::f64::consts::PI;
-use std::sync::OnceLock;
 
 /// KP's scale of the virtual penetration, ε (Piotrowski & Kik 2008, §3).
 pub const VIRTUAL_PENETRATION_SCALE: f64 = 0.55;
@@ -130,6 +144,12 @@ pub const REFERENCE_REACH: f64 = 10e-3;
 /// surface are one patch \[m\] (module doc, 6): CONTACT's separation distance D_SEP in its
 /// Manchester decks, below which it solves neighbouring interpenetrations as one patch.
 pub const JOIN_DISTANCE: f64 = 8e-3;
+
+/// The share of a region's highest virtual penetration within which its strips place its
+/// reference point (module doc, 4): wide enough that the point, on a parabolic
+/// peak of v three strips or more wide, lies within 0.03 strip widths of the vertex wherever the
+/// strips fall.
+pub const REFERENCE_BAND: f64 = 0.5;
 
 /// The coarse scan's step \[m\] that finds the stretch to cut into strips.
 const SCAN_STEP: f64 = 2e-4;
@@ -545,52 +565,41 @@ impl<'a> Strips<'a> {
         regions
     }
 
-    /// The reference point of the region [first, end) whose deepest strip is `deepest`: the
-    /// vertex of the parabola through the virtual penetrations of it and its neighbours (so that
-    /// the point moves continuously as the peak passes from strip to strip), as its position
-    /// along the surface and the real normal approach there, (z_ws − g) cos γ interpolated.
+    /// The reference point of the region [first, end) whose deepest strip is `deepest` (module
+    /// doc, 4): the mean position along the surface of its strips whose virtual penetration v
+    /// lies within [`REFERENCE_BAND`] of its highest, weighted by (v − (1 − band) v_max)²; as
+    /// that position and the real normal approach there, (z_ws − g) cos γ interpolated linearly
+    /// between the strips around it. Continuous in the pose and z_ws: the weights grow from 0
+    /// as a strip enters the band, where the strip of deepest v passing to another maximum of
+    /// the region made the reference jump between them (the centred S1002/UIC60 wheelset at
+    /// y_ws = 0.2143 mm, 10 kN: the approach from 12.7 to 10.5 µm).
     fn reference_point(&self, first: usize, end: usize, deepest: usize, vertical: f64) -> (f64, f64) {
-        let approach = |i: usize| (vertical - self.strips[i].gap) * self.strips[i].sin_cos.1;
-        let at = &self.strips[deepest];
-        if deepest == first || deepest + 1 == end {
-            return (at.arc, approach(deepest));
+        let floor = (1.0 - REFERENCE_BAND) * self.virtual_penetration(deepest, vertical);
+        let (mut total, mut moment) = (0.0, 0.0);
+        for j in first..end {
+            let weight = (self.virtual_penetration(j, vertical) - floor).max(0.0).powi(2);
+            total += weight;
+            moment += weight * self.strips[j].arc;
         }
-        let (before, peak, after) = (
-            self.virtual_penetration(deepest - 1, vertical),
-            self.virtual_penetration(deepest, vertical),
-            self.virtual_penetration(deepest + 1, vertical),
-        );
-        let curvature = before - 2.0 * peak + after;
-        let offset = if curvature < 0.0 { (0.5 * (before - after) / curvature).clamp(-0.5, 0.5) } else { 0.0 };
-        let next = if offset > 0.0 { deepest + 1 } else { deepest - 1 };
-        let t = offset.abs();
-        let arc = at.arc + t * (self.strips[next].arc - at.arc);
-        (arc, (1.0 - t) * approach(deepest) + t * approach(next))
+        let arc = moment / total;
+        // The strips on either side of the position (the deepest's weight is > 0: total > 0).
+        let after = (first + 1..end).find(|&j| self.strips[j].arc > arc).unwrap_or(end - 1);
+        let before = after.saturating_sub(1).max(first);
+        let approach = |i: usize| (vertical - self.strips[i].gap) * self.strips[i].sin_cos.1;
+        let span = self.strips[after].arc - self.strips[before].arc;
+        let t = if span > 0.0 { ((arc - self.strips[before].arc) / span).clamp(0.0, 1.0) } else { 0.0 };
+        (arc, (1.0 - t) * approach(before) + t * approach(after))
     }
 
     /// The displacement at x = 0 and the surface position `at` under the pressure √(L² − x²)
-    /// (k = 1) on strips [first, end), times π E* (module doc, 4).
+    /// (k = 1) on strips [first, end), times π E* (module doc, 4; `strip_kernel.rs`).
     fn influence(&self, first: usize, end: usize, at: f64, vertical: f64) -> f64 {
-        let mut influence = 0.0;
-        for j in first..end {
-            let s = &self.strips[j];
-            let length = self.half_length(j, vertical);
-            let distance = s.arc - at;
-            // Sub-strips where the kernel is steep, near the reference point; the one holding
-            // it integrated in closed form with the kernel's logarithmic asymptote.
-            let parts: u32 = if distance.abs() < 1.5 * s.width { 16 } else { 1 };
-            let part = s.width / f64::from(parts);
-            for q in 0..parts {
-                let low = distance - 0.5 * s.width + f64::from(q) * part;
-                let high = low + part;
-                influence += if low < 0.0 && high > 0.0 {
-                    singular_part(length, low, high)
-                } else {
-                    part * strip_kernel(length, 0.5 * (low + high))
-                };
-            }
-        }
-        influence
+        (first..end)
+            .map(|j| {
+                let s = &self.strips[j];
+                strip_influence(self.half_length(j, vertical), s.width, s.arc - at)
+            })
+            .sum()
     }
 
     /// Strip j's normal force in a region of scale k.
@@ -608,6 +617,27 @@ impl<'a> Strips<'a> {
             }
         }
         force
+    }
+
+    /// The contact area of the region [first, end) at z_ws, ∫ 2L ds along the surface with L²
+    /// = 2 R v interpolated linearly between the strips' centres, out to where it falls to 0
+    /// towards the strips beside the region (module doc, 6); at the end of the cut or of a
+    /// profile, to the outer side of the strip itself. Continuously differentiable in the
+    /// strips' v as a strip enters: Σ 2 L w with L = √(2 R v) grew like √v, and so did the
+    /// equivalent ellipse's a and with it the creep forces, so that the vertical force carried
+    /// with them could fall as z_ws rose, and the wheel's balance had two roots (a flange patch
+    /// at y_ws = 7.12 mm: F_y by 0.3 N of 26.7 kN, as either was found).
+    fn area(&self, first: usize, end: usize, vertical: f64) -> f64 {
+        let squared = |j: usize| 2.0 * self.strips[j].rolling_radius * self.virtual_penetration(j, vertical);
+        let apart = |i: usize, j: usize| (self.strips[j].arc - self.strips[i].arc).abs();
+        let mut area: f64 = (first..end - 1).map(|j| segment_area(squared(j), squared(j + 1), apart(j, j + 1))).sum();
+        for (inside, outside) in [(first, first.checked_sub(1)), (end - 1, Some(end))] {
+            area += match outside.filter(|&j| self.strips.get(j).is_some_and(|s| s.gap.is_finite())) {
+                Some(j) => segment_area(squared(inside), squared(j), apart(inside, j)),
+                None => self.half_length(inside, vertical) * self.strips[inside].width,
+            };
+        }
+        area
     }
 
     /// The real interpenetration's extent along the surface around the region [first, end):
@@ -635,13 +665,6 @@ impl<'a> Strips<'a> {
             patch
         });
         regions.first().map(|_| 0).into_iter().chain(joins).collect()
-    }
-
-    /// The reference function of the region of strips [first, end) (`switching.rs`), from its
-    /// virtual penetrations in the strips' order (from the gauge side).
-    fn reference_switch(&self, first: usize, end: usize, vertical: f64) -> f64 {
-        let penetrations: Vec<f64> = (first..end).map(|j| self.virtual_penetration(j, vertical)).collect();
-        switching::reference_function(&penetrations)
     }
 
     /// The join function between each of `regions` but the first and the patch of the regions
@@ -711,9 +734,8 @@ impl<'a> Strips<'a> {
     }
 
     /// The switching functions (`switching.rs`) of the patches made of `regions` at z_ws, field
-    /// side first: per region its onset (its deepest virtual penetration, negated) and its
-    /// reference function; per neighbouring pair its join function and, joined, its deepest
-    /// function.
+    /// side first: per region its onset (its deepest virtual penetration, negated); per
+    /// neighbouring pair its join function and, joined, its deepest function.
     fn switching_functions(&self, Regions { regions, joins }: &Regions, vertical: f64) -> SwitchingFunctions {
         // Field side first: the strips run from the gauge side.
         let count = regions.len();
@@ -723,7 +745,6 @@ impl<'a> Strips<'a> {
             |k| -self.virtual_penetration(region(k).deepest, vertical),
             |k| *joins.iter().rev().nth(k).expect("a join between each two neighbours"),
             |join| join <= 0.0,
-            |k| self.reference_switch(region(k).first, region(k).end, vertical),
         )
     }
 
@@ -741,6 +762,7 @@ impl<'a> Strips<'a> {
             {
                 deepest = *region;
             }
+            area += self.area(region.first, region.end, vertical);
             for j in region.first..region.end {
                 let s = &self.strips[j];
                 let length = self.half_length(j, vertical);
@@ -748,7 +770,6 @@ impl<'a> Strips<'a> {
                 normal += force * s.sin_cos.1;
                 centroid += force * s.wheel_lateral;
                 radius += force * s.rolling_radius;
-                area += 2.0 * length * s.width;
                 peak = peak.max(region.scale * length);
                 total += force;
                 if !with_strips {
@@ -816,6 +837,23 @@ enum Outward {
     Down,
 }
 
+/// ∫ 2 √max(q, 0) ds over a segment `length` long along which q (a strip's L²) runs linearly
+/// from `from` to `to`: (4/3) h (a² + ab + b²)/(a + b) with a, b the roots of the ends where both
+/// are in contact (the form of (a³ − b³)/(a² − b²) without its cancellation), and over the part
+/// in contact, a fraction q_in/(q_in − q_out), (4/3) h a times it where one is.
+fn segment_area(from: f64, to: f64, length: f64) -> f64 {
+    let (inner, outer) = if from >= to { (from, to) } else { (to, from) };
+    if inner <= 0.0 {
+        return 0.0;
+    }
+    let a = inner.sqrt();
+    if outer <= 0.0 {
+        return 4.0 / 3.0 * length * a * inner / (inner - outer);
+    }
+    let b = outer.sqrt();
+    4.0 / 3.0 * length * (inner + a * b + outer) / (a + b)
+}
+
 /// Solves the n × n system `matrix` x = `rhs` (row-major) in place by Gaussian elimination with
 /// partial pivoting; x is left in `rhs`.
 fn solve_dense(matrix: &mut [f64], rhs: &mut [f64], n: usize) {
@@ -840,120 +878,6 @@ fn solve_dense(matrix: &mut [f64], rhs: &mut [f64], n: usize) {
         let known: f64 = (row + 1..n).map(|k| matrix[row * n + k] * rhs[k]).sum();
         rhs[row] = (rhs[row] - known) / matrix[row * n + row];
     }
-}
-
-/// [`strip_kernel`] integrated over η in [low, high] around its singularity at 0, by its
-/// asymptote 2L (ln(4L/|η|) − 1) for |η| ≪ L (K(m) ≈ ln(4/√(1 − m)), E ≈ 1), whose integral
-/// is 2L η ln(4L/|η|); for L → 0 it vanishes as the kernel does.
-fn singular_part(length: f64, low: f64, high: f64) -> f64 {
-    if length <= 0.0 {
-        return 0.0;
-    }
-    let primitive = |eta: f64| if eta == 0.0 { 0.0 } else { 2.0 * length * eta * (4.0 * length / eta.abs()).ln() };
-    primitive(high) - primitive(low)
-}
-
-/// ∫ √(L² − x²)/√(x² + η²) dx over |x| < L (module doc, 4): [`agm_kernel`] read from
-/// [`KernelTable`] where the strip lies at |η| ≥ L/99 (every strip but the reference point's
-/// neighbours, which are cut into sub-strips anyway), the mean itself elsewhere. The table's
-/// read costs a division and a cubic where the mean's iterations cost four to eight square
-/// roots in a chain: the kernels are most of a non-Hertzian solve's cost.
-fn strip_kernel(length: f64, eta: f64) -> f64 {
-    if length <= 0.0 {
-        return 0.0;
-    }
-    let u = length / (length + eta.abs());
-    if u <= KernelTable::LAST {
-        length * KernelTable::get().read(u)
-    } else {
-        agm_kernel(length, eta)
-    }
-}
-
-/// The strip kernel scaled, f(t) = K(L, η)/L with t = |η|/L (x = L s: ∫ √(1 − s²)/√(s² + t²) ds),
-/// tabulated in u = L/(L + |η|) = 1/(1 + t) ∈ [0, 1], where it is smooth but at u = 1: f is
-/// analytic in 1/t = u/(1 − u) far from the strip (f = π/(2t) − π/(16t³) + …, from expanding
-/// 1/√(s² + t²)), and its logarithmic singularity, f ≈ −2 ln(1 − u), lies at u = 1 alone. Read
-/// by cubic Hermite interpolation on [`Self::INTERVALS`] intervals of [0, [`Self::LAST`]], the
-/// slopes from the mean by central differences. The error bound h⁴ max|f⁗|/384 (f⁗ ≈
-/// 12/(1 − u)⁴ near u = 1) is largest at the table's end, (h/(1 − u))⁴/32 ≈ 1e-8 of f there
-/// (measured: `the_kernel_table_is_the_mean`).
-struct KernelTable {
-    values: Vec<f64>,
-    slopes: Vec<f64>,
-}
-
-impl KernelTable {
-    /// The table's last u, t = 1/99: nearer to the strip the singularity's derivatives grow.
-    const LAST: f64 = 0.99;
-    const INTERVALS: usize = 2048;
-
-    /// The table, built on first use (some 6000 means, well below a millisecond).
-    fn get() -> &'static Self {
-        static TABLE: OnceLock<KernelTable> = OnceLock::new();
-        TABLE.get_or_init(|| {
-            let step = Self::LAST / Self::INTERVALS as f64;
-            // f at u (L = 1, η = t = 1/u − 1); f(0) = 0 infinitely far from the strip.
-            let f = |u: f64| if u <= 0.0 { 0.0 } else { agm_kernel(1.0, 1.0 / u - 1.0) };
-            let delta = 1e-3 * step;
-            let values = (0..=Self::INTERVALS).map(|i| f(i as f64 * step)).collect();
-            // f′(0) = π/2 (f ≈ π u/(2(1 − u)) there); elsewhere central differences, whose
-            // error δ² f‴/6 + ε f/δ lies near 1e-12 at δ = h/1000.
-            let slopes = (0..=Self::INTERVALS)
-                .map(|i| {
-                    let u = i as f64 * step;
-                    if i == 0 {
-                        0.5 * PI
-                    } else {
-                        (f(u + delta) - f(u - delta)) / (2.0 * delta)
-                    }
-                })
-                .collect();
-            KernelTable { values, slopes }
-        })
-    }
-
-    /// f at u ∈ [0, [`Self::LAST`]] by cubic Hermite interpolation.
-    #[inline]
-    fn read(&self, u: f64) -> f64 {
-        let position = u * (Self::INTERVALS as f64 / Self::LAST);
-        // (u ≤ LAST: at most the last interval's end, read as t = 1 in the last interval.)
-        let i = (position as usize).min(Self::INTERVALS - 1);
-        let h = Self::LAST / Self::INTERVALS as f64;
-        let (m0, m1) = (self.slopes[i] * h, self.slopes[i + 1] * h);
-        hermite_height(position - i as f64, self.values[i], self.values[i + 1], m0, m1)
-    }
-}
-
-/// ∫ √(L² − x²)/√(x² + η²) dx over |x| < L: 2c (K(m) − E(m)), c² = L² + η², m = L²/c²
-/// (module doc, 4), by the arithmetic-geometric mean (DLMF 19.8.1, 19.8.6): with a₀ = 1,
-/// b₀ = √(1 − m), c₀ = √m and aₙ₊₁ = (aₙ + bₙ)/2, bₙ₊₁ = √(aₙ bₙ), cₙ₊₁ = (aₙ − bₙ)/2,
-/// K = π/(2 a_∞) and K − E = K Σₙ 2ⁿ⁻¹ cₙ², a sum of positive terms (no cancellation where
-/// m → 0, far from the strip). Scaled by c (a₀ = c, b₀ = |η|, c₀ = L) the kernel is
-/// π Σₙ 2ⁿ⁻¹ cₙ² / a_∞; the sequence converges quadratically: in two or three steps far from
-/// the strip (|η| ≥ 10 L, where the kernel tends to π L²/(2|η|)), four at |η| = L, at most 8
-/// for |η| ≥ 1e-6 L — one square root each, where Carlson's R_D iterates on three.
-fn agm_kernel(length: f64, eta: f64) -> f64 {
-    if length <= 0.0 {
-        return 0.0;
-    }
-    if eta == 0.0 {
-        // The log singularity (K → ∞); the normal problem integrates across it instead.
-        return f64::INFINITY;
-    }
-    // (Not `hypot`: L and η are millimetres, far from overflow, and `sqrt` is several times faster.)
-    let (mut a, mut b, mut c) = ((length * length + eta * eta).sqrt(), eta.abs(), length);
-    let (mut weight, mut sum) = (0.5, 0.5 * length * length);
-    // cₙ below 1e-9 aₙ: the next terms, ~cₙ⁴/aₙ², lie below 1e-18 of the sum.
-    for _ in 0..64 {
-        if c <= 1e-9 * a {
-            break;
-        }
-        (a, b, c) = (0.5 * (a + b), (a * b).sqrt(), 0.5 * (a - b));
-        weight *= 2.0;
-        sum += weight * c * c;
-    }
-    PI * sum / a
 }
 
 impl WheelOnRail {
@@ -1245,9 +1169,8 @@ impl<'a> NonHertzianPose<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::{agm_kernel, singular_part, strip_kernel, KernelTable, NonHertzianPose};
+    use super::NonHertzianPose;
     use crate::geometry::{ProfileError, WheelOnRail, WheelSide, WheelsetPosition};
-    use std::f64::consts::PI;
 
     /// z_ws carrying `force` within 1e-10 (the wheel's balance tolerance), started from `near`,
     /// and how many times the carried force was evaluated.
@@ -1280,91 +1203,5 @@ mod tests {
             }
         }
         assert!(total <= 89, "{total} evaluations for 16 solves, 89 when this test was written");
-    }
-
-    /// The strip integral against Hertz's circle: under p = k √(a² − r²) the centre sinks by
-    /// k/(π E*) ∫∫ √(a² − r²)/r dA = k/(π E*) · π² a²/2 (polar coordinates), Hertz's
-    /// δ = π a p₀/(2 E*) with p₀ = k a (Johnson 1985, eq. 3.41). Strips of L(y) = √(a² − y²)
-    /// summed as the normal problem sums them (the strip at the centre by the kernel's
-    /// asymptote in closed form, sub-strips near it): within 0.3 % at 0.1 mm strips on a = 5 mm.
-    #[test]
-    fn strips_give_hertzs_approach_on_a_circle() {
-        let (a, width): (f64, f64) = (5e-3, 1e-4);
-        let strips = (a / width).round() as i32;
-        let mut sum = 0.0;
-        for j in -strips..=strips {
-            let centre = f64::from(j) * width;
-            let length = (a * a - centre * centre).max(0.0).sqrt();
-            let parts = if j.abs() <= 1 { 16 } else { 1 };
-            let part = width / f64::from(parts);
-            for q in 0..parts {
-                let low = centre - 0.5 * width + f64::from(q) * part;
-                let high = low + part;
-                sum += if low < 0.0 && high > 0.0 {
-                    singular_part(length, low, high)
-                } else {
-                    part * strip_kernel(length, 0.5 * (low + high))
-                };
-            }
-        }
-        let exact = PI * PI * a * a / 2.0;
-        assert!((sum / exact - 1.0).abs() < 3e-3, "{} against {}", sum, exact);
-    }
-
-    /// The kernel by the arithmetic-geometric mean against Carlson's form of it,
-    /// 2c (m/3) R_D(0, 1 − m, 1) (DLMF 19.25.1), from next to the strip to far from it
-    /// (|η|/L from 1e-6 to 1e4): within 1e-13.
-    #[test]
-    fn the_strip_kernel_is_carlsons() {
-        let length = 3e-3;
-        for k in -60..=40 {
-            let eta = length * 10f64.powf(f64::from(k) / 10.0);
-            let c2 = length * length + eta * eta;
-            let m = length * length / c2;
-            let carlson = 2.0 * c2.sqrt() * m / 3.0 * ellip::elliprd(0.0, eta * eta / c2, 1.0).unwrap();
-            let kernel = agm_kernel(length, eta);
-            assert!((kernel / carlson - 1.0).abs() < 1e-13, "|η|/L {}: {kernel} against {carlson}", eta / length);
-            assert_eq!(agm_kernel(length, -eta), kernel);
-        }
-    }
-
-    /// The kernel as read from its table against the mean, from the table's end (|η| = L/99) to
-    /// far from the strip (|η| = 1e6 L), 200 000 points: measured within 1.3e-8 relatively (at
-    /// the table's end, as the error bound has it; 1e-12 beyond |η| = L).
-    #[test]
-    fn the_kernel_table_is_the_mean() {
-        let length = 4e-3;
-        let (mut worst, mut far) = (0.0f64, 0.0f64);
-        for i in 0..200_000 {
-            let t = (1.0 / 99.0) * 1e8f64.powf(f64::from(i) / 200_000.0);
-            let (table, mean) = (strip_kernel(length, t * length), agm_kernel(length, t * length));
-            let error = (table / mean - 1.0).abs();
-            worst = worst.max(error);
-            if t >= 1.0 {
-                far = far.max(error);
-            }
-        }
-        println!("worst {worst:e}, beyond |η| = L {far:e}");
-        assert!(worst < 3e-8 && far < 1e-10, "worst {worst:e}, beyond |η| = L {far:e}");
-        assert!(KernelTable::LAST < 1.0 && strip_kernel(length, 0.0) == f64::INFINITY);
-    }
-
-    /// The kernel's closed form 2c (K − E) against the integral it stands for, by the midpoint
-    /// rule over x on a fine grid, near (η = L/10), at (η = L) and far from the strip (η = 20 L).
-    #[test]
-    fn the_strip_kernel_is_its_integral() {
-        let length = 2e-3;
-        for eta in [2e-4, 2e-3, 4e-2] {
-            let n = 200_000;
-            let dx = 2.0 * length / f64::from(n);
-            let numeric: f64 = (0..n)
-                .map(|i| {
-                    let x = -length + (f64::from(i) + 0.5) * dx;
-                    (length * length - x * x).sqrt() / (x * x + eta * eta).sqrt() * dx
-                })
-                .sum();
-            let closed = strip_kernel(length, eta);
-            assert!((closed / numeric - 1.0).abs() < 1e-6, "η {eta}: {closed} against {numeric}");
-        }
     }
 }

@@ -14,7 +14,7 @@
 
 use super::patch::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
-use super::switching::{SwitchingFunctions, NO_SWITCH};
+use super::switching::SwitchingFunctions;
 use std::cell::{Cell, OnceCell};
 
 use crate::hertz::table::unit_solution;
@@ -131,8 +131,6 @@ impl ContactCandidates {
             |k| self.candidates[k].point.gap_at_zero - vertical,
             |k| self.barriers[k] - vertical,
             |join| join < 0.0,
-            // One gap minimum each.
-            |_| NO_SWITCH,
         )
     }
 

@@ -2,7 +2,7 @@
 //! change exactly where the patches jump, so that an integrator can stop at the jump instead of
 //! stepping across it (FMI 2.0 Model Exchange's event indicators, `fmu/src/model.rs`).
 //!
-//! The patches jump in four ways:
+//! The patches jump in three ways:
 //!
 //! - **Onset**: a contact comes into touch or lifts off, and the patches' numbering shifts (the
 //!   first patch's outputs become another's; the forces themselves grow from 0). Hertz: a gap
@@ -21,17 +21,15 @@
 //!   that on the gauge side (Hertz: their gaps; non-Hertzian: the negated virtual penetrations),
 //!   negative while the field side holds it. Every change of the deepest, between any two
 //!   members, crosses the splits between them.
-//! - **Reference** (non-Hertzian): a region's pressure scale follows from the elastic approach at
-//!   its reference point, near its strip of deepest virtual penetration; where the region's two
-//!   highest local maxima of virtual penetration tie, the reference passes from one to the other
-//!   and the region's load distribution jumps (at the S1002/UIC60 centred wheelset, y_ws =
-//!   0.214 mm at 10 kN: F_x by 130 N of 790 N). The function is the gauge side's maximum less the
-//!   field side's, negative while the field side holds the reference. A Hertz contact has one
-//!   minimum: its reference functions are [`NO_SWITCH`].
+//!
+//! (A non-Hertzian region's reference point, which its pressure scale follows from, moves
+//! continuously: `non_hertzian.rs`. It jumped between the region's two highest maxima of
+//! virtual penetration where they tied, and had a switching function of its own until it was
+//! made continuous.)
 //!
 //! The values: the onsets of contacts 0 … [`SWITCHING_CONTACTS`] − 1 counted from the field side
 //! (tread first); then pair by pair (pair k is the split between contacts k and k + 1) its join
-//! and deepest functions; then the contacts' reference functions. A deepest function is defined
+//! and deepest functions. A deepest function is defined
 //! where its pair is joined; apart, and for contacts and pairs the wheel does not have, the
 //! functions are [`NO_SWITCH`].
 //!
@@ -56,9 +54,9 @@ pub const SWITCHING_CONTACTS: usize = 5;
 /// The splits between neighbouring contacts that get switching functions.
 pub const SWITCHING_PAIRS: usize = SWITCHING_CONTACTS - 1;
 
-/// The number of switching functions: an onset and a reference function per contact, a join and
-/// a deepest function per pair.
-pub const SWITCHING_FUNCTIONS: usize = 2 * SWITCHING_CONTACTS + 2 * SWITCHING_PAIRS;
+/// The number of switching functions: an onset per contact, a join and a deepest function per
+/// pair.
+pub const SWITCHING_FUNCTIONS: usize = SWITCHING_CONTACTS + 2 * SWITCHING_PAIRS;
 
 /// A switching function's value where it switches nothing \[m\]: apart pairs' deepest functions
 /// and the contacts and pairs a wheel does not have; positive, as the onset of a contact out of
@@ -78,22 +76,19 @@ impl Default for SwitchingFunctions {
 
 impl SwitchingFunctions {
     /// From `contacts` contacts, numbered from the field side: contact k's depth (< 0 in
-    /// contact, lower deeper), the join function between contacts k and k + 1 (joined where
-    /// `joined`), and contact k's reference function. Beyond [`SWITCHING_CONTACTS`] they are
-    /// left out. (Functions of the index rather than slices: a wheel step computes them without
-    /// allocating.)
+    /// contact, lower deeper) and the join function between contacts k and k + 1 (joined where
+    /// `joined`). Beyond [`SWITCHING_CONTACTS`] they are left out. (Functions of the index
+    /// rather than slices: a wheel step computes them without allocating.)
     pub(super) fn new(
         contacts: usize,
         depth: impl Fn(usize) -> f64,
         join: impl Fn(usize) -> f64,
         joined: impl Fn(f64) -> bool,
-        reference: impl Fn(usize) -> f64,
     ) -> Self {
         let mut values = [NO_SWITCH; SWITCHING_FUNCTIONS];
-        let (onsets, rest) = values.split_at_mut(SWITCHING_CONTACTS);
-        let (pairs, references) = rest.split_at_mut(2 * SWITCHING_PAIRS);
-        for (k, (onset, reference_slot)) in onsets.iter_mut().zip(references.iter_mut()).take(contacts).enumerate() {
-            (*onset, *reference_slot) = (depth(k), reference(k));
+        let (onsets, pairs) = values.split_at_mut(SWITCHING_CONTACTS);
+        for (k, onset) in onsets.iter_mut().take(contacts).enumerate() {
+            *onset = depth(k);
         }
         let is_joined = |k: usize| joined(join(k));
         // The least depth of contacts `range`.
@@ -112,72 +107,38 @@ impl SwitchingFunctions {
         Self(values)
     }
 
-    /// The values: the contacts' onsets, then join and deepest pair by pair, then the contacts'
-    /// reference functions.
+    /// The values: the contacts' onsets, then join and deepest pair by pair.
     pub fn values(&self) -> &[f64; SWITCHING_FUNCTIONS] {
         &self.0
-    }
-}
-
-/// The reference function of a non-Hertzian region (module doc) from its virtual penetrations
-/// strip by strip, from the gauge side: of its two highest local maxima, the gauge side's less
-/// the field side's (negative while the field side holds the reference, the highest);
-/// [`NO_SWITCH`] with one. A plateau's first strip is its maximum, as the region's reference is
-/// its first highest strip.
-pub(super) fn reference_function(penetrations: &[f64]) -> f64 {
-    let last = penetrations.len().saturating_sub(1);
-    let mut highest: Option<(usize, f64)> = None;
-    let mut second: Option<(usize, f64)> = None;
-    for (j, &here) in penetrations.iter().enumerate() {
-        let rising = j == 0 || here > penetrations[j - 1];
-        let not_falling = j == last || here >= penetrations[j + 1];
-        if !(rising && not_falling) {
-            continue;
-        }
-        if highest.is_none_or(|(_, top)| here > top) {
-            (highest, second) = (Some((j, here)), highest);
-        } else if second.is_none_or(|(_, next)| here > next) {
-            second = Some((j, here));
-        }
-    }
-    match (highest, second) {
-        (Some(a), Some(b)) => {
-            let ((_, gauge), (_, field)) = if a.0 < b.0 { (a, b) } else { (b, a) };
-            gauge - field
-        }
-        _ => NO_SWITCH,
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::NonHertzianContact;
 
     const C: usize = SWITCHING_CONTACTS;
 
-    /// The functions of contacts of these depths, joins (joined below 0) and references.
-    fn of(depths: &[f64], joins: &[f64], references: &[f64]) -> SwitchingFunctions {
-        SwitchingFunctions::new(depths.len(), |k| depths[k], |k| joins[k], |join| join < 0.0, |k| references[k])
+    /// The functions of contacts of these depths and joins (joined below 0).
+    fn of(depths: &[f64], joins: &[f64]) -> SwitchingFunctions {
+        SwitchingFunctions::new(depths.len(), |k| depths[k], |k| joins[k], |join| join < 0.0)
     }
 
     /// Three contacts joined into one patch: the deepest function of each split compares the
     /// deepest on either side within the group; a parted pair and the missing ones switch
-    /// nothing; the onsets are the depths, the references as given.
+    /// nothing; the onsets are the depths.
     #[test]
     fn the_deepest_function_compares_the_group_on_either_side() {
         // Contacts 0, 1, 2 joined (joins < 0), 2 and 3 apart.
         let depths = [-3.0, -1.0, -2.0, -5.0];
         let joins = [-0.5, -0.25, 0.75];
-        let references = [0.5, NO_SWITCH, NO_SWITCH, NO_SWITCH];
-        let functions = of(&depths, &joins, &references);
+        let functions = of(&depths, &joins);
         let values = functions.values();
         assert_eq!(&values[..C], &[-3.0, -1.0, -2.0, -5.0, NO_SWITCH]);
-        assert_eq!(&values[C..C + 8], &[-0.5, -1.0, -0.25, -1.0, 0.75, NO_SWITCH, NO_SWITCH, NO_SWITCH]);
-        assert_eq!(&values[C + 8..], &[0.5, NO_SWITCH, NO_SWITCH, NO_SWITCH, NO_SWITCH]);
+        assert_eq!(&values[C..], &[-0.5, -1.0, -0.25, -1.0, 0.75, NO_SWITCH, NO_SWITCH, NO_SWITCH]);
         // The deepest moves from contact 0 to contact 2: both splits between them change sign.
         let depths = [-3.0, -1.0, -4.0, -5.0];
-        let functions = of(&depths, &joins, &references);
+        let functions = of(&depths, &joins);
         assert_eq!(&functions.values()[C..C + 4], &[-0.5, 1.0, -0.25, 1.0]);
     }
 
@@ -212,60 +173,6 @@ mod tests {
         assert_eq!(&joined[C + 2..], &[NO_SWITCH; SWITCHING_FUNCTIONS - C - 2]);
     }
 
-    /// Non-Hertzian at the centred wheelset (right wheel, 10 kN): the region's reference passes
-    /// between its two maxima of virtual penetration at y_ws = 0.2143 mm, where its reference
-    /// function changes sign and the patch's approach jumps; one region, one patch: no pair.
-    #[test]
-    fn the_non_hertzian_reference_function_switches_where_the_reference_jumps() {
-        use crate::geometry::{WheelOnRail, WheelSide, WheelsetPosition};
-        let wheel = WheelOnRail::manchester_benchmark(WheelSide::Right).with_strip_table();
-        let at = |lateral: f64| {
-            let position = WheelsetPosition { lateral, ..Default::default() };
-            wheel.non_hertzian_patches_for_force(10e3, &position).unwrap()
-        };
-        let jump = 2.14289194032935e-4;
-        let (below, above) = (at(jump - 1e-12), at(jump + 1e-12));
-        let reference = C + 2 * SWITCHING_PAIRS;
-        let (f_below, f_above) = (below.switching.values(), above.switching.values());
-        assert!(f_below[reference] < 0.0 && f_above[reference] > 0.0, "{f_below:?} {f_above:?}");
-        let approach = |contact: &NonHertzianContact| contact.patches[0].patch.penetration;
-        assert!(
-            (approach(&below) - approach(&above)).abs() > 1e-6,
-            "the jump: {} {}",
-            approach(&below),
-            approach(&above)
-        );
-        // Away from the jump the function keeps its sign. One region in contact, no pair.
-        assert!(at(jump - 20e-6).switching.values()[reference] < 0.0);
-        assert!(at(jump + 20e-6).switching.values()[reference] > 0.0);
-        for contact in [&below, &above] {
-            let values = contact.switching.values();
-            assert!(values[0] < 0.0 && values[1] == NO_SWITCH && values[C] == NO_SWITCH, "{values:?}");
-            assert_eq!(contact.patches.len(), 1);
-        }
-    }
-
-    /// The reference function takes the two highest local maxima wherever they lie (the lower
-    /// third one, the shoulders and the plateau's later strips are no maxima), the gauge side's
-    /// (first) less the field side's.
-    #[test]
-    fn the_reference_function_compares_the_two_highest_maxima() {
-        // Maxima 3 (j = 1), 5 (j = 4, a plateau to j = 5) and 4 (j = 8): 5 and 4.
-        let penetrations = [1.0, 3.0, 2.0, 2.5, 5.0, 5.0, 4.5, 3.0, 4.0, 1.0];
-        assert_eq!(reference_function(&penetrations), 5.0 - 4.0);
-        // The same mirrored: the highest on the field side.
-        let mirrored: Vec<f64> = penetrations.iter().rev().copied().collect();
-        assert_eq!(reference_function(&mirrored), 4.0 - 5.0);
-        // Maxima at both ends, the higher one last.
-        assert_eq!(reference_function(&[2.0, 1.0, 0.5, 1.0, 3.0]), 2.0 - 3.0);
-        // The third maximum lower than both, in between and the first one highest.
-        assert_eq!(reference_function(&[6.0, 1.0, 2.0, 1.0, 3.0, 1.0]), 6.0 - 3.0);
-        // One maximum (rising, then falling; or a plateau alone): nothing to switch.
-        assert_eq!(reference_function(&[1.0, 2.0, 3.0, 2.0]), NO_SWITCH);
-        assert_eq!(reference_function(&[2.0, 2.0, 2.0]), NO_SWITCH);
-        assert_eq!(reference_function(&[]), NO_SWITCH);
-    }
-
     /// Non-Hertzian at the tread–flange transition (right wheel, y_ws = 5 mm, 10 kN): two
     /// regions, the tread's and the flange root's, whose real interpenetrations lie 6.1 mm apart,
     /// within JOIN_DISTANCE: one patch; the join function is that distance less 8 mm, and the
@@ -288,10 +195,9 @@ mod tests {
     fn contacts_beyond_the_room_are_left_out() {
         let depths = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
         let joins = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
-        let functions = of(&depths, &joins, &depths);
+        let functions = of(&depths, &joins);
         let values = functions.values();
         assert_eq!(&values[..C], &depths[..C]);
-        assert_eq!(&values[C..C + 8], &[0.1, NO_SWITCH, 0.2, NO_SWITCH, 0.3, NO_SWITCH, 0.4, NO_SWITCH]);
-        assert_eq!(&values[C + 8..], &depths[..C]);
+        assert_eq!(&values[C..], &[0.1, NO_SWITCH, 0.2, NO_SWITCH, 0.3, NO_SWITCH, 0.4, NO_SWITCH]);
     }
 }

@@ -193,3 +193,58 @@ fn forces_move_continuously_through_the_transition() {
     let last = (high.1 - low.1).abs();
     assert!(first > 5e3 && last < 0.02 * first, "F_y changes by {first} N over 0.05 mm, by {last} N over 0.2 µm");
 }
+
+/// The wheel's forces (with `exact_table` in the vertical balance, strip table, 10 kN) are a
+/// function of its pose, halved down to adjacent floating-point numbers of y_ws towards the half
+/// whose forces differ more (a jump survives the halving, a kink does not):
+/// - where the centred wheelset's region has its two highest maxima of virtual penetration trade
+///   places (y_ws = 0.2143 mm), whose reference point jumped from one to the other (F_x by
+///   130 N);
+/// - where strips enter the flange patch (y_ws 7.02–7.22 and 7.70–7.95 mm), where the
+///   equivalent ellipse's area grew like √v and the balance had two roots (F_y by up to 1 N at
+///   7.7301 mm, up to 80 N elsewhere); and a step from the last one's z_ws gives a cold start's
+///   answer there (they differed by the jump, as the search started on one side of the second
+///   root or the other).
+#[test]
+fn the_forces_are_a_function_of_the_pose_where_the_reference_moves_and_strips_enter() {
+    let contact = wheel(WheelSide::Right).with_strip_table();
+    let forces = |lateral: f64| {
+        let mut input = centred();
+        input.position.lateral = lateral;
+        evaluate(&contact, &input).track_force
+    };
+    let apart = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+    let flange = [(7.02e-3, 20), (7.70e-3, 25)].into_iter().flat_map(|(start, count)| {
+        (0..count).map(move |k| {
+            let from = start + 10e-6 * f64::from(k);
+            (from, from + 10e-6)
+        })
+    });
+    let intervals = [(0.2140e-3, 0.2146e-3)].into_iter().chain(flange);
+    for (from, to) in intervals {
+        let ((mut a, mut at_a), (mut b, mut at_b)) = ((from, forces(from)), (to, forces(to)));
+        while 0.5 * (a + b) > a && 0.5 * (a + b) < b {
+            let middle = 0.5 * (a + b);
+            let at_middle = forces(middle);
+            if apart(&at_a, &at_middle) >= apart(&at_middle, &at_b) {
+                (b, at_b) = (middle, at_middle);
+            } else {
+                (a, at_a) = (middle, at_middle);
+            }
+        }
+        assert!(apart(&at_a, &at_b) < 1e-6, "y_ws {a} to {b}: {at_a:?} → {at_b:?}");
+    }
+    let (mut state, mut cache) = (WheelState::default(), WheelCache::default());
+    for k in 0..=50 {
+        let mut input = centred();
+        input.position.lateral = 7.730095e-3 + 0.2e-9 * f64::from(k);
+        let (warm, next) = contact.evaluate(&input, &state, &mut cache, Evaluation::Step(0.0)).unwrap();
+        state = next;
+        let cold = evaluate(&contact, &input);
+        assert!(
+            apart(&warm.track_force, &cold.track_force) < 1e-6,
+            "y_ws {}: {warm:?} against {cold:?}",
+            input.position.lateral
+        );
+    }
+}

@@ -123,17 +123,21 @@ fn every_jump_of_the_hertz_patches_is_located_by_an_event_indicator() {
     assert!(jumps.len() >= 3 && quiet.len() <= jumps.len(), "{jumps:?}; {quiet:?}");
 }
 
-/// Non-Hertzian: where regions come into contact, join or part (the number of patches changes)
-/// and where a region's reference passes to another maximum of its virtual penetration (the
-/// centred wheelset, y_ws = 0.214 mm), the jump is an event.
+/// Non-Hertzian: every jump of the outputs is an event (regions come into contact, merge or
+/// part, patches join or part). The patches are continuous where a region's two highest maxima
+/// of virtual penetration trade places (the centred wheelset, y_ws = 0.2143 mm, where the
+/// reference point jumped between them and F_x with it, by 130 N) and as strips enter on the
+/// flange (y_ws ≥ 6.9 mm, where the vertical balance had two roots after each strip entered
+/// and F_y stepped by up to 80 N between them).
 #[test]
-fn the_structural_jumps_of_the_non_hertzian_patches_are_located_by_an_event_indicator() {
+fn every_jump_of_the_non_hertzian_patches_is_located_by_an_event_indicator() {
     let (jumps, quiet) = sweep(ContactMethod::NonHertzian);
     println!("non-Hertzian: jumps {jumps:?}, switches without a jump at {quiet:?}");
-    let reference = jumps.iter().find(|jump| (jump.lateral - 0.2143e-3).abs() < 1e-6);
-    assert!(reference.is_some_and(|jump| jump.located), "{jumps:?}");
-    let unlocated: Vec<&Jump> = jumps.iter().filter(|jump| jump.patches_change && !jump.located).collect();
-    assert!(unlocated.is_empty(), "patches that change without an event: {unlocated:?}");
+    assert!(!jumps.iter().any(|jump| (jump.lateral - 0.2143e-3).abs() < 10e-6), "{jumps:?}");
+    assert!(!jumps.iter().any(|jump| jump.lateral > 6.9e-3 && !jump.patches_change), "{jumps:?}");
+    let unlocated: Vec<&Jump> = jumps.iter().filter(|jump| !jump.located).collect();
+    assert!(unlocated.is_empty(), "jumps without an event: {unlocated:?}");
+    assert!(jumps.len() >= 3 && quiet.len() <= jumps.len(), "{jumps:?}; {quiet:?}");
 }
 
 /// In initialization mode the indicators are computed from the values set, as the states are:
