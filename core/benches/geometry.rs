@@ -2,7 +2,8 @@
 //! (`geometry_direct_*`), one Polach evaluation for scale, whole wheel steps (geometry, normal
 //! problem with the creep forces' share, the forces) at four poses, with Hertz's patches and
 //! with the non-Hertzian ones (`wheel_step_non_hertzian_*`; with the strip table,
-//! `wheel_step_non_hertzian_table_*`), and the Manchester
+//! `wheel_step_non_hertzian_table_*`; the same step repeated, from a cold cache (`_cold_`), or
+//! with the wheelset moving, every step a new pose (`_moving_`, Polach)), and the Manchester
 //! benchmark's steps (`a22_*`: each wheel's cases in one iteration; the time over the count is
 //! the mean step). The goal for a whole wheel step is ≤ 5 µs.
 
@@ -51,21 +52,40 @@ fn geometry(c: &mut Criterion) {
     ] {
         for (method, method_name) in [(ContactMethod::Hertz, ""), (ContactMethod::NonHertzian, "non_hertzian_")] {
             let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28)).with_method(method);
-            wheel_steps(c, &contact, &format!("wheel_step_{method_name}{model_name}"), false);
+            wheel_steps(c, &contact, &format!("wheel_step_{method_name}{model_name}"), Steps::Repeated);
+        }
+        if model_name == "polach" {
+            let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28));
+            wheel_steps(c, &contact, "wheel_step_moving_polach", Steps::Moving);
         }
         let contact = WheelRailContact::new(pair.clone(), Scene::of_model(model, 82e9, 0.28))
             .with_method(ContactMethod::NonHertzian)
             .with_strip_table();
-        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_{model_name}"), false);
-        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_cold_{model_name}"), true);
+        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_{model_name}"), Steps::Repeated);
+        wheel_steps(c, &contact, &format!("wheel_step_non_hertzian_table_cold_{model_name}"), Steps::Cold);
+        if model_name == "polach" {
+            wheel_steps(c, &contact, "wheel_step_non_hertzian_table_moving_polach", Steps::Moving);
+        }
     }
 }
 
-/// The whole wheel step at four poses, each its own benchmark `{prefix}_{place}`. The same step
-/// repeated, its cache kept: the non-Hertzian balance starts from the last step's z_ws, which a
-/// repeated step meets at once; `cold` starts each from an empty cache instead, as a first step
-/// (a simulation's steps lie between the two).
-fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, cold: bool) {
+/// How a benchmark's wheel steps follow each other.
+#[derive(Clone, Copy, PartialEq)]
+enum Steps {
+    /// The same step repeated, its cache kept: the non-Hertzian balance starts from the last
+    /// step's z_ws, which a repeated step meets at once.
+    Repeated,
+    /// Each step from an empty cache, as a first step.
+    Cold,
+    /// The wheelset moving, its cache kept, as a simulation's steps: y_ws swings by ±0.1 mm
+    /// about the pose over 64 steps (up to 10 µm a step; at 1 ms steps 0.6 mm/s at most, a
+    /// slow hunting motion), so that every step is a new pose.
+    Moving,
+}
+
+/// The whole wheel step at four poses, each its own benchmark `{prefix}_{place}`, the steps
+/// following each other as `steps` says.
+fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, steps: Steps) {
     for (place, lateral, yaw) in
         [("tread", 0.002, 0.0048), ("centred", 0.0, 0.0), ("two_minima", 0.005, 0.0), ("flange", 0.007, 0.0168)]
     {
@@ -77,12 +97,28 @@ fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, cold
         };
         let mut cache = WheelCache::default();
         let state = WheelState::default();
+        let swing: Vec<WheelInput> = (0..64)
+            .map(|k| {
+                let mut moved = input;
+                moved.position.lateral += 0.1e-3 * (2.0 * std::f64::consts::PI * f64::from(k) / 64.0).sin();
+                moved
+            })
+            .collect();
+        let mut step = 0;
         c.bench_function(&format!("{prefix}_{place}"), |bencher| {
             bencher.iter(|| {
-                if cold {
-                    cache = WheelCache::default();
-                }
-                contact.evaluate(black_box(&input), &state, &mut cache, Evaluation::Step(1e-3))
+                let input = match steps {
+                    Steps::Repeated => &input,
+                    Steps::Cold => {
+                        cache = WheelCache::default();
+                        &input
+                    }
+                    Steps::Moving => {
+                        step = (step + 1) % swing.len();
+                        &swing[step]
+                    }
+                };
+                contact.evaluate(black_box(input), &state, &mut cache, Evaluation::Step(1e-3))
             })
         });
     }

@@ -216,11 +216,14 @@ impl WheelState {
 }
 
 /// Derived data for speed only: one scene cache per patch, and the last non-Hertzian balance's
-/// z_ws, where the next one's root search starts (a step moves the wheelset little).
+/// depth below its pose's touch (z_ws less the z_ws where the wheel first touches), where the
+/// next one's root search starts: a step moves the wheelset little, and the depth that carries
+/// the load changes less than z_ws, which follows the touch as the pose moves (on the flange by
+/// micrometres per micrometre of y_ws).
 #[derive(Debug, Clone, Default)]
 pub struct WheelCache {
     patches: Vec<SceneCache>,
-    vertical: Option<f64>,
+    depth: Option<f64>,
 }
 
 /// Why a wheel cannot be evaluated.
@@ -569,8 +572,8 @@ impl WheelRailContact {
     /// [`BALANCE_TOLERANCE`] (module doc), found by the non-Hertzian problem's own root search
     /// ([`crate::geometry::NonHertzianPose`]: bracket, then Illinois regula falsi on the carried
     /// force's 2/3 power) with each evaluation a round — the patches at z_ws, their creep forces,
-    /// the vertical force they carry together — started from the last step's z_ws
-    /// ([`WheelCache`]). The carried force is nearly the normal forces' alone, whose 2/3 power the
+    /// the vertical force they carry together — started at the last step's depth below the
+    /// touch ([`WheelCache`]). The carried force is nearly the normal forces' alone, whose 2/3 power the
     /// search's secants nearly meet: 2–6 rounds, where solving the frictionless problem to 1e-12
     /// for each corrected load took 16–34.
     ///
@@ -600,7 +603,7 @@ impl WheelRailContact {
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
         let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState, Regions)> = Vec::new();
-        let near = cache.vertical;
+        let near = cache.depth.map(|depth| pose.touch() + depth);
         let vertical = pose.vertical_for_force(force, near, BALANCE_TOLERANCE, |pose, vertical| {
             let (patches, regions) = pose.summaries_at(vertical)?;
             let position = WheelsetPosition { vertical, ..input.position };
@@ -610,7 +613,7 @@ impl WheelRailContact {
             rounds.push((vertical, forces, states, regions));
             Ok::<_, WheelContactError>(carried)
         })?;
-        cache.vertical = Some(vertical);
+        cache.depth = Some(vertical - pose.touch());
         // The answer is a round's z_ws, but at lift-off (the touch, no patch).
         match rounds.into_iter().rev().find(|round| round.0 == vertical) {
             Some((vertical, forces, states, regions)) => {

@@ -103,11 +103,18 @@
 //! non-Hertzian with the strip table 9.6 / 19.2 / 12.6 / 4.0 µs (3.4 / 4.2 / 2.7 / 0.95 × Hertz)
 //! where the step starts from the last one's z_ws (the benchmark repeats its step); 4–10 % less
 //! than with the reference point's neighbours cut into 16 sub-strips each (the run before,
-//! against the same build of Hertz). Without the strip table (exact strips), an earlier run:
-//! 177 / 159 / 131 / 21 µs; from a cold cache 31 / 83 / 55 / 19 µs (`exact_table` alike). The
-//! goal of 10 µs is met on the tread and the flange. What remains grows with the strips: the
-//! flange's patch, 5 strips in contact of 10 cut, costs 4 µs, the centred wheelset's 10 kN
-//! patch, 121 of 189, 19 µs (the cut's bookkeeping, each strip's kernel and force).
+//! against the same build of Hertz). With the wheelset moving, every step a new pose (`_moving_`:
+//! y_ws swinging by ±0.1 mm over 64 steps), 14.4 / 42.3 / 28.2 / 8.0 µs against Hertz's 2.8 /
+//! 4.4 / 5.4 / 4.4 µs (5.2 / 9.7 / 5.2 / 1.8 ×): the root search takes more rounds from a moved
+//! pose, started at the last step's depth below the touch (from the last z_ws itself, which
+//! the touch leaves behind as the pose moves, the steps took 23 / 5 / 7 / 21 % longer). Without
+//! the strip table (exact strips), an earlier run: 177 / 159 / 131 / 21 µs; from a cold cache
+//! 31 / 83 / 55 / 19 µs (`exact_table` alike). The goal of 10 µs is met on the tread and the
+//! flange with repeated steps, on the flange alone with moving ones. What remains grows with
+//! the strips: the flange's patch, 5 strips in contact of 10 cut, costs 4 µs a repeated step,
+//! the centred wheelset's 10 kN patch, 121 of 189, 19 µs; a profile of that step (perf): half
+//! in the pose's cut (the strips' geometry from the table, the contact search's minima that
+//! start it, the sliding minimum), the rest in the regions, the kernels and the summary.
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
@@ -989,6 +996,12 @@ impl<'a> NonHertzianPose<'a> {
         let strips = self.strips_at(vertical)?;
         let (patches, regions) = strips.patches(vertical, true)?;
         Ok(NonHertzianContact { vertical, patches, switching: strips.switching_functions(&regions, vertical) })
+    }
+
+    /// z_ws where the wheel first touches the rail at this pose: the gap's lowest (what a
+    /// balance started from the last step's depth below it adds that depth to).
+    pub(crate) fn touch(&self) -> f64 {
+        self.source.touch()
     }
 
     /// The patches' summaries at z_ws = `vertical` (contact point, normal force, equivalent
