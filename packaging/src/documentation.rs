@@ -306,11 +306,11 @@ the unit.</p>
 <p><b>Model Exchange.</b> The same binary is also an FMI 2.0 Model Exchange FMU (<code>&lt;ModelExchange&gt;</code>
 beside <code>&lt;CoSimulation&gt;</code>, one modelIdentifier): the unit is algebraic in its inputs, and an output
 read in event or continuous-time mode is computed at the inputs set at that moment, bit for bit what a
-Co-Simulation step at those inputs gives. With <code>contact_geometry</code> = profiles its 18 event indicators
-change sign where the wheel's patches jump — a contact's onset (up to 5 contacts, tread first), two neighbours
-joining into one patch or parting and a joined patch passing to another gap minimum (up to 4 pairs), and, with
-<code>contact_method</code> = non_hertzian, a region's reference passing to another maximum of its virtual
-penetration — so that the integrator stops at the jump; 1.0 where nothing switches (always with one patch). Its two continuous states are the relaxed forces
+Co-Simulation step at those inputs gives. With <code>contact_geometry</code> = profiles its 13 event indicators
+change sign where the wheel's patches jump — a contact's onset (up to 5 contacts, tread first; with
+<code>contact_method</code> = non_hertzian also where regions of one patch merge or part), two neighbours joining
+into one patch or parting and a joined patch passing to another gap minimum (up to 4 pairs) — so that the
+integrator stops at the jump; 1.0 where nothing switches (always with one patch). Its two continuous states are the relaxed forces
 <code>relaxed_force_longitudinal</code>, <code>relaxed_force_lateral</code> of <code>creep_relaxation</code>, with
 the relaxation law dF/dt = (V<sub>r</sub>/L)(F<sub>ss</sub> − F) as their derivatives (0 with relaxation off); the
 output forces are the states projected onto the friction limit μQ, and where that moves them a step event

@@ -46,6 +46,7 @@ pub(super) fn strip_influence(length: f64, width: f64, distance: f64) -> f64 {
     if widths <= NEAR {
         return exact;
     }
+    // (FAR − NEAR is one width: the share is the distance beyond NEAR, in widths.)
     let share = (widths - NEAR) / (FAR - NEAR);
     (1.0 - share) * exact + share * midpoint()
 }
@@ -316,6 +317,11 @@ mod tests {
             }
         }
         assert_eq!(strip_influence(0.0, width, 0.0), 0.0);
+        // From FAR widths on, the midpoint rule itself (one read of the kernel's table).
+        for widths in [2.5, 3.0, 7.0] {
+            let distance = widths * width;
+            assert_eq!(strip_influence(3e-3, width, distance), width * strip_kernel(3e-3, distance));
+        }
     }
 
     /// The primitive against the kernel's integral from 0 (series, across its end at

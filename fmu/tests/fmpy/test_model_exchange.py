@@ -16,8 +16,8 @@ WHEELSET = ROOT / "target" / "fmu" / "wheelset.fmu"
 
 
 def test_both_fmus_declare_model_exchange_beside_co_simulation(fmu_path):
-    # The contact unit's event indicators: the switching functions of a wheel's patches (5 contacts: onset and
-    # reference; 4 pairs: join and deepest); the wheelset has no jumps.
+    # The contact unit's event indicators: the switching functions of a wheel's patches (5 contacts: onset;
+    # 4 pairs: join and deepest); the wheelset has no jumps.
     for path, states, indicators in ((fmu_path, 2, 13), (WHEELSET, 5, 0)):
         description = read_model_description(str(path))
         assert description.modelExchange is not None and description.coSimulation is not None, path
