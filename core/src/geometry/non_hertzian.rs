@@ -1182,7 +1182,7 @@ impl<'a> NonHertzianPose<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::NonHertzianPose;
+    use super::{segment_area, NonHertzianPose, REFERENCE_BAND};
     use crate::geometry::{ProfileError, WheelOnRail, WheelSide, WheelsetPosition};
 
     /// z_ws carrying `force` within 1e-10 (the wheel's balance tolerance), started from `near`,
@@ -1216,5 +1216,76 @@ mod tests {
             }
         }
         assert!(total <= 89, "{total} evaluations for 16 solves, 89 when this test was written");
+    }
+
+    /// ∫ 2 √max(q, 0) ds over a segment with q linear between its ends, against the midpoint
+    /// rule on 10⁶ parts: both ends in contact, one (either), none; and continuously
+    /// differentiable where an end's q passes 0 (the one-sided slopes there agree).
+    #[test]
+    fn a_segments_area_is_its_integral() {
+        let numeric = |from: f64, to: f64, length: f64| {
+            let n = 1_000_000;
+            let h = length / f64::from(n);
+            (0..n)
+                .map(|i| {
+                    let q = from + (to - from) * (f64::from(i) + 0.5) / f64::from(n);
+                    2.0 * q.max(0.0).sqrt() * h
+                })
+                .sum::<f64>()
+        };
+        for (from, to) in [(4e-6, 1e-6), (1e-6, 4e-6), (9e-6, 9e-6), (4e-6, -2e-6), (-2e-6, 4e-6), (-1e-6, -3e-6)] {
+            let (exact, reference) = (segment_area(from, to, 1e-4), numeric(from, to, 1e-4));
+            assert!(
+                (exact - reference).abs() <= 1e-7 * reference.max(1e-12),
+                "{from} → {to}: {exact} against {reference}"
+            );
+        }
+        // One-sided slopes at q = 0 (the slope above approaches it as √q: within 1e-4 at 1e-14).
+        let at_zero = segment_area(4e-6, 0.0, 1e-4);
+        let below = (at_zero - segment_area(4e-6, -1e-14, 1e-4)) / 1e-14;
+        let above = (segment_area(4e-6, 1e-14, 1e-4) - at_zero) / 1e-14;
+        assert!((below / above - 1.0).abs() < 1e-3, "{below} against {above}");
+    }
+
+    /// The reference point (module doc, 4) on A-2.2's right wheel at 10 kN: on the tread's single
+    /// peak of virtual penetration (y_ws = 3 mm) within 0.1 strip widths of the vertex of the
+    /// parabola through the deepest strip and its neighbours (0.09 measured: the peak is no
+    /// parabola over the band's strips), and between the region's two
+    /// highest maxima where they nearly tie (the centred wheelset, y_ws = 0.2143 mm), moving
+    /// continuously from one towards the other as y_ws passes the tie.
+    #[test]
+    fn the_reference_point_is_the_peak_or_between_two_tied_maxima() {
+        let placed = WheelOnRail::manchester_benchmark(WheelSide::Right).with_strip_table();
+        let reference = |lateral: f64| {
+            let position = WheelsetPosition { lateral, ..Default::default() };
+            let vertical = placed.non_hertzian_patches_for_force(10e3, &position).unwrap().vertical;
+            let mut pose = placed.non_hertzian_pose(&position).unwrap();
+            let strips = pose.strips_at(vertical).unwrap();
+            let regions = strips.regions(vertical);
+            assert_eq!(regions.len(), 1, "y_ws {lateral}");
+            let region = regions[0];
+            let v: Vec<f64> = (0..strips.strips.len()).map(|j| strips.virtual_penetration(j, vertical)).collect();
+            let arcs: Vec<f64> = strips.strips.iter().map(|s| s.arc).collect();
+            (region.reference_arc, region.first, region.end, region.deepest, v, arcs)
+        };
+        let (arc, _, _, deepest, v, arcs) = reference(3e-3);
+        let (before, peak, after) = (v[deepest - 1], v[deepest], v[deepest + 1]);
+        let offset = 0.5 * (before - after) / (before - 2.0 * peak + after);
+        let vertex = arcs[deepest] + offset * (arcs[deepest + 1] - arcs[deepest - 1]) / 2.0;
+        let width = (arcs[deepest + 1] - arcs[deepest - 1]) / 2.0;
+        assert!((arc - vertex).abs() < 0.1 * width, "{arc} against the vertex {vertex}");
+        // Two maxima near the tie: the reference between them, off both by more than a strip.
+        let (arc, first, end, _, v, arcs) = reference(0.2143e-3);
+        let maxima: Vec<usize> = (first + 1..end - 1).filter(|&j| v[j] > v[j - 1] && v[j] >= v[j + 1]).collect();
+        let mut highest = maxima.clone();
+        highest.sort_by(|&a, &b| v[b].total_cmp(&v[a]));
+        let (a, b) = (arcs[highest[0]].min(arcs[highest[1]]), arcs[highest[0]].max(arcs[highest[1]]));
+        assert!(v[highest[1]] > (1.0 - REFERENCE_BAND) * v[highest[0]], "{maxima:?}");
+        assert!(arc > a + 1e-4 && arc < b - 1e-4, "{arc} not between the maxima at {a} and {b}");
+        // Across the tie it moves continuously, not from one maximum to the other: ten times
+        // less over a ten times shorter step of y_ws.
+        let moved = |step: f64| (reference(0.2143e-3 + step).0 - reference(0.2143e-3 - step).0).abs();
+        let (long, short) = (moved(1e-9), moved(1e-10));
+        assert!(long < 1e-3 * (b - a) && short < 0.2 * long, "{long} over 2 nm, {short} over 0.2 nm");
     }
 }
