@@ -1252,7 +1252,8 @@ mod tests {
     /// parabola through the deepest strip and its neighbours (0.09 measured: the peak is no
     /// parabola over the band's strips), and between the region's two
     /// highest maxima where they nearly tie (the centred wheelset, y_ws = 0.2143 mm), moving
-    /// continuously from one towards the other as y_ws passes the tie.
+    /// continuously from one towards the other as y_ws passes the tie; its approach the real
+    /// one interpolated linearly between the strips around it.
     #[test]
     fn the_reference_point_is_the_peak_or_between_two_tied_maxima() {
         let placed = WheelOnRail::manchester_benchmark(WheelSide::Right).with_strip_table();
@@ -1266,6 +1267,12 @@ mod tests {
             let region = regions[0];
             let v: Vec<f64> = (0..strips.strips.len()).map(|j| strips.virtual_penetration(j, vertical)).collect();
             let arcs: Vec<f64> = strips.strips.iter().map(|s| s.arc).collect();
+            // The real approach there, (z_ws − g) cos γ, linear between the strips around it.
+            let after = arcs.iter().position(|&arc| arc > region.reference_arc).unwrap();
+            let approach = |j: usize| (vertical - strips.strips[j].gap) * strips.strips[j].sin_cos.1;
+            let t = (region.reference_arc - arcs[after - 1]) / (arcs[after] - arcs[after - 1]);
+            let expected = (1.0 - t) * approach(after - 1) + t * approach(after);
+            assert!((region.approach - expected).abs() < 1e-12 * expected, "{} against {expected}", region.approach);
             (region.reference_arc, region.first, region.end, region.deepest, v, arcs)
         };
         let (arc, _, _, deepest, v, arcs) = reference(3e-3);
