@@ -61,7 +61,7 @@ fn strip_kernel(length: f64, eta: f64) -> f64 {
     }
     let u = length / (length + eta.abs());
     if u <= KernelTable::LAST {
-        length * KernelTable::get().values.read(u)
+        length * KernelTable::get().read(u)
     } else {
         agm_kernel(length, eta)
     }
@@ -80,7 +80,7 @@ fn kernel_primitive(t: f64) -> f64 {
         2.0 * magnitude * log + magnitude * magnitude * magnitude / 6.0 * (log + 1.0 / 3.0)
     } else {
         let u = 1.0 / (1.0 + magnitude);
-        PrimitiveTable::get().values.read(u) - 0.5 * PI * u.ln()
+        PrimitiveTable::get().read(u) - 0.5 * PI * u.ln()
     };
     value.copysign(t)
 }
@@ -119,17 +119,15 @@ impl HermiteTable {
 /// slopes from the mean by central differences. The error bound h⁴ max|f⁗|/384 (f⁗ ≈
 /// 12/(1 − u)⁴ near u = 1) is largest at the table's end, (h/(1 − u))⁴/32 ≈ 1e-8 of f there
 /// (measured: `the_kernel_table_is_the_mean`).
-struct KernelTable {
-    values: HermiteTable,
-}
+struct KernelTable;
 
 impl KernelTable {
     /// The table's last u, t = 1/99: nearer to the strip the singularity's derivatives grow.
     const LAST: f64 = 0.99;
 
     /// The table, built on first use (some 6000 means, well below a millisecond).
-    fn get() -> &'static Self {
-        static TABLE: OnceLock<KernelTable> = OnceLock::new();
+    fn get() -> &'static HermiteTable {
+        static TABLE: OnceLock<HermiteTable> = OnceLock::new();
         TABLE.get_or_init(|| {
             let step = HermiteTable::step(Self::LAST);
             // f at u (L = 1, η = t = 1/u − 1); f(0) = 0 infinitely far from the strip.
@@ -148,7 +146,7 @@ impl KernelTable {
                     }
                 })
                 .collect();
-            KernelTable { values: HermiteTable { values, slopes, last: Self::LAST } }
+            HermiteTable { values, slopes, last: Self::LAST }
         })
     }
 }
@@ -160,17 +158,15 @@ impl KernelTable {
 /// integrate them from the series' end by four-point Gauss–Legendre per interval (the nearest
 /// singularity, at u = 1, lies 20 intervals or more away: error below 1e-13). Within 1e-9 of the
 /// primitive (measured: `the_primitive_is_the_kernels_integral`).
-struct PrimitiveTable {
-    values: HermiteTable,
-}
+struct PrimitiveTable;
 
 impl PrimitiveTable {
     /// The series of [`kernel_primitive`] for t up to this.
     const SERIES_END: f64 = 0.01;
 
     /// The table, built on first use (some 14 000 means, about a millisecond).
-    fn get() -> &'static Self {
-        static TABLE: OnceLock<PrimitiveTable> = OnceLock::new();
+    fn get() -> &'static HermiteTable {
+        static TABLE: OnceLock<HermiteTable> = OnceLock::new();
         TABLE.get_or_init(|| {
             let last = 1.0 / (1.0 + Self::SERIES_END);
             let step = HermiteTable::step(last);
@@ -199,7 +195,7 @@ impl PrimitiveTable {
                 values[i] = values[i + 1] - integral(i as f64 * step);
             }
             let slopes = (0..=HermiteTable::INTERVALS).map(|i| slope(i as f64 * step)).collect();
-            PrimitiveTable { values: HermiteTable { values, slopes, last } }
+            HermiteTable { values, slopes, last }
         })
     }
 }
@@ -329,7 +325,8 @@ mod tests {
     /// integral (relatively, or absolutely where it is below 1); odd in t.
     #[test]
     fn the_primitive_is_the_kernels_integral() {
-        for t in [1e-4f64, 0.003, 0.01 * (1.0 - 1e-12), 0.01 * (1.0 + 1e-12), 0.02, 0.1, 1.0, 3.0, 40.0, 1e3, 1e5] {
+        let end = PrimitiveTable::SERIES_END;
+        for t in [1e-4f64, 0.003, end * (1.0 - 1e-12), end * (1.0 + 1e-12), 0.02, 0.1, 1.0, 3.0, 40.0, 1e3, 1e5] {
             // (L = 1: the kernel is f; the integral piecewise between powers of ten.)
             let pieces: Vec<f64> = [0.0].into_iter().chain((-2..=5).map(|k| t.min(10f64.powi(k)))).collect();
             let integral: f64 =
@@ -339,7 +336,6 @@ mod tests {
             assert_eq!(kernel_primitive(-t), -primitive);
         }
         assert_eq!(kernel_primitive(0.0), 0.0);
-        assert!((PrimitiveTable::SERIES_END - 0.01).abs() < 1e-15);
     }
 
     /// The kernel by the arithmetic-geometric mean against Carlson's form of it,
