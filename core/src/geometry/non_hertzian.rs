@@ -112,9 +112,10 @@
 //! 31 / 83 / 55 / 19 µs (`exact_table` alike). The goal of 10 µs is met on the tread and the
 //! flange with repeated steps, on the flange alone with moving ones. What remains grows with
 //! the strips: the flange's patch, 5 strips in contact of 10 cut, costs 4 µs a repeated step,
-//! the centred wheelset's 10 kN patch, 121 of 189, 19 µs; a profile of that step (perf): half
-//! in the pose's cut (the strips' geometry from the table, the contact search's minima that
-//! start it, the sliding minimum), the rest in the regions, the kernels and the summary.
+//! the centred wheelset's 10 kN patch, 121 of 189, 19 µs; a profile of that step (perf on the
+//! benchmark): some 40 % in the pose's cut (the strips' geometry from the table, the contact
+//! search's minima that start it, the sliding minimum), the rest in the regions, the kernels
+//! and the summary.
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
