@@ -79,7 +79,7 @@
 
 use std::fmt;
 
-use crate::geometry::non_hertzian::Regions;
+use crate::geometry::non_hertzian::{Regions, Root};
 use crate::geometry::{
     ContactCandidates, ContactPatch, ContactPoint, ProfileError, SwitchingFunctions, WheelOnRail, WheelsetPosition,
 };
@@ -219,11 +219,13 @@ impl WheelState {
 /// depth below its pose's touch (z_ws less the z_ws where the wheel first touches), where the
 /// next one's root search starts: a step moves the wheelset little, and the depth that carries
 /// the load changes less than z_ws, which follows the touch as the pose moves (on the flange by
-/// micrometres per micrometre of y_ws).
+/// micrometres per micrometre of y_ws); and the slope of that search's residual, along which
+/// the next one takes its first step.
 #[derive(Debug, Clone, Default)]
 pub struct WheelCache {
     patches: Vec<SceneCache>,
     depth: Option<f64>,
+    slope: Option<f64>,
 }
 
 /// Why a wheel cannot be evaluated.
@@ -570,10 +572,10 @@ impl WheelRailContact {
     /// Prescribed vertical force with non-Hertzian patches: z_ws where the rail carries F_z
     /// through the normal and the creep forces of the patches at z_ws within
     /// [`BALANCE_TOLERANCE`] (module doc), found by the non-Hertzian problem's own root search
-    /// ([`crate::geometry::NonHertzianPose`]: bracket, then Illinois regula falsi on the carried
-    /// force's 2/3 power) with each evaluation a round — the patches at z_ws, their creep forces,
+    /// ([`crate::geometry::NonHertzianPose`]: secant steps on the carried force's 2/3 power,
+    /// then a bracket) with each evaluation a round — the patches at z_ws, their creep forces,
     /// the vertical force they carry together — started at the last step's depth below the
-    /// touch ([`WheelCache`]). The carried force is nearly the normal forces' alone, whose 2/3 power the
+    /// touch, its first step along the last search's slope ([`WheelCache`]). The carried force is nearly the normal forces' alone, whose 2/3 power the
     /// search's secants nearly meet: 2–6 rounds, where solving the frictionless problem to 1e-12
     /// for each corrected load took 16–34.
     ///
@@ -603,8 +605,8 @@ impl WheelRailContact {
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
         let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState, Regions)> = Vec::new();
-        let near = cache.depth.map(|depth| pose.touch() + depth);
-        let vertical = pose.vertical_for_force(force, near, BALANCE_TOLERANCE, |pose, vertical| {
+        let start = cache.depth.map(|depth| Root { vertical: pose.touch() + depth, slope: cache.slope });
+        let root = pose.vertical_for_force(force, start, BALANCE_TOLERANCE, |pose, vertical| {
             let (patches, regions) = pose.summaries_at(vertical)?;
             let position = WheelsetPosition { vertical, ..input.position };
             let (forces, states) = self.patch_forces(input, &position, &patches, state, &hints, cache, evaluation)?;
@@ -613,7 +615,8 @@ impl WheelRailContact {
             rounds.push((vertical, forces, states, regions));
             Ok::<_, WheelContactError>(carried)
         })?;
-        cache.depth = Some(vertical - pose.touch());
+        let vertical = root.vertical;
+        (cache.depth, cache.slope) = (Some(vertical - pose.touch()), root.slope);
         // The answer is a round's z_ws, but at lift-off (the touch, no patch).
         match rounds.into_iter().rev().find(|round| round.0 == vertical) {
             Some((vertical, forces, states, regions)) => {
