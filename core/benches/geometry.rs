@@ -72,13 +72,13 @@ fn geometry(c: &mut Criterion) {
 /// How a benchmark's wheel steps follow each other.
 #[derive(Clone, Copy, PartialEq)]
 enum Steps {
-    /// The same step repeated, its cache kept: the non-Hertzian balance starts from the last
-    /// step's z_ws, which a repeated step meets at once.
+    /// The same step repeated, its state and cache kept: the non-Hertzian balance starts from
+    /// the last step's z_ws (its state's `BalanceStart`), which a repeated step meets at once.
     Repeated,
-    /// Each step from an empty cache, as a first step.
+    /// Each step from an empty state and cache, as a first step.
     Cold,
-    /// The wheelset moving, its cache kept, as a simulation's steps: y_ws swings by ±0.1 mm
-    /// about the pose over 64 steps (up to 10 µm a step; at 1 ms steps 0.6 mm/s at most, a
+    /// The wheelset moving, its state and cache kept, as a simulation's steps: y_ws swings by ±0.1 mm
+    /// about the pose over 64 steps (up to 10 µm a step; at 1 ms steps 10 mm/s at most, a
     /// slow hunting motion), so that every step is a new pose.
     Moving,
 }
@@ -95,8 +95,8 @@ fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, step
             vertical: VerticalContact::PrescribedForce(10e3),
             friction_coefficient: 0.3,
         };
-        let mut cache = WheelCache::default();
-        let state = WheelState::default();
+        // The state carries the last balance's z_ws, where the next one starts (`BalanceStart`).
+        let (mut cache, mut state) = (WheelCache::default(), WheelState::default());
         let swing: Vec<WheelInput> = (0..64)
             .map(|k| {
                 let mut moved = input;
@@ -110,7 +110,7 @@ fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, step
                 let input = match steps {
                     Steps::Repeated => &input,
                     Steps::Cold => {
-                        cache = WheelCache::default();
+                        (cache, state) = (WheelCache::default(), WheelState::default());
                         &input
                     }
                     Steps::Moving => {
@@ -118,7 +118,10 @@ fn wheel_steps(c: &mut Criterion, contact: &WheelRailContact, prefix: &str, step
                         &swing[step]
                     }
                 };
-                contact.evaluate(black_box(input), &state, &mut cache, Evaluation::Step(1e-3))
+                let (output, next) =
+                    contact.evaluate(black_box(input), &state, &mut cache, Evaluation::Step(1e-3)).unwrap();
+                state = next;
+                output
             })
         });
     }
@@ -153,15 +156,15 @@ fn a22(c: &mut Criterion) {
                 })
                 .collect();
             assert_eq!(inputs.len(), 21);
-            let mut cache = WheelCache::default();
-            let state = WheelState::default();
+            let (mut cache, mut state) = (WheelCache::default(), WheelState::default());
             let name = format!("a22_{model_name}_{side_name}_{}_steps", inputs.len());
             c.bench_function(&name, |bencher| {
                 bencher.iter(|| {
                     for input in &inputs {
-                        black_box(
-                            contact.evaluate(black_box(input), &state, &mut cache, Evaluation::Step(1e-3)).unwrap(),
-                        );
+                        let (output, next) =
+                            contact.evaluate(black_box(input), &state, &mut cache, Evaluation::Step(1e-3)).unwrap();
+                        state = next;
+                        black_box(output);
                     }
                 })
             });

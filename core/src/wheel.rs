@@ -195,11 +195,13 @@ pub struct PatchState {
     pub scene: SceneState,
 }
 
-/// What a wheel carries to the next evaluation: its patches' states.
+/// What a wheel carries to the next evaluation: its patches' states, and where its last
+/// non-Hertzian vertical balance settled.
 #[derive(Debug, Clone, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WheelState {
     pub patches: Vec<PatchState>,
+    pub balance: Option<BalanceStart>,
 }
 
 impl WheelState {
@@ -211,21 +213,53 @@ impl WheelState {
             }
             patch.scene.validate()?;
         }
+        if let Some(balance) = &self.balance {
+            for (name, value) in [("balance_vertical_position", balance.vertical), ("balance_touch", balance.touch)] {
+                if !value.is_finite() {
+                    return Err(InvalidInput::new(name, value, "must be finite"));
+                }
+            }
+            if let Some(slope) = balance.slope.filter(|slope| !(slope.is_finite() && *slope > 0.0)) {
+                return Err(InvalidInput::new("balance_slope", slope, "must be finite and positive"));
+            }
+        }
         Ok(())
     }
 }
 
-/// Derived data for speed only: one scene cache per patch, and the last non-Hertzian balance's
-/// depth below its pose's touch (z_ws less the z_ws where the wheel first touches), where the
-/// next one's root search starts: a step moves the wheelset little, and the depth that carries
-/// the load changes less than z_ws, which follows the touch as the pose moves (on the flange by
-/// micrometres per micrometre of y_ws); and the slope of that search's residual, along which
-/// the next one takes its first step.
+/// Where a non-Hertzian vertical balance settled ([`ContactMethod::NonHertzian`] with a
+/// prescribed force), where the next one's root search starts: at the same depth below its
+/// pose's touch (a step moves the wheelset little, and the depth that carries the load changes
+/// less than z_ws, which follows the touch as the pose moves: on the flange by micrometres per
+/// micrometre of y_ws), its first step along the same slope of the search's residual. Part of the
+/// state, not of the [`WheelCache`], so that an evaluation is a function of its input and state
+/// alone: the search meets the force within [`BALANCE_TOLERANCE`] wherever it starts, but not at
+/// the same bits, and a step rolled back to a saved state, or inputs read back after others were
+/// tried, must give the outputs they gave. At the same pose (the same touch) it starts at the
+/// z_ws itself, so that an evaluation repeated from the state it left gives its outputs again.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct BalanceStart {
+    /// z_ws where the balance settled \[m\].
+    pub vertical: f64,
+    /// z_ws where the wheel first touched the rail at that pose \[m\].
+    pub touch: f64,
+    /// The slope of the search's residual there \[N^(2/3)/m\], where known.
+    pub slope: Option<f64>,
+}
+
+impl BalanceStart {
+    /// Where a search at a pose touching at `touch` starts.
+    fn start(&self, touch: f64) -> Root {
+        let vertical = if touch == self.touch { self.vertical } else { touch + (self.vertical - self.touch) };
+        Root { vertical, slope: self.slope }
+    }
+}
+
+/// Derived data for speed only: one scene cache per patch.
 #[derive(Debug, Clone, Default)]
 pub struct WheelCache {
     patches: Vec<SceneCache>,
-    depth: Option<f64>,
-    slope: Option<f64>,
 }
 
 /// Why a wheel cannot be evaluated.
@@ -605,7 +639,8 @@ impl WheelRailContact {
         // rounds differ by little); the relaxed forces always start from `state`.
         let mut hints = WheelState::default();
         let mut rounds: Vec<(f64, Vec<PatchForces>, WheelState, Regions)> = Vec::new();
-        let start = cache.depth.map(|depth| Root { vertical: pose.touch() + depth, slope: cache.slope });
+        let touch = pose.touch();
+        let start = state.balance.map(|balance| balance.start(touch));
         let root = pose.vertical_for_force(force, start, BALANCE_TOLERANCE, |pose, vertical| {
             let (patches, regions) = pose.summaries_at(vertical)?;
             let position = WheelsetPosition { vertical, ..input.position };
@@ -616,14 +651,16 @@ impl WheelRailContact {
             Ok::<_, WheelContactError>(carried)
         })?;
         let vertical = root.vertical;
-        (cache.depth, cache.slope) = (Some(vertical - pose.touch()), root.slope);
+        let balance = Some(BalanceStart { vertical, touch, slope: root.slope });
         // The answer is a round's z_ws, but at lift-off (the touch, no patch).
         match rounds.into_iter().rev().find(|round| round.0 == vertical) {
             Some((vertical, forces, states, regions)) => {
                 let switching = pose.switching_functions(vertical, &regions)?;
-                Ok((vertical, forces, states, switching))
+                Ok((vertical, forces, WheelState { balance, ..states }, switching))
             }
-            None => Ok((vertical, Vec::new(), WheelState::default(), SwitchingFunctions::default())),
+            None => {
+                Ok((vertical, Vec::new(), WheelState { patches: Vec::new(), balance }, SwitchingFunctions::default()))
+            }
         }
     }
 
@@ -692,7 +729,7 @@ impl WheelRailContact {
             forces.push(PatchForces { patch: *patch, output });
             states.push(PatchState { rail_lateral: patch.point.rail_lateral, scene: scene_state });
         }
-        Ok((forces, WheelState { patches: states }))
+        Ok((forces, WheelState { patches: states, balance: None }))
     }
 }
 

@@ -701,7 +701,8 @@ mod tests {
 
     use super::*;
     use crate::model_description::{
-        value_reference as vr, Causality, TractionLaw, VerticalContact as VerticalChoice, VARIABLES,
+        value_reference as vr, Causality, ContactMethod as MethodChoice, TractionLaw,
+        VerticalContact as VerticalChoice, VARIABLES,
     };
     use wheel_rail_contact::hertz::{contact_modulus, HertzContact, RelativeCurvature};
     use wheel_rail_contact::scene::kinematics::WheelKinematics;
@@ -1264,7 +1265,7 @@ mod tests {
     #[test]
     fn declared_output_dependencies_are_the_true_ones() {
         type Configure = fn(&mut Parameters);
-        let scenes: [(Configure, Evaluation); 12] = [
+        let scenes: [(Configure, Evaluation); 13] = [
             (|_| {}, Evaluation::Initialise),
             (|p| p.hertz_contact = on(), Evaluation::Initialise),
             (|p| p.creepages_from_kinematics = on(), Evaluation::Initialise),
@@ -1299,10 +1300,20 @@ mod tests {
                 },
                 Evaluation::Step(1e-4),
             ),
+            // Profiles: the non-Hertzian patches (the start value), and Hertz's, which have a
+            // second patch (the flange) at this pose.
             (|p| p.contact_geometry = ContactGeometry::Profiles as i32, Evaluation::Initialise),
             (
                 |p| {
                     p.contact_geometry = ContactGeometry::Profiles as i32;
+                    p.contact_method = MethodChoice::Hertz as i32;
+                },
+                Evaluation::Initialise,
+            ),
+            (
+                |p| {
+                    p.contact_geometry = ContactGeometry::Profiles as i32;
+                    p.contact_method = MethodChoice::Hertz as i32;
                     p.vertical_contact = VerticalChoice::PrescribedPosition as i32;
                 },
                 Evaluation::Initialise,
@@ -1310,6 +1321,7 @@ mod tests {
             (
                 |p| {
                     p.contact_geometry = ContactGeometry::Profiles as i32;
+                    p.contact_method = MethodChoice::Hertz as i32;
                     p.creep_relaxation = on();
                 },
                 Evaluation::Step(1e-4),

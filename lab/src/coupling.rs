@@ -204,6 +204,8 @@ impl<'a> System<'a> {
         for (side, unit) in SIDES.iter().zip(&contacts) {
             let choices = [
                 ("contact_geometry", "profiles"),
+                // The coupling map was measured with Hertz's patches (as the system's SSP sets).
+                ("contact_method", "hertz"),
                 ("wheel_side", side),
                 ("vertical_contact", "prescribed_force"),
                 ("creep_force_model", case.rung),

@@ -193,9 +193,10 @@ prescribed_position (2) the height <code>wheelset_vertical_position</code> z<sub
 datum at the rail top's level). The single patch's inputs (creepages, <code>normal_force</code>, semi-axes,
 <code>wheel_rolling_radius</code>, <code>lateral_slip_velocity</code>, <code>spin_angular_velocity</code>) are not
 read, and its outputs are 0.</li>
-<li><b>Per patch</b>: the contact points are the local minima of the undeformed gap (tread and flange), each in
-contact where the gap closes; the normal force from the penetration by Hertz, with Hertz's ellipse from the
-profiles' curvatures; the creepages from the slip of the wheel's point at the patch over the rolling speed
+<li><b>Per patch</b>: with <code>contact_method</code> = non_hertzian (the default) one patch per contact region of
+the profiles' interpenetration (below); with hertz the contact points are the local minima of the undeformed gap
+(tread and flange), each in contact where the gap closes, the normal force from the penetration by Hertz, with
+Hertz's ellipse from the profiles' curvatures. The creepages from the slip of the wheel's point at the patch over the rolling speed
 (regularised through standstill by <code>regularisation_speed</code>); the creep forces by the chosen
 <code>creep_force_model</code>, <code>traction_law</code> and <code>creep_relaxation</code> (each patch carries its own
 relaxed forces). With a prescribed force the wheelset's height is solved so that the rail carries the load through
@@ -215,7 +216,8 @@ the rail), <code>patchK_creepage_longitudinal</code>, <code>patchK_creepage_late
 in the totals only. Directional derivatives: by central differences (Behaviour, below).</li>
 </ul>
 {profile_figures}
-<p>On the benchmark's case A-2.2 (both wheels, 21 lateral positions with yaw and roll) the FMU's patch is within
+<p>On the benchmark's case A-2.2 (both wheels, 21 lateral positions with yaw and roll) the Hertz patch
+(<code>contact_method</code> = hertz) is within
 1 mm of CONTACT's published full solution on the rail and its contact angle within 0.01 rad on the tread and 0.02
 on the flange; with <code>creep_force_model</code> = exact_table its normal force is within 0.1 % and its creep forces
 within 0.041 μN, with Polach's method within 10 % and 0.2 μN (but on the flange at 6.5 mm, under large spin,
@@ -224,10 +226,10 @@ where the gap is flat or has two nearby minima (y<sub>ws</sub> = 0; the right wh
 from tread to flange (the right wheel at 5 mm). The fmpy test <code>fmu/tests/fmpy/test_profiles.py</code> checks it.</p>
 
 <h3>Non-Hertzian contact (parameter <code>contact_method</code>) and measured profiles</h3>
-<p><code>contact_method</code> = hertz (1, the default) finds one Hertz ellipse per minimum of the undeformed gap,
-the fastest way. It is off where the gap is not Hertzian: flat within microns over 10 mm (the centred wheelset on
-new profiles), with two close minima (the tread–flange transition) or conformal (worn profiles).
-<code>contact_method</code> = non_hertzian (2) finds one patch per contact region of the two profiles' virtual
+<p><code>contact_method</code> = hertz (1) finds one Hertz ellipse per minimum of the undeformed gap, the fastest
+way. It is off where the gap is not Hertzian: flat within microns over 10 mm (the centred wheelset on new
+profiles), with two close minima (the tread–flange transition) or conformal (worn profiles).
+<code>contact_method</code> = non_hertzian (2, the default: it is the one that meets CONTACT there) finds one patch per contact region of the two profiles' virtual
 interpenetration, strip by strip across the rail (Kik and Piotrowski, Vehicle System Dynamics 46 (2008) 27–48, as
 CONTACT's fast KPEC method): the region's extent and shape, its load, the pressure centroid as the contact point
 with the contact angle there, and an equivalent ellipse of the same area for the creep-force
@@ -246,8 +248,9 @@ with Hertz the contact point is off by up to 2.5 mm and the
 creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
 strip): its peak lies 7–13 % below CONTACT's on the tread, 15–25 % on the flange, up to 41 % where the patch
 is wide and up to 60 % where tread and flange root share it (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's
-lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs 5–30 µs from the last step's solution (2–5 times Hertz's, the most for the centred
-wheelset's wide patch; up to 0.1 ms from a cold start): the strips' geometry is tabulated per wheel when the
+lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs 4–18 µs repeated and 8–34 µs with the wheelset moving (up to 8 times Hertz's, the most for
+the centred wheelset's wide patch; up to 0.1 ms from a cold start); the wheel's state holds where its last
+vertical balance settled, where the next one starts, so that a restored FMU state continues bit for bit: the strips' geometry is tabulated per wheel when the
 instance leaves initialisation (0.2 ms), only with <code>contact_method</code> = non_hertzian.</p>
 {non_hertzian_figures}
 <p><b>Measured profiles.</b> A MiniProf file (<code>.whl</code>, <code>.ban</code>) is read as the instrument

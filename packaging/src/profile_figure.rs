@@ -2,7 +2,8 @@
 //! profiles (the built-in S1002 wheel on the UIC60 rail 1:40) on its default track (the
 //! Manchester benchmark's), right wheel, at a lateral displacement of the wheelset, the wheel at
 //! the height that carries 10 kN, each loaded patch drawn as its width 2b along the contact
-//! plane (a box, to be seen). Computed with the core, as the FMU computes it.
+//! plane (a box, to be seen). Computed with the core, as the FMU computes it with
+//! `contact_method = hertz` (the non-Hertzian patches' figures: `non_hertzian_figure.rs`).
 
 use wheel_rail_contact::geometry::{builtin_profile, ProfilePoints, WheelOnRail, WheelSide, WheelsetPosition};
 use wheel_rail_contact::scene::{Evaluation, Scene};
@@ -110,7 +111,10 @@ pub fn curves(lateral: f64) -> Vec<Series> {
 /// The figure at `lateral` as an SVG document.
 pub fn figure(lateral: f64) -> String {
     line_plot(
-        &format!("S1002 on UIC60 1:40, right wheel, y_ws = {} mm, 10 kN: the loaded patches", lateral * 1e3),
+        &format!(
+            "S1002 on UIC60 1:40, right wheel, y_ws = {} mm, 10 kN: the loaded Hertz patches (contact_method = hertz)",
+            lateral * 1e3
+        ),
         "track y [mm] (to the right)",
         "height above the rail top [mm]",
         &curves(lateral),

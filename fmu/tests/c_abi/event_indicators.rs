@@ -147,7 +147,9 @@ fn every_jump_of_the_non_hertzian_patches_is_located_by_an_event_indicator() {
 fn in_initialization_mode_the_indicators_follow_the_values_set() {
     let log = MessageLog::default();
     let fmu = Fmu::model_exchange_logged("initialization", &log);
-    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
+    // Hertz's patches: one per minimum of the gap, whose indicators are checked below.
+    let choices = [ContactGeometry::Profiles as i32, ContactMethod::Hertz as i32];
+    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::CONTACT_METHOD], &choices), OK);
     let mut indicators = [f64::NAN; SWITCHING_FUNCTIONS];
     let mut read = || {
         // SAFETY: `fmu.c` is live; `indicators` holds numberOfEventIndicators values.

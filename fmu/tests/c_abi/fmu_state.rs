@@ -2,12 +2,13 @@
 //! bit for bit in a fresh instance, and damaged byte strings are rejected without effect.
 
 use fmu_test_master::{bits, run_scene, Fmu, MessageLog, ERROR, OK, OUTPUTS};
+use wheel_rail_contact::wheel::BalanceStart;
 use wheel_rail_contact::ModelMemory;
 use wheel_rail_contact_fmu::ffi::{
     fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetFMUstate, fmi2SetupExperiment, fmi2Terminate,
 };
 use wheel_rail_contact_fmu::fmi2::fmi2FMUstate;
-use wheel_rail_contact_fmu::model_description::{value_reference as vr, Model, Switch};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, ContactMethod, Model, Switch};
 use wheel_rail_contact_fmu::snapshot::{decode, encode, Snapshot};
 
 const STEP: f64 = 1e-3;
@@ -339,32 +340,49 @@ fn a_wheel_on_profiles_continues_bit_identically() {
             })
             .collect()
     };
-    let fmu = Fmu::instantiate("profiles", None);
-    let parameters = [vr::CONTACT_GEOMETRY, vr::CREEP_RELAXATION, vr::WHEEL_SIDE];
-    assert_eq!(fmu.set_integer(&parameters, &[ContactGeometry::Profiles as i32, Switch::On as i32, 0]), OK);
-    assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE], &["MBench_S1002"]), OK);
-    fmu.initialise(0.0);
-    run(&fmu, 0, 30);
-    let state = fmu.get_state();
-    let first = run(&fmu, 30, 40);
-    assert_eq!(fmu.set_state(state), OK);
-    assert_eq!(bits(&first), bits(&run(&fmu, 30, 40)), "rolled back");
-    // Relaxation matters here: the forces lag behind the steady ones.
-    let snapshot = decode(&fmu.serialize(state)).unwrap();
-    assert!(
-        !snapshot.model.wheel.patches.is_empty()
-            && snapshot.model.wheel.patches.iter().all(|p| p.scene.relaxed_forces != [0.0; 2])
-    );
-    assert_eq!(snapshot.model.strings.wheel_profile, "MBench_S1002");
-    let bytes = fmu.serialize(state);
-    fmu.free_state(state);
-    let fresh = Fmu::instantiate("fresh", None);
-    let restored = fresh.deserialize(&bytes).unwrap();
-    assert_eq!(fresh.set_state(restored), OK);
-    assert_eq!(bits(&first), bits(&run(&fresh, 30, 40)), "deserialised");
-    fresh.free_state(restored);
-    // A state whose wheel holds a non-finite patch position is refused.
-    let mut forged_state = snapshot;
-    forged_state.model.wheel.patches[0].rail_lateral = f64::NAN;
-    assert_eq!(fresh.deserialize(&encode(&forged_state)), Err(ERROR));
+    // With non_hertzian the vertical balance's search starts where the last one settled, which
+    // the state holds (`WheelState::balance`): a state restored continues from there.
+    for method in [ContactMethod::Hertz, ContactMethod::NonHertzian] {
+        let fmu = Fmu::instantiate("profiles", None);
+        let parameters = [vr::CONTACT_GEOMETRY, vr::CREEP_RELAXATION, vr::WHEEL_SIDE, vr::CONTACT_METHOD];
+        let choices = [ContactGeometry::Profiles as i32, Switch::On as i32, 0, method as i32];
+        assert_eq!(fmu.set_integer(&parameters, &choices), OK);
+        assert_eq!(fmu.set_string(&[vr::WHEEL_PROFILE], &["MBench_S1002"]), OK);
+        fmu.initialise(0.0);
+        run(&fmu, 0, 30);
+        let state = fmu.get_state();
+        let first = run(&fmu, 30, 40);
+        assert_eq!(fmu.set_state(state), OK);
+        assert_eq!(bits(&first), bits(&run(&fmu, 30, 40)), "{method:?}: rolled back");
+        // Relaxation matters here: the forces lag behind the steady ones.
+        let snapshot = decode(&fmu.serialize(state)).unwrap();
+        assert!(
+            !snapshot.model.wheel.patches.is_empty()
+                && snapshot.model.wheel.patches.iter().all(|p| p.scene.relaxed_forces != [0.0; 2])
+        );
+        assert_eq!(snapshot.model.wheel.balance.is_some(), method == ContactMethod::NonHertzian, "{method:?}");
+        assert_eq!(snapshot.model.strings.wheel_profile, "MBench_S1002");
+        let bytes = fmu.serialize(state);
+        fmu.free_state(state);
+        let fresh = Fmu::instantiate("fresh", None);
+        let restored = fresh.deserialize(&bytes).unwrap();
+        assert_eq!(fresh.set_state(restored), OK);
+        assert_eq!(bits(&first), bits(&run(&fresh, 30, 40)), "{method:?}: deserialised");
+        fresh.free_state(restored);
+        // A state whose wheel holds a non-finite patch position, or balance, is refused.
+        let mut forged_state = snapshot.clone();
+        forged_state.model.wheel.patches[0].rail_lateral = f64::NAN;
+        assert_eq!(fresh.deserialize(&encode(&forged_state)), Err(ERROR));
+        if let Some(balance) = snapshot.model.wheel.balance {
+            for forged_balance in [
+                BalanceStart { vertical: f64::INFINITY, ..balance },
+                BalanceStart { touch: f64::NAN, ..balance },
+                BalanceStart { slope: Some(-1.0), ..balance },
+            ] {
+                let mut forged_state = snapshot.clone();
+                forged_state.model.wheel.balance = Some(forged_balance);
+                assert_eq!(fresh.deserialize(&encode(&forged_state)), Err(ERROR), "{forged_balance:?}");
+            }
+        }
+    }
 }

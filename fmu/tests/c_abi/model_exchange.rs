@@ -9,7 +9,7 @@ use fmi2_slave::ffi::message_log::MessageLog;
 use fmi2_slave::fmi2::*;
 use fmu_test_master::{Fmu, ERROR, OK};
 use wheel_rail_contact_fmu::ffi::*;
-use wheel_rail_contact_fmu::model_description::{value_reference as vr, ContactGeometry, Model, Switch};
+use wheel_rail_contact_fmu::model_description::{value_reference as vr, ContactGeometry, ContactMethod, Model, Switch};
 
 const OUTPUTS: [u32; 4] =
     [vr::FORCE_LONGITUDINAL, vr::FORCE_LATERAL, vr::SPIN_MOMENT, vr::EFFECTIVE_CREEPAGE_LONGITUDINAL];
@@ -23,9 +23,10 @@ fn initialised(fmu: &Fmu, integers: &[(u32, i32)]) {
     fmu.initialise(0.0);
 }
 
-/// The same inputs in both interfaces give the same outputs, bit for bit: in Model Exchange as
-/// soon as they are set (event or continuous-time mode), in Co-Simulation after a step.
-fn agree(integers: &[(u32, i32)], inputs: &[(u32, f64)], outputs: &[u32]) {
+/// The same inputs in both interfaces give the same outputs, bit for bit (within `tolerance` of
+/// the largest where it is not 0): in Model Exchange as soon as they are set (event or
+/// continuous-time mode), in Co-Simulation after a step.
+fn agree(integers: &[(u32, i32)], inputs: &[(u32, f64)], outputs: &[u32], tolerance: f64) {
     let log = MessageLog::default();
     let me = Fmu::model_exchange_logged("me", &log);
     let cs = Fmu::instantiate_logged("cs", &log);
@@ -48,7 +49,13 @@ fn agree(integers: &[(u32, i32)], inputs: &[(u32, f64)], outputs: &[u32]) {
         assert_eq!(unsafe { fmi2SetTime(me.c, (step + 1) as f64 * 1e-3) }, OK);
         assert_eq!(cs.do_step(step as f64 * 1e-3, 1e-3), OK, "{}", log.last_text());
         let (a, b) = (me.get_real(outputs), cs.get_real(outputs));
-        assert_eq!(a, b, "after {reference} = {value}");
+        if tolerance == 0.0 {
+            assert_eq!(a, b, "after {reference} = {value}");
+        } else {
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let apart = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(apart <= tolerance * scale, "after {reference} = {value}: {a:?} against {b:?}");
+        }
         let (mut enter, mut terminate) = (1, 1);
         // SAFETY: `me.c` is live; valid out-pointers.
         assert_eq!(unsafe { fmi2CompletedIntegratorStep(me.c, 1, &mut enter, &mut terminate) }, OK);
@@ -63,14 +70,19 @@ fn agree(integers: &[(u32, i32)], inputs: &[(u32, f64)], outputs: &[u32]) {
 fn one_patch_in_model_exchange_is_the_co_simulation_step_at_the_same_inputs() {
     for model in [Model::Polach, Model::ExactTable, Model::Fastsim] {
         let inputs = [(vr::CREEPAGE_LONGITUDINAL, 2e-3), (vr::CREEPAGE_LATERAL, -1e-3), (vr::SPIN_CREEPAGE, 0.3)];
-        agree(&[(vr::CREEP_FORCE_MODEL, model as i32)], &inputs, &OUTPUTS);
+        agree(&[(vr::CREEP_FORCE_MODEL, model as i32)], &inputs, &OUTPUTS, 0.0);
     }
 }
 
 #[test]
 fn a_wheel_on_its_profiles_in_model_exchange_is_the_co_simulation_step_at_the_same_position() {
     let inputs = [(vr::WHEELSET_LATERAL_DISPLACEMENT, 4e-3), (vr::WHEELSET_YAW_ANGLE, 1e-3)];
-    agree(&[(vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32)], &inputs, &TRACK);
+    let profiles = (vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32);
+    agree(&[profiles, (vr::CONTACT_METHOD, ContactMethod::Hertz as i32)], &inputs, &TRACK, 0.0);
+    // The non-Hertzian balance starts its search where the state's last one settled: a
+    // Co-Simulation step moves that start, a Model Exchange evaluation does not (its state is
+    // the master's), so the two meet the load within the balance's 1e-10 from different starts.
+    agree(&[profiles, (vr::CONTACT_METHOD, ContactMethod::NonHertzian as i32)], &inputs, &TRACK, 1e-8);
 }
 
 /// The continuous states (the relaxed forces).

@@ -17,7 +17,8 @@ use wheel_rail_contact_fmu::ffi::{
 };
 use wheel_rail_contact_fmu::fmi2::fmi2Status;
 use wheel_rail_contact_fmu::model_description::{
-    value_reference as vr, variable, ContactGeometry, Model, VerticalContact as VerticalChoice, WheelSide as SideChoice,
+    value_reference as vr, variable, ContactGeometry, ContactMethod, Model, VerticalContact as VerticalChoice,
+    WheelSide as SideChoice,
 };
 
 /// The wheelset's inputs, in this order.
@@ -71,13 +72,14 @@ const WHEEL_OUTPUTS: [u32; 30] = [
 /// flange both in contact on the right wheel), braking slightly, moving sideways and yawing.
 const CASE_11: [f64; 9] = [5e-3, 0.0, -3.554e-4, 0.012, 10e3, 2.0, 4.3353637 * 0.999, 0.01, 0.005];
 
-/// An instance with profiles on `side`, its inputs set, initialised (logging into `log`).
+/// An instance with profiles on `side` and Hertz's patches (`contact_method = hertz`: the tests
+/// that use it check them against the core's Hertz wheel and at its patches' changes; the
+/// non-Hertzian patches' own tests set `non_hertzian`, the start value), its inputs set,
+/// initialised (logging into `log`).
 fn profiles(side: SideChoice, inputs: &[f64; 9], log: &MessageLog) -> Fmu {
     let fmu = Fmu::instantiate_logged("profiles", log);
-    assert_eq!(
-        fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::WHEEL_SIDE], &[ContactGeometry::Profiles as i32, side as i32]),
-        OK
-    );
+    let choices = [ContactGeometry::Profiles as i32, side as i32, ContactMethod::Hertz as i32];
+    assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::WHEEL_SIDE, vr::CONTACT_METHOD], &choices), OK);
     assert_eq!(fmu.set_real(&WHEELSET, inputs), OK);
     fmu.initialise(0.0);
     fmu
@@ -465,8 +467,9 @@ impl Sweep {
     fn new(model: i32) -> Sweep {
         let log = Box::new(MessageLog::default());
         let fmu = Fmu::instantiate_logged("balance", &log);
-        let integers = [ContactGeometry::Profiles as i32, model];
-        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::CREEP_FORCE_MODEL], &integers), OK);
+        // Hertz's patches, whose join near y_ws = −0.248 mm this sweeps.
+        let integers = [ContactGeometry::Profiles as i32, model, ContactMethod::Hertz as i32];
+        assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY, vr::CREEP_FORCE_MODEL, vr::CONTACT_METHOD], &integers), OK);
         fmu.initialise(0.0);
         Sweep { fmu, log, time: std::cell::Cell::new(0.0) }
     }
@@ -759,4 +762,52 @@ fn worn_measured_profiles_give_contacts_two_patches() {
         assert!((ours - contact).abs() < 0.12 * 0.3 * 80e3, "{ours} against {contact}");
     }
     assert!((fz + 80e3).abs() < 1e-6 * 80e3, "F_z {fz}");
+}
+
+/// With `contact_method = non_hertzian` and a prescribed load the vertical balance's search
+/// starts where the last one settled, which is part of the wheel's state (a warm start: it
+/// meets the load within 1e-10 from anywhere, but not at the same bits). So the outputs are a
+/// function of the inputs and the state alone: after a step, reading them at other inputs and
+/// back, a directional derivative (its evaluations move the inputs by ±10 µm), and a failed step
+/// leave the outputs at the step's own inputs as the step gave them, bit for bit — on the tread,
+/// the centred wheelset and where tread and flange root share the load. (Started from a cache
+/// instead of the state, each of these moved them by some 1e-10.)
+#[test]
+fn non_hertzian_outputs_are_a_function_of_the_inputs_and_the_state() {
+    let bits = |values: &[f64]| values.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+    for lateral in [2e-3, 0.0, 5e-3] {
+        let log = MessageLog::default();
+        let fmu = Fmu::instantiate_logged("non_hertzian", &log);
+        let parameters = [vr::CONTACT_GEOMETRY, vr::WHEEL_SIDE, vr::CONTACT_METHOD];
+        let choices = [ContactGeometry::Profiles as i32, SideChoice::Right as i32, ContactMethod::NonHertzian as i32];
+        assert_eq!(fmu.set_integer(&parameters, &choices), OK);
+        let mut inputs = CASE_11;
+        inputs[0] = lateral;
+        assert_eq!(fmu.set_real(&WHEELSET, &inputs), OK);
+        fmu.initialise(0.0);
+        // A step from the initial state to a moved pose, whose search starts away from its root.
+        assert_eq!(fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[lateral + 2e-5]), OK);
+        assert_eq!(fmu.do_step(0.0, 1e-3), OK, "{:?}", log.last());
+        let step = fmu.get_real(&WHEEL_OUTPUTS);
+        assert!(step[vr_index(vr::CONTACT_PATCH_COUNT)] >= 1.0, "y_ws {lateral}: {step:?}");
+        let at = |y: f64| {
+            assert_eq!(fmu.set_real(&[vr::WHEELSET_LATERAL_DISPLACEMENT], &[y]), OK);
+            fmu.get_real(&WHEEL_OUTPUTS)
+        };
+        at(lateral + 5e-5);
+        assert_eq!(bits(&at(lateral + 2e-5)), bits(&step), "y_ws {lateral}: read at other inputs and back");
+        let (status, _) =
+            fmu.directional_derivative(&[vr::TRACK_FORCE_X], &[vr::WHEELSET_LATERAL_DISPLACEMENT], &[1.0]);
+        assert_eq!(status, OK, "{:?}", log.last());
+        assert_eq!(bits(&fmu.get_real(&WHEEL_OUTPUTS)), bits(&step), "y_ws {lateral}: after a directional derivative");
+        assert_eq!(fmu.set_real(&[vr::VERTICAL_FORCE], &[f64::NAN]), OK);
+        assert_eq!(fmu.do_step(1e-3, 1e-3), ERROR);
+        assert_eq!(fmu.set_real(&[vr::VERTICAL_FORCE], &[inputs[4]]), OK);
+        assert_eq!(bits(&fmu.get_real(&WHEEL_OUTPUTS)), bits(&step), "y_ws {lateral}: after a failed step");
+    }
+}
+
+/// The position of value reference `reference` in [`WHEEL_OUTPUTS`].
+fn vr_index(reference: u32) -> usize {
+    WHEEL_OUTPUTS.iter().position(|&r| r == reference).expect("a wheel output")
 }

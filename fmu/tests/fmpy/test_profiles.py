@@ -24,6 +24,7 @@ MU, LOAD = 0.3, 10e3
 # a second, light tread patch).
 EXCLUDED = {("right", 1), ("left", 1), ("right", 2), ("right", 11)}
 POLACH, EXACT_TABLE = 1, 6
+HERTZ, NON_HERTZIAN = 1, 2
 # Tolerances (normal force relative, creep forces in mu N) per model: the issue's for Polach's
 # method; tighter for the exact theory's table, which is CONTACT's theory (measured: 0.1 % and
 # 0.041 mu N at most).
@@ -46,11 +47,14 @@ def cases():
             for r in rows("mbench_a22_contact_ref_out.csv")]
 
 
-def wheel_outputs(slave, vr, side, case_inputs, model=POLACH):
-    """One case on a fresh or reset instance: parameters, then the inputs in initialisation mode."""
+def wheel_outputs(slave, vr, side, case_inputs, model=POLACH, method=None):
+    """One case on a fresh or reset instance: parameters (`contact_method` left at its start
+    value where `method` is None), then the inputs in initialisation mode."""
     slave.setupExperiment(startTime=0.0)
     slave.setInteger([vr["contact_geometry"], vr["wheel_side"], vr["vertical_contact"], vr["creep_force_model"]],
                      [PROFILES, RIGHT if side == "right" else LEFT, PRESCRIBED_FORCE, model])
+    if method is not None:
+        slave.setInteger([vr["contact_method"]], [method])
     slave.setString([vr["wheel_profile"], vr["rail_profile"]], ["MBench_S1002", "MBench_UIC60"])
     reals = {
         "shear_modulus": 82e9, "poisson_ratio": 0.28, "track_gauge": 1.435, "gauge_measuring_height": 0.014,
@@ -77,6 +81,7 @@ def wheel_outputs(slave, vr, side, case_inputs, model=POLACH):
 @pytest.mark.parametrize("model", [POLACH, EXACT_TABLE])
 @pytest.mark.parametrize("side", ["right", "left"])
 def test_a22_against_contact(new_slave, vr, side, model):
+    """Hertz's patches (contact_method = hertz), the cases it can meet."""
     slave, _ = instantiated(new_slave, f"A-2.2 {side}")
     normal_tolerance, creep_tolerance = TOLERANCES[model]
     checked = 0
@@ -84,7 +89,7 @@ def test_a22_against_contact(new_slave, vr, side, model):
         if wheel != side:
             continue
         slave.reset()
-        ours = wheel_outputs(slave, vr, side, case_inputs, model)
+        ours = wheel_outputs(slave, vr, side, case_inputs, model, HERTZ)
         where = f"{side} case {case}, creep_force_model = {model}"
         # The rail carries the prescribed load (the balance includes the creep forces' share).
         assert math.isclose(ours["track_force_z"], -LOAD, rel_tol=1e-6), (where, ours)
@@ -104,3 +109,27 @@ def test_a22_against_contact(new_slave, vr, side, model):
             assert abs(ours[name] - theirs) < creep_tolerance * MU * normal, (where, name, ours[name], theirs)
         checked += 1
     assert checked == (18 if side == "right" else 20)
+
+
+@pytest.mark.parametrize("side", ["right", "left"])
+def test_non_hertzian_contact_meets_contact_where_hertz_does_not(new_slave, vr, side):
+    """contact_method = non_hertzian on A-2.2's case 1 (the centred wheelset: the S1002/UIC60 gap
+    is flat within microns over 10 mm, and Hertz's patch lies 1.4 mm from CONTACT's), with the
+    exact theory's table, within the issue's tolerances for the fast methods against CONTACT:
+    contact angle 0.01 rad, rail position 1 mm, normal force 3 %, creep forces 0.12 mu N; and
+    Hertz's patch at the same case outside them."""
+    slave, _ = instantiated(new_slave, f"A-2.2 {side} case 1")
+    case_inputs, reference = next((i, r) for wheel, case, i, r in cases() if (wheel, case) == (side, 1))
+    ours = wheel_outputs(slave, vr, side, case_inputs, EXACT_TABLE, NON_HERTZIAN)
+    assert ours["contact_patch_count"] == 1, ours
+    assert math.isclose(ours["track_force_z"], -LOAD, rel_tol=1e-6), ours
+    normal = float(reference["fn"])
+    assert abs(ours["patch1_contact_angle"] - float(reference["deltcp_tr"])) < 0.01, (ours, reference)
+    assert abs(ours["patch1_rail_lateral_position"] - float(reference["ycp_r"]) * 1e-3) < 1e-3, (ours, reference)
+    assert abs(ours["patch1_normal_force"] / normal - 1.0) < 0.03, (ours, normal)
+    errors = [abs(ours[name] + float(reference[theirs])) / (MU * normal)
+              for name, theirs in [("patch1_force_longitudinal", "fx"), ("patch1_force_lateral", "fs")]]
+    assert max(errors) < 0.12, (ours, reference, errors)
+    slave.reset()
+    hertz = wheel_outputs(slave, vr, side, case_inputs, EXACT_TABLE, HERTZ)
+    assert abs(hertz["patch1_rail_lateral_position"] - float(reference["ycp_r"]) * 1e-3) > 1e-3, (hertz, reference)

@@ -151,7 +151,7 @@ def test_enumerations_are_integers_named_in_a_comment_and_strings_only_set_where
             assert value.get("value") != variable.start, (component, variable.name)
     assert {("left_wheel", "wheel_side", "left"), ("right_wheel", "wheel_side", "right"),
             ("left_wheel", "contact_geometry", "profiles"), ("right_wheel", "creep_force_model", "kalker_linear"),
-            ("right_wheel", "vertical_contact", "prescribed_force")} <= enumerations
+            ("right_wheel", "vertical_contact", "prescribed_force"), ("left_wheel", "contact_method", "hertz")} <= enumerations
 
 
 def test_the_step_is_where_omsimulator_reads_it_and_the_master_takes_it_from_there(ssp):
