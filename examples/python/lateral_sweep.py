@@ -5,12 +5,14 @@ After `cargo fmu` has built target/fmu/wheel_rail_contact.fmu, from the reposito
     .venv/bin/python examples/python/lateral_sweep.py [--fmu FILE] [--out DIR]
 
 The FMU takes its contact from profiles (contact_geometry = profiles): the built-in S1002 wheel on
-the UIC60 1:40 rail (the Manchester benchmark's), right wheel, default wheel load (vertical_force)
-and model (Polach), pure rolling at 20 m/s. The wheelset is moved across the track, y_ws from -8 to
+the UIC60 1:40 rail (the Manchester benchmark's), right wheel, default wheel load (vertical_force),
+model (Polach) and contact method (non_hertzian: one patch per contact region, as CONTACT finds
+it), pure rolling at 20 m/s. The wheelset is moved across the track, y_ws from -8 to
 +8 mm (positive to the right), one co-simulation step per position: a quasi-static sweep without yaw
 or lateral velocity. It shows the contact on the tread around the centre and the right wheel running
 onto its flange towards +y, where the contact angle and the rail's push on the wheel towards the
-track centre (track_force_y < 0) grow. It writes lateral_sweep.csv (the FMU's variable names, SI
+track centre (track_force_y < 0) grow, up to the flange's steepest point (beyond it, the contact
+climbing towards the flange's tip, both fall a little). It writes lateral_sweep.csv (the FMU's variable names, SI
 units) and lateral_sweep.png to --out and prints every 10th point. An FMI call that does not
 return fmi2OK stops it with exit code 1.
 """

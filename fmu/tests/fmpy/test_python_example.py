@@ -122,15 +122,26 @@ def test_towards_the_flange_the_contact_angle_and_the_lateral_force_grow(rows, w
                      key=lambda row: abs(row["wheelset_lateral_displacement"]))
     angles = [abs(row["patch1_contact_angle"]) for row in towards]
     lateral = [abs(row["track_force_y"]) for row in towards]
-    # Rising, allowing small wobbles (a tread patch ordered first while the flange also touches).
-    for k in range(1, len(towards)):
+    # Rising, allowing small wobbles (a tread patch ordered first while the flange also touches),
+    # up to the flange's steepest contact: beyond it the contact climbs towards the flange's tip,
+    # where the flank flattens, and angle and lateral force fall again (CONTACT's A-2.2 solution
+    # on the right wheel: the angle from 1.16 rad at y_ws = 6.5 mm to 0.95 at 8 mm, F_y from 12.5
+    # to 8.5 kN), so there only the angle is checked to stay on the flange.
+    steepest = max(range(len(towards)), key=lambda k: angles[k])
+    for k in range(1, steepest + 1):
         assert angles[k] > max(angles[:k]) - 0.02, (towards[k], max(angles[:k]))
         assert lateral[k] > max(lateral[:k]) - 0.05 * wheel_load, (towards[k], max(lateral[:k]))
+    for k in range(steepest + 1, len(towards)):
+        assert angles[k] > FLANGE_ANGLE, towards[k]
     end = towards[-1]
     assert angles[-1] > FLANGE_ANGLE, end
-    # The rail pushes the wheel back towards the track centre...
+    # The rail pushes the wheel back towards the track centre... but within a few tenths of a
+    # millimetre of it, where the lateral force is the small difference between the normal force's
+    # tilt and the spin's creep force (some 300 N each; CONTACT's A-2.2 case 1 at y_ws = 0: 36 N
+    # of 10 kN), and its sign lies within the contact methods' accuracy (the non-Hertzian patch:
+    # up to 29 N outward at y_ws = 0.1-0.24 mm, where it slides 3 mm across the flat gap).
     for row in towards[1:]:
-        assert row["track_force_y"] * flange_side < 0, row
+        assert row["track_force_y"] * flange_side < 0 or abs(row["track_force_y"]) < 0.005 * wheel_load, row
     # ...and on the flange's slope the normal force alone must hold the wheel load, so its lateral
     # part, Q tan(delta), far exceeds the centred wheelset's lateral force.
     assert lateral[-1] > 0.5 * wheel_load * math.tan(angles[-1]), end
