@@ -10,7 +10,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use wheel_rail_contact_fmu::logging::{LogSink, Status};
 use wheel_rail_contact_fmu::model::{Instance, InstantiateArguments, Slave};
 use wheel_rail_contact_fmu::model_description::{
-    value_reference as vr, ContactGeometry, Model, Switch, TractionLaw, GUID,
+    value_reference as vr, ContactGeometry, ContactMethod, Model, Switch, TractionLaw, GUID,
 };
 
 struct NoLog;
@@ -90,20 +90,30 @@ fn options(c: &mut Criterion) {
 /// 10 kN, braking 0.15 % at 20 m/s, Polach): the contact search, the vertical balance and the
 /// patches' creep forces per step, on the tread (2 mm), at the flat gap of the centred wheelset
 /// (0 mm), where tread and flange share the load (5 mm) and on the flange (7 mm).
+/// `fmu_profiles`: Hertz's patches (`contact_method = hertz`); `fmu_profiles_non_hertzian`: the
+/// start value's.
 fn profiles(c: &mut Criterion) {
-    let mut group = c.benchmark_group("fmu_profiles");
-    let inputs = [vr::WHEELSET_LATERAL_DISPLACEMENT, vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED];
-    let outputs = [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::CONTACT_PATCH_COUNT];
-    for (name, lateral) in [("tread_2mm", 2e-3), ("centred_0mm", 0.0), ("two_patches_5mm", 5e-3), ("flange_7mm", 7e-3)]
+    for (group_name, method) in
+        [("fmu_profiles", ContactMethod::Hertz), ("fmu_profiles_non_hertzian", ContactMethod::NonHertzian)]
     {
-        let mut instance = instance(&[(vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32)]);
-        let mut time = 0.0;
-        let values = [lateral, 20.0, 19.97 / 0.46];
-        group.bench_function(name, |b| {
-            b.iter(|| co_simulation_step(&mut instance, &[(&inputs, &values)], &mut time, &outputs))
-        });
+        let mut group = c.benchmark_group(group_name);
+        let inputs = [vr::WHEELSET_LATERAL_DISPLACEMENT, vr::ROLLING_SPEED, vr::WHEEL_ANGULAR_SPEED];
+        let outputs = [vr::TRACK_FORCE_X, vr::TRACK_FORCE_Y, vr::CONTACT_PATCH_COUNT];
+        for (name, lateral) in
+            [("tread_2mm", 2e-3), ("centred_0mm", 0.0), ("two_patches_5mm", 5e-3), ("flange_7mm", 7e-3)]
+        {
+            let mut instance = instance(&[
+                (vr::CONTACT_GEOMETRY, ContactGeometry::Profiles as i32),
+                (vr::CONTACT_METHOD, method as i32),
+            ]);
+            let mut time = 0.0;
+            let values = [lateral, 20.0, 19.97 / 0.46];
+            group.bench_function(name, |b| {
+                b.iter(|| co_simulation_step(&mut instance, &[(&inputs, &values)], &mut time, &outputs))
+            });
+        }
+        group.finish();
     }
-    group.finish();
 }
 
 /// The exact theory on 40 × 40 in a co-simulation with slowly varying creepage (issue 10's
