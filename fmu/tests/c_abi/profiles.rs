@@ -13,7 +13,8 @@ use wheel_rail_contact::wheel::{
 };
 use wheel_rail_contact::{ModelChoice, Polach};
 use wheel_rail_contact_fmu::ffi::{
-    fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetReal, fmi2SetString, fmi2SetupExperiment,
+    fmi2EnterInitializationMode, fmi2ExitInitializationMode, fmi2GetInteger, fmi2GetReal, fmi2SetString,
+    fmi2SetupExperiment,
 };
 use wheel_rail_contact_fmu::fmi2::fmi2Status;
 use wheel_rail_contact_fmu::model_description::{
@@ -594,12 +595,18 @@ fn a_prescribed_position_inside_the_rail_is_refused() {
 /// `contact_method = non_hertzian` through the C ABI: the centred wheelset (Manchester
 /// case 1, 10 kN) has its one wide patch where CONTACT's full solution has it, rail y = −8.66 mm
 /// and δ = −0.0290 rad (CONTACT rev. 2707, `core/tests/data/mbench_a22_contact_ref_out.csv`),
-/// within the 1 mm and 0.01 rad of CONTACT's fast methods; `hertz` (the default) puts its ellipse
-/// at the gap's minimum, 1.4 mm off. Case 11 (5 mm, yawed: Hertz finds a tread and a flange
-/// patch) gives CONTACT's one patch at −33.45 mm, δ = −0.2905 rad, within 2 mm and 0.05 rad.
+/// within the 1 mm and 0.01 rad of CONTACT's fast methods; `hertz` puts its ellipse at the gap's
+/// minimum, 1.4 mm off. Case 11 (5 mm, yawed: Hertz finds a tread and a flange patch) gives
+/// CONTACT's one patch at −33.45 mm, δ = −0.2905 rad, within 2 mm and 0.05 rad. `non_hertzian`
+/// is the start value.
 #[test]
 fn non_hertzian_patches_are_where_contact_finds_them() {
-    use wheel_rail_contact_fmu::model_description::ContactMethod;
+    let fresh = Fmu::instantiate("start value", None);
+    fresh.initialise(0.0);
+    let mut method = [0];
+    // SAFETY: a live instance (Get is legal from initialisation mode on); one reference, one value.
+    assert_eq!(unsafe { fmi2GetInteger(fresh.c, [vr::CONTACT_METHOD].as_ptr(), 1, method.as_mut_ptr()) }, OK);
+    assert_eq!(method, [ContactMethod::NonHertzian as i32]);
     let centred = [0.0, 0.0, 0.0, 0.0, 10e3, 2.0, 4.3478, 0.0, 0.0];
     let case_11 = [5e-3, 0.0, -3.554e-4, 0.012, 10e3, 2.0, 4.3353637, 0.0, 0.0];
     let patches = |inputs: &[f64; 9], method: ContactMethod| {
