@@ -1339,11 +1339,17 @@ mod tests {
         let mut pose = pose_at(2e-3);
         let (cold, cold_count) = counted_solve(&mut pose, 10e3, None);
         let touch = pose.touch();
-        let (_, plain) = counted_solve(&mut pose, 10e3, Some(Root { slope: None, ..cold }));
+        // A start 2 µm off the root, which the slope's first step would take.
+        let vertical = cold.vertical + 2e-6;
+        let (plain, plain_count) = counted_solve(&mut pose, 10e3, Some(Root { vertical, slope: None }));
+        assert!(plain_count > 1);
         for slope in [0.0, -1.0, f64::INFINITY, f64::NAN] {
-            let (root, count) = counted_solve(&mut pose, 10e3, Some(Root { slope: Some(slope), ..cold }));
-            assert_eq!((root.vertical, count), (cold.vertical, plain), "slope {slope}");
+            let (root, count) = counted_solve(&mut pose, 10e3, Some(Root { vertical, slope: Some(slope) }));
+            assert_eq!((root.vertical, count), (plain.vertical, plain_count), "slope {slope}");
         }
+        // (Along a rising slope, the search differs: it is taken.)
+        let along = counted_solve(&mut pose, 10e3, Some(Root { vertical, slope: cold.slope }));
+        assert_ne!((along.0.vertical, along.1), (plain.vertical, plain_count));
         for vertical in [touch - 1e-6, touch, touch + MAX_PENETRATION * 1.01] {
             let (root, count) = counted_solve(&mut pose, 10e3, Some(Root { vertical, slope: None }));
             assert_eq!((root.vertical, count), (cold.vertical, cold_count), "start {vertical}");
