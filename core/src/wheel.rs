@@ -609,9 +609,10 @@ impl WheelRailContact {
     /// ([`crate::geometry::NonHertzianPose`]: secant steps on the carried force's 2/3 power,
     /// then a bracket) with each evaluation a round — the patches at z_ws, their creep forces,
     /// the vertical force they carry together — started at the last step's depth below the
-    /// touch, its first step along the last search's slope ([`BalanceStart`], in `state`). The carried force is nearly the normal forces' alone, whose 2/3 power the
-    /// search's secants nearly meet: 2–6 rounds, where solving the frictionless problem to 1e-12
-    /// for each corrected load took 16–34.
+    /// touch, its first step along the last search's slope ([`BalanceStart`], in `state`). The
+    /// carried force is nearly the normal forces' alone, whose 2/3 power the search's secants
+    /// nearly meet: 2–6 rounds, where solving the frictionless problem to 1e-12 for each
+    /// corrected load took 16–34.
     ///
     /// Where the carried force is not smooth the rounds close in on a step: on a narrow flange
     /// patch the equivalent ellipse's width moves by a strip (0.1 mm of some 0.5 mm) as a strip

@@ -1267,6 +1267,8 @@ mod tests {
         let root = pose
             .vertical_for_force::<ProfileError>(force, start, 1e-10, |pose, z| {
                 evaluations += 1;
+                // (The wheel's rounds refuse a z_ws deeper than this: `strips_at`.)
+                assert!(z - pose.touch() <= MAX_PENETRATION, "evaluated at {z}, deeper than MAX_PENETRATION");
                 Ok(pose.carried(z))
             })
             .unwrap();
@@ -1346,8 +1348,8 @@ mod tests {
     /// answers the side that carries F_z more closely; where the residual is far from linear
     /// (a force growing as the depth's cube, r = d² − d₀² instead of ∝ d) it still meets the
     /// force. Synthetic forces of the depth d below the touch (Hertz's F ∝ d^1.5 with a step of
-    /// 30 % of F_z at d = 20 µm, F_z inside the step): counted evaluations, 50 and 9 when this
-    /// test was written.
+    /// 30 % or 35 % of F_z at d = 20 µm, F_z inside the step, nearer its lower or its upper
+    /// side): counted evaluations, 50 and 9 when this test was written.
     #[test]
     fn the_search_closes_on_a_jump_and_meets_a_curved_residual() {
         let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
@@ -1366,6 +1368,10 @@ mod tests {
         // Below the step 0.9 F_z is carried, above it 1.2 F_z: the lower side is nearer.
         assert!(root.vertical < jump_at && jump_at - root.vertical < 1e-15, "{root:?} against {jump_at}");
         assert!(evaluations <= 50, "{evaluations} evaluations, 50 when this test was written");
+        // Below it 0.7 F_z, above it 1.05 F_z: the upper side.
+        let upper = |z: f64| if z < jump_at { 0.7 * hertz(z) } else { 0.7 * hertz(z) + 0.35 * force };
+        let root = pose.vertical_for_force::<ProfileError>(force, None, 1e-10, |_, z| Ok(upper(z))).unwrap();
+        assert!(root.vertical >= jump_at && root.vertical - jump_at < 1e-15, "{root:?} against {jump_at}");
         let cubic = |z: f64| force * ((z - touch).max(0.0) / 20e-6).powi(3);
         let mut evaluations = 0;
         let root = pose
