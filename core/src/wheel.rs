@@ -840,7 +840,40 @@ fn check_velocity(velocity: &WheelsetVelocity) -> Result<(), InvalidInput> {
 
 #[cfg(test)]
 mod tests {
-    use super::secant_root;
+    use super::{secant_root, BalanceStart, WheelState};
+
+    /// A balance's start: at the same pose (the same touch) its own z_ws, bit for bit; at
+    /// another, the same depth below the new touch; its slope as kept.
+    #[test]
+    fn a_balance_starts_at_its_z_ws_or_at_its_depth_below_a_moved_touch() {
+        let balance = BalanceStart { vertical: 0.1 + 0.2, touch: 0.1, slope: Some(3.0) };
+        let same = balance.start(0.1);
+        assert_eq!((same.vertical.to_bits(), same.slope), ((0.1f64 + 0.2).to_bits(), Some(3.0)));
+        let moved = balance.start(0.5);
+        assert_eq!((moved.vertical, moved.slope), (0.5 + (0.1 + 0.2 - 0.1), Some(3.0)));
+        assert!((moved.vertical - 0.7).abs() < 1e-15);
+    }
+
+    /// A state read back with a balance that is not finite, or a slope that does not rise, is
+    /// refused with the quantity named; a sound one, or none, is accepted.
+    #[test]
+    fn a_state_with_an_unsound_balance_is_refused() {
+        let sound = BalanceStart { vertical: 2e-5, touch: 1e-6, slope: Some(4e7) };
+        let state = |balance| WheelState { patches: Vec::new(), balance };
+        assert!(state(Some(sound)).validate().is_ok());
+        assert!(state(Some(BalanceStart { slope: None, ..sound })).validate().is_ok());
+        assert!(state(None).validate().is_ok());
+        for (balance, name) in [
+            (BalanceStart { vertical: f64::NAN, ..sound }, "balance_vertical_position"),
+            (BalanceStart { touch: f64::INFINITY, ..sound }, "balance_touch"),
+            (BalanceStart { slope: Some(0.0), ..sound }, "balance_slope"),
+            (BalanceStart { slope: Some(-4e7), ..sound }, "balance_slope"),
+            (BalanceStart { slope: Some(f64::INFINITY), ..sound }, "balance_slope"),
+        ] {
+            let error = state(Some(balance)).validate().unwrap_err();
+            assert!(error.to_string().contains(name), "{error} for {balance:?}");
+        }
+    }
 
     #[test]
     fn the_secant_step_finds_a_linear_residuals_root_and_refuses_far_or_flat_lines() {
