@@ -20,11 +20,15 @@ impl LogSink for NoLog {
 }
 
 fn instance(integers: &[(u32, i32)]) -> Instance {
+    // The repository's data/ as the resources: `exact_table` reads its table there, as from
+    // the packaged FMU's resources/ (without it that scene's initialisation failed, and with it
+    // the whole benchmark).
+    let resources = fmu_test_master::repository_resources();
     let arguments = InstantiateArguments {
         instance_name: "bench",
         interface: Ok(wheel_rail_contact_fmu::mode::Interface::CoSimulation),
         guid: GUID,
-        resource_location: None,
+        resource_location: Some(&resources),
         logging_on: false,
     };
     let mut instance = Instance::instantiate(arguments, Box::new(NoLog)).expect("instantiate");
