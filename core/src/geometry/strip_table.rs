@@ -51,7 +51,10 @@ impl StripTable {
     }
 
     /// Strip k's geometry at the pose of `frame` (right side, z_ws = 0); `None` off the profiles.
-    #[inline]
+    /// Inlined into the cut's loop (it was called there, its result passed through memory): one
+    /// criterion run against the call, non-Hertzian wheel steps 3–10 % faster repeated, 2–7 %
+    /// moving.
+    #[inline(always)]
     pub(super) fn point(&self, placed: &WheelOnRail, frame: &LocusFrame, k: i64) -> Option<StripPoint> {
         let &(height, slope) = self.wheel.get(usize::try_from(k - self.first).ok()?)?;
         let (track_lateral, vertical, rolling_radius) =
