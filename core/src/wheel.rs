@@ -79,7 +79,7 @@
 
 use std::fmt;
 
-use crate::geometry::non_hertzian::{Regions, Root};
+use crate::geometry::non_hertzian::{rising, Regions, Root};
 use crate::geometry::{
     ContactCandidates, ContactPatch, ContactPoint, ProfileError, SwitchingFunctions, WheelOnRail, WheelsetPosition,
 };
@@ -219,7 +219,7 @@ impl WheelState {
                     return Err(InvalidInput::new(name, value, "must be finite"));
                 }
             }
-            if let Some(slope) = balance.slope.filter(|slope| !(slope.is_finite() && *slope > 0.0)) {
+            if let Some(slope) = balance.slope.filter(|&slope| rising(slope).is_none()) {
                 return Err(InvalidInput::new("balance_slope", slope, "must be finite and positive"));
             }
         }

@@ -197,6 +197,12 @@ pub(crate) struct Root {
     pub(crate) slope: Option<f64>,
 }
 
+/// `slope` if the search can step along it: finite and rising, as the residual does wherever
+/// the patches carry more the deeper they are.
+pub(crate) fn rising(slope: f64) -> Option<f64> {
+    Some(slope).filter(|slope| slope.is_finite() && *slope > 0.0)
+}
+
 /// One strip of a patch, on the wheel's side.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Strip {
@@ -1132,9 +1138,7 @@ impl<'a> NonHertzianPose<'a> {
             return Err(ProfileError::whole(format!("vertical_force = {vertical_force} must be finite")).into());
         }
         let touch = self.source.touch();
-        // A slope is used where the residual rises with z_ws, as it does wherever the patches
-        // carry more the deeper they are.
-        let hint = start.and_then(|start| start.slope).filter(|slope| slope.is_finite() && *slope > 0.0);
+        let hint = start.and_then(|start| start.slope).and_then(rising);
         if vertical_force <= 0.0 {
             return Ok(Root { vertical: touch, slope: hint });
         }
@@ -1149,7 +1153,7 @@ impl<'a> NonHertzianPose<'a> {
         let met = |carried: f64| (carried - vertical_force).abs() <= tolerance * vertical_force;
         let root = |vertical: f64, (z_a, f_a): (f64, f64), (z_b, f_b): (f64, f64)| Root {
             vertical,
-            slope: Some((f_b - f_a) / (z_b - z_a)).filter(|slope| slope.is_finite() && *slope > 0.0),
+            slope: rising((f_b - f_a) / (z_b - z_a)),
         };
         // From `start` (or 10 µm into the rail from the touch), secant steps first: the first
         // along the slope given (the last search's), else along the line through the touch (r =
@@ -1263,16 +1267,30 @@ mod tests {
     /// z_ws carrying `force` within 1e-10 (the wheel's balance tolerance) with its slope, started
     /// from `start`, and how many times the carried force was evaluated.
     fn counted_solve(pose: &mut NonHertzianPose, force: f64, start: Option<Root>) -> (Root, usize) {
+        let (root, evaluations) = counted_search(pose, force, start, |pose, z| {
+            // (The wheel's rounds refuse a z_ws deeper than this: `strips_at`.)
+            assert!(z - pose.touch() <= MAX_PENETRATION, "evaluated at {z}, deeper than MAX_PENETRATION");
+            pose.carried(z)
+        });
+        assert!((pose.carried(root.vertical) - force).abs() <= 1e-10 * force);
+        (root, evaluations)
+    }
+
+    /// The root search for `force` within 1e-10 on the carried force `carried`, started from
+    /// `start`, and how many times `carried` was evaluated.
+    fn counted_search(
+        pose: &mut NonHertzianPose,
+        force: f64,
+        start: Option<Root>,
+        mut carried: impl FnMut(&mut NonHertzianPose, f64) -> f64,
+    ) -> (Root, usize) {
         let mut evaluations = 0;
         let root = pose
             .vertical_for_force::<ProfileError>(force, start, 1e-10, |pose, z| {
                 evaluations += 1;
-                // (The wheel's rounds refuse a z_ws deeper than this: `strips_at`.)
-                assert!(z - pose.touch() <= MAX_PENETRATION, "evaluated at {z}, deeper than MAX_PENETRATION");
-                Ok(pose.carried(z))
+                Ok(carried(pose, z))
             })
             .unwrap();
-        assert!((pose.carried(root.vertical) - force).abs() <= 1e-10 * force);
         (root, evaluations)
     }
 
@@ -1358,28 +1376,16 @@ mod tests {
         let (force, jump_at) = (10e3, touch + 20e-6);
         let hertz = |z: f64| force * ((z - touch).max(0.0) / 20e-6).powf(1.5);
         let stepped = |z: f64| if z < jump_at { 0.9 * hertz(z) } else { 0.9 * hertz(z) + 0.3 * force };
-        let mut evaluations = 0;
-        let root = pose
-            .vertical_for_force::<ProfileError>(force, None, 1e-10, |_, z| {
-                evaluations += 1;
-                Ok(stepped(z))
-            })
-            .unwrap();
+        let (root, evaluations) = counted_search(&mut pose, force, None, |_, z| stepped(z));
         // Below the step 0.9 F_z is carried, above it 1.2 F_z: the lower side is nearer.
         assert!(root.vertical < jump_at && jump_at - root.vertical < 1e-15, "{root:?} against {jump_at}");
         assert!(evaluations <= 50, "{evaluations} evaluations, 50 when this test was written");
         // Below it 0.7 F_z, above it 1.05 F_z: the upper side.
         let upper = |z: f64| if z < jump_at { 0.7 * hertz(z) } else { 0.7 * hertz(z) + 0.35 * force };
-        let root = pose.vertical_for_force::<ProfileError>(force, None, 1e-10, |_, z| Ok(upper(z))).unwrap();
+        let (root, _) = counted_search(&mut pose, force, None, |_, z| upper(z));
         assert!(root.vertical >= jump_at && root.vertical - jump_at < 1e-15, "{root:?} against {jump_at}");
         let cubic = |z: f64| force * ((z - touch).max(0.0) / 20e-6).powi(3);
-        let mut evaluations = 0;
-        let root = pose
-            .vertical_for_force::<ProfileError>(force, None, 1e-10, |_, z| {
-                evaluations += 1;
-                Ok(cubic(z))
-            })
-            .unwrap();
+        let (root, evaluations) = counted_search(&mut pose, force, None, |_, z| cubic(z));
         assert!((cubic(root.vertical) / force - 1.0).abs() <= 1e-10, "{root:?}");
         assert!(evaluations <= 9, "{evaluations} evaluations, 9 when this test was written");
     }
