@@ -404,23 +404,31 @@ impl WheelOnRail {
     /// The gap's minima of the contact search (wheel profile y, refined) and the barriers between
     /// them: from the contact table's span where it covers the pose, by the full scan elsewhere.
     fn search(&self, search: &GapSearch) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+        let found = self.sampled_search(search)?;
+        Ok((search.refined(&found), found.barriers))
+    }
+
+    /// [`Self::search`]'s pass over the sampled gap, its minima not yet refined.
+    fn sampled_search(&self, search: &GapSearch) -> Result<Minima, ProfileError> {
         let position = &search.position;
         let span = (position.yaw.abs() <= TABLE_YAW_REACH)
             .then(|| self.table.span(search.table_key(), search.key_reach(), position.roll))
             .flatten();
-        match span.and_then(|span| search.scan_near(span)) {
+        match span.and_then(|span| search.sampled_near(span)) {
             Some(found) => Ok(found),
-            None => search.scan(),
+            None => search.sampled_scan(),
         }
     }
 
     /// The contact search's minima of the right-side pose `right` (z_ws = 0) as (wheel profile
-    /// y, the sampled gap there), without their exact points: where the non-Hertzian strip
-    /// table's stretches start (`strip_table.rs`).
+    /// y, the sampled gap there): the lowest sample of each, not refined by Brent's method (its
+    /// exact point is not needed, and refining was half the search's cost): where the
+    /// non-Hertzian strip table's stretches start (`strip_table.rs`), which grow from them strip
+    /// by strip while the gap lies within reach.
     pub(super) fn gap_minima(&self, right: &WheelsetPosition) -> Result<Vec<(f64, f64)>, ProfileError> {
         let search = GapSearch::new(self, right);
-        let (minima, _) = self.search(&search)?;
-        Ok(minima.into_iter().map(|profile_y| (profile_y, search.gap(profile_y))).collect())
+        let found = self.sampled_search(&search)?;
+        Ok(found.minima.iter().map(|minimum| minimum.lowest).collect())
     }
 
     /// [`Self::candidates`] by the full scan alone, never from the contact table: the reference
@@ -702,7 +710,7 @@ impl<'a> GapSearch<'a> {
                     found.barriers.push(highest);
                 }
                 // Its neighbours bracket it for the refinement.
-                found.minima.push((before.0, profile_y));
+                found.minima.push(SampledMinimum { bracket: (before.0, profile_y), lowest: middle });
                 highest = middle.1;
             }
             // (`highest` is never NaN: a NaN gap leaves it, as `f64::max` would.)
@@ -717,7 +725,11 @@ impl<'a> GapSearch<'a> {
 
     /// The minima found by [`Self::minima_between`], refined by Brent's method (wheel profile y).
     fn refined(&self, found: &Minima) -> Vec<f64> {
-        found.minima.iter().map(|&(low, high)| brent_minimum(|y| self.gap(y), low, high)).collect()
+        found
+            .minima
+            .iter()
+            .map(|minimum| brent_minimum(|y| self.gap(y), minimum.bracket.0, minimum.bracket.1))
+            .collect()
     }
 
     /// The wheel profile's y range over the rail: track y ≈ y_ws + (profile y + offset) cos φ
@@ -736,6 +748,12 @@ impl<'a> GapSearch<'a> {
     /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
     /// sampled gap between neighbours.
     fn scan(&self) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
+        let found = self.sampled_scan()?;
+        Ok((self.refined(&found), found.barriers))
+    }
+
+    /// [`Self::scan`]'s pass over the samples, its minima not yet refined.
+    fn sampled_scan(&self) -> Result<Minima, ProfileError> {
         let position = &self.position;
         let (from, to) = self.range_over_rail();
         let found = self.minima_between(from, to);
@@ -751,29 +769,37 @@ impl<'a> GapSearch<'a> {
                 position.lateral
             )));
         }
-        Ok((self.refined(&found), found.barriers))
+        Ok(found)
     }
 
     /// The scan from the first to the last of the contact table's minima near this pose
     /// (`span`) and [`Self::reach`] around them: one stretch, so that a minimum born between the
     /// table's nodes where the gap is flat, between two of their minima, is found too (a search
     /// within reach of each minimum alone missed some). The same samples, minima and barriers as
-    /// the full scan there. `None` — scan everything instead — if it finds no minimum.
-    fn scan_near(&self, (first, last): (f64, f64)) -> Option<(Vec<f64>, Vec<f64>)> {
+    /// the full scan there, not yet refined. `None` — scan everything instead — if it finds no
+    /// minimum.
+    fn sampled_near(&self, (first, last): (f64, f64)) -> Option<Minima> {
         let reach = self.reach();
         let found = self.minima_between(first - reach, last + reach);
-        (!found.minima.is_empty()).then(|| (self.refined(&found), found.barriers))
+        (!found.minima.is_empty()).then_some(found)
     }
 }
 
 /// What one pass over the gap's samples finds ([`GapSearch::minima_between`]).
 struct Minima {
-    /// Per local minimum of the samples, its neighbours' profile y (Brent's bracket).
-    minima: Vec<(f64, f64)>,
+    minima: Vec<SampledMinimum>,
     /// barriers[i]: the highest sampled gap between minima i and i + 1.
     barriers: Vec<f64>,
     /// How many samples lay over the rail.
     samples: usize,
+}
+
+/// A local minimum of the sampled gap ([`GapSearch::minima_between`]).
+struct SampledMinimum {
+    /// Its neighbours' profile y (Brent's bracket).
+    bracket: (f64, f64),
+    /// The lowest sample: its profile y and gap.
+    lowest: (f64, f64),
 }
 
 /// How far from a contact table's minimum the search looks \[m\].

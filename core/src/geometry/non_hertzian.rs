@@ -122,7 +122,9 @@
 //! the centred wheelset's 10 kN patch, 121 of 189, 19 µs; a profile of that step (perf on the
 //! benchmark): some 40 % in the pose's cut (the strips' geometry from the table, the contact
 //! search's minima that start it, the sliding minimum), the rest in the regions, the kernels
-//! and the summary.
+//! and the summary. The overheads of a cut and a round since (one vector per cut, tables read
+//! without dividing, each strip's root computed once, unrefined minima to start the cut):
+//! 14–15 % fewer instructions a repeated step, 4–10 % a moving one (docs/geometry.md).
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
@@ -182,6 +184,10 @@ const FIRST_REACH: f64 = 0.25e-3;
 /// three times, a step from the last one's z_ws once); on the flat gap of the centred wheelset
 /// at 10 kN 0.25 mm reach 335 strips, of which 120 are in contact.
 const TABLE_FIRST_REACH: f64 = 0.02e-3;
+
+/// Room for the strips beyond the contact search's minima in the strip table's cut (a cut's
+/// vector is allocated once: on the flat gap of the centred wheelset some 180 strips).
+const CUT_MARGIN: usize = 256;
 
 /// Secant steps of the vertical balance's root search at most before it brackets the root
 /// ([`NonHertzianPose::vertical_for_force`]): r(z_ws) is nearly linear, so a few reach the
@@ -378,22 +384,30 @@ impl<'a> Source<'a> {
                 // while the gap stays within reach, one strip beyond.
                 let near = || minima.iter().filter(|&&(_, gap)| gap < limit).map(|&(k, _)| k);
                 let (low, high) = (near().min().unwrap_or(0), near().max().unwrap_or(0));
-                let mut before = vec![at(low - 1)];
-                let mut strips: Vec<(f64, Option<StripPoint>)> = (low..=high).map(at).collect();
-                let mut k = low - 1;
-                while before.last().is_some_and(within) {
+                // One vector (the strips are 72 bytes each, a few hundred of them: a second one
+                // appended to the first was a tenth of the cut's time): downward from low − 1,
+                // reversed, then up from low.
+                let mut strips: Vec<(f64, Option<StripPoint>)> =
+                    Vec::with_capacity(usize::try_from(high - low).unwrap_or(0) + CUT_MARGIN);
+                let mut k = low;
+                loop {
                     k -= 1;
-                    before.push(at(k));
+                    strips.push(at(k));
+                    if !strips.last().is_some_and(within) {
+                        break;
+                    }
                 }
-                let mut k = high + 1;
-                strips.push(at(k));
-                while strips.last().is_some_and(within) {
+                strips.reverse();
+                strips.extend((low..=high).map(at));
+                let mut k = high;
+                loop {
                     k += 1;
                     strips.push(at(k));
+                    if !strips.last().is_some_and(within) {
+                        break;
+                    }
                 }
-                before.reverse();
-                before.extend(strips);
-                before
+                strips
             }
         }
     }
@@ -695,7 +709,9 @@ impl Loaded<'_, '_> {
     /// with them could fall as z_ws rose, and the wheel's balance had two roots (a flange patch
     /// at y_ws = 7.12 mm: F_y by 0.3 N of 26.7 kN, as either was found).
     fn area(&self, first: usize, end: usize) -> f64 {
-        let squared = |j: usize| 2.0 * self.strips[j].rolling_radius * self.virtual_penetration(j);
+        // L² = 2 R v (module doc, 3) with its root L where v > 0 ([`Strips::at`]).
+        let squared =
+            |j: usize| (2.0 * self.strips[j].rolling_radius * self.virtual_penetration(j), self.half_length(j));
         let apart = |i: usize, j: usize| (self.strips[j].arc - self.strips[i].arc).abs();
         let mut area: f64 = (first..end - 1).map(|j| segment_area(squared(j), squared(j + 1), apart(j, j + 1))).sum();
         for (inside, outside) in [(first, first.checked_sub(1)), (end - 1, Some(end))] {
@@ -906,17 +922,19 @@ enum Outward {
 /// ∫ 2 √max(q, 0) ds over a segment `length` long along which q (a strip's L²) runs linearly
 /// from `from` to `to`: (4/3) h (a² + ab + b²)/(a + b) with a, b the roots of the ends where both
 /// are in contact (the form of (a³ − b³)/(a² − b²) without its cancellation), and over the part
-/// in contact, a fraction q_in/(q_in − q_out), (4/3) h a times it where one is.
-fn segment_area(from: f64, to: f64, length: f64) -> f64 {
-    let (inner, outer) = if from >= to { (from, to) } else { (to, from) };
+/// in contact, a fraction q_in/(q_in − q_out), (4/3) h a times it where one is. Each end is
+/// given as q and its root where q > 0 (a strip's L², L: the root computed once per strip, not
+/// twice per segment, where the square roots and the division chained were a tenth of a wide
+/// patch's round).
+fn segment_area((from, from_root): (f64, f64), (to, to_root): (f64, f64), length: f64) -> f64 {
+    let ((inner, a), (outer, b)) =
+        if from >= to { ((from, from_root), (to, to_root)) } else { ((to, to_root), (from, from_root)) };
     if inner <= 0.0 {
         return 0.0;
     }
-    let a = inner.sqrt();
     if outer <= 0.0 {
         return 4.0 / 3.0 * length * a * inner / (inner - outer);
     }
-    let b = outer.sqrt();
     4.0 / 3.0 * length * (inner + a * b + outer) / (a + b)
 }
 
@@ -1405,17 +1423,19 @@ mod tests {
                 })
                 .sum::<f64>()
         };
+        // An end: q and its root, 0 out of contact (as a strip's L and its half-length).
+        let end = |q: f64| (q, if q > 0.0 { q.sqrt() } else { 0.0 });
         for (from, to) in [(4e-6, 1e-6), (1e-6, 4e-6), (9e-6, 9e-6), (4e-6, -2e-6), (-2e-6, 4e-6), (-1e-6, -3e-6)] {
-            let (exact, reference) = (segment_area(from, to, 1e-4), numeric(from, to, 1e-4));
+            let (exact, reference) = (segment_area(end(from), end(to), 1e-4), numeric(from, to, 1e-4));
             assert!(
                 (exact - reference).abs() <= 1e-7 * reference.max(1e-12),
                 "{from} → {to}: {exact} against {reference}"
             );
         }
         // One-sided slopes at q = 0 (the slope above approaches it as √q: within 1e-4 at 1e-14).
-        let at_zero = segment_area(4e-6, 0.0, 1e-4);
-        let below = (at_zero - segment_area(4e-6, -1e-14, 1e-4)) / 1e-14;
-        let above = (segment_area(4e-6, 1e-14, 1e-4) - at_zero) / 1e-14;
+        let at_zero = segment_area(end(4e-6), end(0.0), 1e-4);
+        let below = (at_zero - segment_area(end(4e-6), end(-1e-14), 1e-4)) / 1e-14;
+        let above = (segment_area(end(4e-6), end(1e-14), 1e-4) - at_zero) / 1e-14;
         assert!((below / above - 1.0).abs() < 1e-3, "{below} against {above}");
     }
 

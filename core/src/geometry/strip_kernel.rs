@@ -35,11 +35,12 @@ pub(super) fn strip_influence(length: f64, width: f64, distance: f64) -> f64 {
     if length <= 0.0 {
         return 0.0;
     }
-    let widths = distance.abs() / width;
     let midpoint = || width * strip_kernel(length, distance);
-    if widths >= FAR {
+    // (Compared without dividing: most strips lie beyond FAR widths.)
+    if distance.abs() >= FAR * width {
         return midpoint();
     }
+    let widths = distance.abs() / width;
     let exact = length
         * length
         * (kernel_primitive((distance + 0.5 * width) / length) - kernel_primitive((distance - 0.5 * width) / length));
@@ -86,11 +87,15 @@ fn kernel_primitive(t: f64) -> f64 {
 }
 
 /// A function of u ∈ [0, last] read by cubic Hermite interpolation from its values and slopes
-/// at `intervals` equal intervals.
+/// at [`Self::INTERVALS`] equal intervals.
 struct HermiteTable {
-    values: Vec<f64>,
-    slopes: Vec<f64>,
-    last: f64,
+    /// Per node its value and its slope times the interval's length (the Hermite cubic's
+    /// tangent in t), side by side: a read loads one pair of neighbours, and neither a read nor
+    /// its tangents divide (the table is read once per strip and region, a few hundred times a
+    /// round of a wide patch's balance).
+    nodes: Vec<[f64; 2]>,
+    /// Intervals per unit of u.
+    per_unit: f64,
 }
 
 impl HermiteTable {
@@ -100,15 +105,21 @@ impl HermiteTable {
         last / Self::INTERVALS as f64
     }
 
+    /// The table of `values` and `slopes` at u = i [`Self::step`]`(last)`, i = 0 ..= INTERVALS.
+    fn new(values: Vec<f64>, slopes: Vec<f64>, last: f64) -> Self {
+        let h = Self::step(last);
+        let nodes = values.into_iter().zip(slopes).map(|(value, slope)| [value, slope * h]).collect();
+        Self { nodes, per_unit: Self::INTERVALS as f64 / last }
+    }
+
     /// The value at u ∈ [0, last].
     #[inline]
     fn read(&self, u: f64) -> f64 {
-        let position = u * (Self::INTERVALS as f64 / self.last);
+        let position = u * self.per_unit;
         // (u ≤ last: at most the last interval's end, read as t = 1 in the last interval.)
         let i = (position as usize).min(Self::INTERVALS - 1);
-        let h = Self::step(self.last);
-        let (m0, m1) = (self.slopes[i] * h, self.slopes[i + 1] * h);
-        hermite_height(position - i as f64, self.values[i], self.values[i + 1], m0, m1)
+        let ([z0, m0], [z1, m1]) = (self.nodes[i], self.nodes[i + 1]);
+        hermite_height(position - i as f64, z0, z1, m0, m1)
     }
 }
 
@@ -146,7 +157,7 @@ impl KernelTable {
                     }
                 })
                 .collect();
-            HermiteTable { values, slopes, last: Self::LAST }
+            HermiteTable::new(values, slopes, Self::LAST)
         })
     }
 }
@@ -195,7 +206,7 @@ impl PrimitiveTable {
                 values[i] = values[i + 1] - integral(i as f64 * step);
             }
             let slopes = (0..=HermiteTable::INTERVALS).map(|i| slope(i as f64 * step)).collect();
-            HermiteTable { values, slopes, last }
+            HermiteTable::new(values, slopes, last)
         })
     }
 }

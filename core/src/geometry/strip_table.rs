@@ -17,8 +17,9 @@
 //!
 //! Where the strips start. The exact path scans the sampled gap every 0.2 mm over the wheel's
 //! whole width to find the stretch within reach of the gap's minimum; here the contact search's
-//! minima (its scan of the sampled gap, started from the contact table, without the exact points
-//! of [`WheelOnRail::candidates`]) start the stretch,
+//! minima (its scan of the sampled gap, started from the contact table: each minimum's lowest
+//! sample, neither refined by Brent's method nor an exact point as in
+//! [`WheelOnRail::candidates`]) start the stretch,
 //! which grows strip by strip from them while the gap lies within reach: every strip within reach
 //! of the minimum lies in a basin of a minimum within reach (a connected run of strips below a
 //! level holds a local minimum of the gap), the strips between two such minima are cut as the
@@ -75,7 +76,8 @@ impl StripTable {
     }
 
     /// The contact search's minima of the gap at the right-side pose `right` as strips:
-    /// (k, the sampled gap at the minimum, z_ws = 0), where the stretches start (module doc).
+    /// (k, the lowest sampled gap of the minimum, z_ws = 0), where the stretches start (module
+    /// doc); the lowest of them is the pose's touch, which the strips' reach is measured from.
     pub(super) fn minima(placed: &WheelOnRail, right: &WheelsetPosition) -> Result<Vec<(i64, f64)>, ProfileError> {
         let minima = placed.gap_minima(right)?;
         Ok(minima.into_iter().map(|(profile_y, gap)| ((profile_y / STRIP_WIDTH).round() as i64, gap)).collect())
