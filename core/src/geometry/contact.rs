@@ -404,8 +404,7 @@ impl WheelOnRail {
     /// The gap's minima of the contact search (wheel profile y, refined) and the barriers between
     /// them: from the contact table's span where it covers the pose, by the full scan elsewhere.
     fn search(&self, search: &GapSearch) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
-        let found = self.sampled_search(search)?;
-        Ok((search.refined(&found), found.barriers))
+        Ok(search.refined(self.sampled_search(search)?))
     }
 
     /// [`Self::search`]'s pass over the sampled gap, its minima not yet refined.
@@ -723,13 +722,11 @@ impl<'a> GapSearch<'a> {
         found
     }
 
-    /// The minima found by [`Self::minima_between`], refined by Brent's method (wheel profile y).
-    fn refined(&self, found: &Minima) -> Vec<f64> {
-        found
-            .minima
-            .iter()
-            .map(|minimum| brent_minimum(|y| self.gap(y), minimum.bracket.0, minimum.bracket.1))
-            .collect()
+    /// The minima found by [`Self::minima_between`], refined by Brent's method (wheel profile y),
+    /// and the barriers between them.
+    fn refined(&self, found: Minima) -> (Vec<f64>, Vec<f64>) {
+        let refine = |minimum: &SampledMinimum| brent_minimum(|y| self.gap(y), minimum.bracket.0, minimum.bracket.1);
+        (found.minima.iter().map(refine).collect(), found.barriers)
     }
 
     /// The wheel profile's y range over the rail: track y ≈ y_ws + (profile y + offset) cos φ
@@ -748,8 +745,7 @@ impl<'a> GapSearch<'a> {
     /// refined by Brent's method; the minima (wheel profile y, increasing) and the highest
     /// sampled gap between neighbours.
     fn scan(&self) -> Result<(Vec<f64>, Vec<f64>), ProfileError> {
-        let found = self.sampled_scan()?;
-        Ok((self.refined(&found), found.barriers))
+        Ok(self.refined(self.sampled_scan()?))
     }
 
     /// [`Self::scan`]'s pass over the samples, its minima not yet refined.

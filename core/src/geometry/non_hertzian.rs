@@ -389,24 +389,21 @@ impl<'a> Source<'a> {
                 // reversed, then up from low.
                 let mut strips: Vec<(f64, Option<StripPoint>)> =
                     Vec::with_capacity(usize::try_from(high - low).unwrap_or(0) + CUT_MARGIN);
-                let mut k = low;
-                loop {
-                    k -= 1;
-                    strips.push(at(k));
-                    if !strips.last().is_some_and(within) {
-                        break;
+                // The strips from `from` + `step` on, every `step`, up to the first out of reach.
+                let grow = |strips: &mut Vec<(f64, Option<StripPoint>)>, from: i64, step: i64| {
+                    let mut k = from;
+                    loop {
+                        k += step;
+                        strips.push(at(k));
+                        if !strips.last().is_some_and(within) {
+                            break;
+                        }
                     }
-                }
+                };
+                grow(&mut strips, low, -1);
                 strips.reverse();
                 strips.extend((low..=high).map(at));
-                let mut k = high;
-                loop {
-                    k += 1;
-                    strips.push(at(k));
-                    if !strips.last().is_some_and(within) {
-                        break;
-                    }
-                }
+                grow(&mut strips, high, 1);
                 strips
             }
         }
