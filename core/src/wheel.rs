@@ -406,7 +406,7 @@ impl WheelRailContact {
     }
 
     /// The same contact with the non-Hertzian strips' geometry from tables
-    /// ([`WheelOnRail::with_strip_table`]; 0.23 ms to build on S1002): worth it with
+    /// ([`WheelOnRail::with_strip_table`]; under half a millisecond to build on S1002): worth it with
     /// [`ContactMethod::NonHertzian`] alone, which it makes several times faster within 2 nm
     /// of the exact gap.
     ///

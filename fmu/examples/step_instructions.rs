@@ -9,7 +9,9 @@
 //!   and yaw angle set + fmi2DoStep + the force on the track (3 values) read; the displacement
 //!   runs over 2.0–2.1 mm on the tread, a new contact search every step;
 //! - `wheel_non_hertzian_polach`: the same with `contact_method = non_hertzian` (the patches from
-//!   the profiles' interpenetration, its strip table built at initialisation).
+//!   the profiles' interpenetration, its strip table built at initialisation);
+//! - `wheel_non_hertzian_centred_polach`: the same at the centred wheelset (0–0.1 mm, no yaw),
+//!   whose gap is flat within microns over 10 mm: the widest patch, the costliest step.
 //!
 //! The script runs each workload with two step counts and divides the difference of the counts
 //! by the difference of the steps: the instructions of one step, without the set-up.
@@ -23,6 +25,9 @@ use wheel_rail_contact_fmu::model_description::{ContactGeometry, ContactMethod, 
 
 /// The step size \[s\].
 const STEP: f64 = 1e-4;
+
+/// The wheel workloads' lateral displacement \[m\] (from; over 0.1 mm) and yaw angle \[rad\]: on the tread.
+const TREAD: (f64, f64) = (2e-3, 4.8e-3);
 
 /// Steps one patch with `model`: the same inputs as `step-vs-c`, the longitudinal creepage moving
 /// a little.
@@ -45,8 +50,9 @@ fn patch(model: Model, steps: usize) -> f64 {
     sink
 }
 
-/// Steps a wheel on the built-in profiles with `model` and the patches of `method`.
-fn wheel(model: Model, method: ContactMethod, steps: usize) -> f64 {
+/// Steps a wheel on the built-in profiles with `model` and the patches of `method`, its lateral
+/// displacement over `lateral` … `lateral` + 0.1 mm at the yaw angle `yaw`.
+fn wheel(model: Model, method: ContactMethod, (lateral, yaw): (f64, f64), steps: usize) -> f64 {
     let fmu = Fmu::instantiate("instruction budget, wheel", None);
     assert_eq!(fmu.set_integer(&[vr::CONTACT_GEOMETRY], &[ContactGeometry::Profiles as i32]), OK);
     assert_eq!(fmu.set_integer(&[vr::CREEP_FORCE_MODEL, vr::CONTACT_METHOD], &[model as i32, method as i32]), OK);
@@ -59,7 +65,7 @@ fn wheel(model: Model, method: ContactMethod, steps: usize) -> f64 {
     let mut outputs = [0.0; 3];
     let mut sink = 0.0;
     for k in 0..steps {
-        let inputs = [2e-3 + 1e-6 * (k % 100) as f64, 4.8e-3];
+        let inputs = [lateral + 1e-6 * (k % 100) as f64, yaw];
         // SAFETY: a live instance; 2 references with 2 values, 3 with room for 3.
         unsafe {
             assert_eq!(fmi2SetReal(fmu.c, pose.as_ptr(), 2, inputs.as_ptr()), OK);
@@ -76,16 +82,17 @@ fn main() {
     let (Some(workload), Some(steps)) = (arguments.next(), arguments.next().and_then(|n| n.parse().ok())) else {
         eprintln!(
             "usage: step_instructions patch_polach|patch_exact_table|wheel_polach|wheel_exact_table|\
-             wheel_non_hertzian_polach STEPS"
+             wheel_non_hertzian_polach|wheel_non_hertzian_centred_polach STEPS"
         );
         std::process::exit(2);
     };
     let sink = match workload.as_str() {
         "patch_polach" => patch(Model::Polach, steps),
         "patch_exact_table" => patch(Model::ExactTable, steps),
-        "wheel_polach" => wheel(Model::Polach, ContactMethod::Hertz, steps),
-        "wheel_exact_table" => wheel(Model::ExactTable, ContactMethod::Hertz, steps),
-        "wheel_non_hertzian_polach" => wheel(Model::Polach, ContactMethod::NonHertzian, steps),
+        "wheel_polach" => wheel(Model::Polach, ContactMethod::Hertz, TREAD, steps),
+        "wheel_exact_table" => wheel(Model::ExactTable, ContactMethod::Hertz, TREAD, steps),
+        "wheel_non_hertzian_polach" => wheel(Model::Polach, ContactMethod::NonHertzian, TREAD, steps),
+        "wheel_non_hertzian_centred_polach" => wheel(Model::Polach, ContactMethod::NonHertzian, (0.0, 0.0), steps),
         other => {
             eprintln!("step_instructions: unknown workload {other}");
             std::process::exit(2);

@@ -247,11 +247,11 @@ where it finds two, within the same tolerances but for the contact angle of a li
 with Hertz the contact point is off by up to 2.5 mm and the
 creep forces by 0.21 μN. The pressure follows Kik and Piotrowski's assumed distribution (semi-elliptic along each
 strip): its peak lies 7–13 % below CONTACT's on the tread, 15–25 % on the flange, up to 41 % where the patch
-is wide and up to 60 % where tread and flange root share it (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 593 MPa where CONTACT's
-lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs 4–18 µs repeated and 8–34 µs with the wheelset moving (up to 8 times Hertz's, the most for
+is wide and up to 63 % where tread and flange root share it (its total and its centroid are right); on the centred wheelset at 10 kN the small gauge-side lobe peaks at 592 MPa where CONTACT's
+lobe, joined to the tread by a neck, stays below its 338 MPa. A wheel step costs 4–10 µs repeated and 9–21 µs with the wheelset moving (up to 4 times Hertz's, the most for
 the centred wheelset's wide patch; up to 0.1 ms from a cold start); the wheel's state holds where its last
 vertical balance settled, where the next one starts, so that a restored FMU state continues bit for bit: the strips' geometry is tabulated per wheel when the
-instance leaves initialisation (0.2 ms), only with <code>contact_method</code> = non_hertzian.</p>
+instance leaves initialisation (under half a millisecond), only with <code>contact_method</code> = non_hertzian.</p>
 {non_hertzian_figures}
 <p><b>Measured profiles.</b> A MiniProf file (<code>.whl</code>, <code>.ban</code>) is read as the instrument
 writes it: every header form, its column definition and offsets, commented-out points, a left-side measurement

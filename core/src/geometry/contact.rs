@@ -74,9 +74,11 @@ use super::patch::{ContactPatch, ContactPoint, WheelSide};
 use super::profile_file::ProfileError;
 use super::sampled_profile::SampledProfile;
 use super::smooth_profile::{ProfilePoint, SmoothProfile};
+use super::strip_grid::StripGrid;
 use super::strip_table::StripTable;
 use crate::hertz::contact_modulus;
 use crate::InvalidInput;
+use std::sync::OnceLock;
 
 impl WheelSide {
     /// The right wheel's position that mirrors this side's: y_ws and roll change sign.
@@ -217,6 +219,9 @@ pub struct WheelOnRail {
     /// Wheelset y of the wheel profile's origin.
     pub(super) wheel_offset: f64,
     contact_modulus: f64,
+    /// Where the non-Hertzian strips lie on the wheel profile (`strip_grid.rs`), made at the
+    /// first non-Hertzian use ([`Self::strip_grid`]): a wheel in Hertz contact does not pay it.
+    strip_grid: OnceLock<StripGrid>,
     /// The non-Hertzian strips' wheel table ([`Self::with_strip_table`]), if built.
     pub(super) strip_table: Option<StripTable>,
 }
@@ -271,6 +276,7 @@ impl WheelOnRail {
             wheel_offset: 0.5 * dimensions.flange_back_distance - dimensions.flange_back_position,
             wheel_samples: SampledProfile::new(&wheel, SAMPLE_STEP / f64::from(SAMPLES_PER_STEP)),
             rail_samples: SampledProfile::new(&rail, SAMPLE_STEP / f64::from(SAMPLES_PER_STEP)),
+            strip_grid: OnceLock::new(),
             wheel,
             rail,
             dimensions,
@@ -281,6 +287,11 @@ impl WheelOnRail {
         placed.table = ContactTable::new(&placed);
         crate::hertz::table::prepare();
         Ok(placed)
+    }
+
+    /// Where the non-Hertzian strips lie on the wheel profile (made on the first call).
+    pub(super) fn strip_grid(&self) -> &StripGrid {
+        self.strip_grid.get_or_init(|| StripGrid::new(&self.wheel))
     }
 
     /// The Manchester contact benchmark's wheel on its rail, on `side`: the built-in S1002 wheel

@@ -39,6 +39,7 @@ mod patch;
 pub mod profile_file;
 mod sampled_profile;
 pub mod smooth_profile;
+mod strip_grid;
 mod strip_kernel;
 mod strip_table;
 pub mod switching;

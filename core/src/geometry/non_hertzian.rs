@@ -17,8 +17,11 @@
 //! their content; the derivation of each step is given here so that it can be checked without
 //! the paper.)
 //!
-//! 1. Strips. The wheel profile's y is cut into strips every [`STRIP_WIDTH`] on a fixed grid
-//!    (multiples of the width, so that a strip does not move with the wheelset); per strip the
+//! 1. Strips. The wheel profile's y is cut into strips on a fixed grid (`strip_grid.rs`: every
+//!    [`TREAD_STRIP_WIDTH`] = 0.2 mm on the tread, every [`STRIP_WIDTH`] = 0.1 mm where the
+//!    profile is steeper than [`TREAD_SLOPE`], multiples of 0.1 mm, so that a strip does not move
+//!    with the wheelset and the patches' strips are about as many on the wide tread patches as
+//!    on the narrow ones of the flange); per strip the
 //!    exact geometry at its centre (the wheel's contact locus, as for a candidate point of
 //!    [`WheelOnRail::candidates`]): the undeformed vertical gap g(y) at z_ws = 0, the rail's
 //!    slope angle γ(y), the wheel's rolling radius R(y), the strip's position s and width ds
@@ -89,7 +92,7 @@
 //! one is known ([`NonHertzianPose`]: the wheel's balance, from its last step's depth, along its
 //! last search's slope).
 //!
-//! Cost: fixed by the strip width (40–220 strips on S1002/UIC60 at 10–100 kN). Per pose the cut's
+//! Cost: fixed by the strips' spacing (6–111 strips in contact on S1002/UIC60 at 10–100 kN). Per pose the cut's
 //! geometry: by default one exact spline point per strip (the reference); with the strip table
 //! ([`WheelOnRail::with_strip_table`], `strip_table.rs`) the wheel's profile per strip read from
 //! a table and the pose in closed form, the rail from its samples (within 2 nm of the exact gap;
@@ -125,6 +128,10 @@
 //! and the summary. The overheads of a cut and a round since (one vector per cut, tables read
 //! without dividing, each strip's root computed once, unrefined minima to start the cut):
 //! 14–15 % fewer instructions a repeated step, 4–10 % a moving one (docs/geometry.md).
+//! The tread's strips every 0.2 mm instead of 0.1 (`strip_grid.rs`; the centred patch 61
+//! strips instead of 121): 27 % fewer instructions a moving tread step, 41 % a centred one
+//! (`scripts/instruction-budget`); timed against the build before, repeated 0.66 / 0.60 / 0.64 /
+//! 0.82, moving 0.66 / 0.49 / 0.64 / 1.06 (docs/geometry.md, "Speed").
 //!
 //! Against CONTACT's full solution (`core/tests/library/geometry_non_hertzian.rs`, docs/geometry.md,
 //! "Non-Hertzian contact"): 47 of 48 frictionless cases (y_ws 0–8 mm, 10–100 kN) within 1 mm /
@@ -150,8 +157,7 @@ use std::ops::Deref;
 /// KP's scale of the virtual penetration, ε (Piotrowski & Kik 2008, §3).
 pub const VIRTUAL_PENETRATION_SCALE: f64 = 0.55;
 
-/// The strips' width in the wheel profile's y \[m\].
-pub const STRIP_WIDTH: f64 = 1e-4;
+pub use super::strip_grid::{STRIP_WIDTH, TREAD_SLOPE, TREAD_STRIP_WIDTH};
 
 /// How far from a strip its reference depth, the lowest gap, is sought \[m\] (module doc, 2):
 /// wider than a tread patch's half-width at 100 kN (≈ 8 mm on a flat gap), narrower than the
@@ -360,10 +366,10 @@ impl<'a> Source<'a> {
                 let near: Vec<usize> = (0..scan.gaps.len()).filter(|&i| scan.gaps[i] < scan.touch + reach).collect();
                 // One step beyond the first and last scanned sample within reach: the stretch's ends.
                 let (first, last) = (at(near[0]) - SCAN_STEP, at(near[near.len() - 1]) + SCAN_STEP);
-                let (k_first, k_last) = ((first / STRIP_WIDTH).ceil() as i64, (last / STRIP_WIDTH).floor() as i64);
-                (k_first..=k_last)
+                let grid = wheel.strip_grid();
+                (grid.first_from(first)..=grid.last_to(last))
                     .map(|k| {
-                        let wheel_lateral = k as f64 * STRIP_WIDTH;
+                        let wheel_lateral = grid.lateral(k);
                         let point = wheel.surface_point(wheel_lateral, right).ok().map(|point| StripPoint {
                             gap: point.gap_at_zero,
                             rolling_radius: point.rolling_radius,
@@ -378,7 +384,7 @@ impl<'a> Source<'a> {
             }
             Self::Table { table, frame, minima, touch } => {
                 let limit = touch + reach;
-                let at = |k: i64| (k as f64 * STRIP_WIDTH, table.point(wheel, frame, k));
+                let at = |k: i64| table.strip(wheel, frame, k);
                 let within = |strip: &(f64, Option<StripPoint>)| strip.1.is_some_and(|point| point.gap < limit);
                 // From the first to the last minimum within reach (the lowest is), then outward
                 // while the gap stays within reach, one strip beyond.
@@ -499,24 +505,26 @@ impl<'a> Strips<'a> {
             let (before, after) = (i.saturating_sub(1), (i + 1).min(n - 1));
             strips[i].width = (strips[after].arc - strips[before].arc) / (after - before) as f64;
         }
-        // The running minimum of the gap within REFERENCE_REACH (in the wheel's y), strip i's
-        // over [i − w, i + w]: a sliding-window minimum (a queue of the strips whose gap no later
-        // strip in the window undercuts, lowest first), O(n) instead of O(n w) with w = 100.
-        let reach_strips = (REFERENCE_REACH / STRIP_WIDTH).round() as usize;
-        let mut window = VecDeque::with_capacity(n);
-        for i in 0..n + reach_strips {
-            if i < n {
-                while window.back().is_some_and(|&j: &usize| strips[j].gap >= strips[i].gap) {
+        // The running minimum of the gap within REFERENCE_REACH (in the wheel's y), strip c's
+        // over the strips whose y lies within it: a sliding-window minimum (a queue of the strips
+        // whose gap no later strip in the window undercuts, lowest first), O(n) instead of O(n w)
+        // with w ≈ 100 strips. (By y, not by count: the strips lie 0.2 mm apart on the tread,
+        // 0.1 mm off it.)
+        let mut window: VecDeque<usize> = VecDeque::with_capacity(n);
+        let mut next = 0;
+        for centre in 0..n {
+            let y = strips[centre].wheel_lateral;
+            while next < n && strips[next].wheel_lateral <= y + REFERENCE_REACH {
+                while window.back().is_some_and(|&j| strips[j].gap >= strips[next].gap) {
                     window.pop_back();
                 }
-                window.push_back(i);
+                window.push_back(next);
+                next += 1;
             }
-            if let Some(centre) = i.checked_sub(reach_strips).filter(|&centre| centre < n) {
-                while window.front().is_some_and(|&j| j + reach_strips < centre) {
-                    window.pop_front();
-                }
-                strips[centre].reference_gap = window.front().map_or(f64::INFINITY, |&j| strips[j].gap);
+            while window.front().is_some_and(|&j| strips[j].wheel_lateral < y - REFERENCE_REACH) {
+                window.pop_front();
             }
+            strips[centre].reference_gap = window.front().map_or(f64::INFINITY, |&j| strips[j].gap);
         }
         Self { wheel, right, strips, reach }
     }

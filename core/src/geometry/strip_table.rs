@@ -27,39 +27,45 @@
 //! z_ws solved on this reach) closes the stretch as the exact path's scan step does.
 
 use super::contact::{LocusFrame, WheelOnRail, WheelsetPosition};
-use super::non_hertzian::{StripPoint, STRIP_WIDTH};
+use super::non_hertzian::StripPoint;
 use super::profile_file::ProfileError;
 
 /// The wheel profile at every strip's centre.
 #[derive(Debug, Clone)]
 pub(super) struct StripTable {
-    /// The first strip's index k: its centre at wheel profile y = k [`STRIP_WIDTH`].
-    first: i64,
-    /// Height z_w \[m\] and slope tan γ_w of the wheel profile at strip `first + i`.
-    wheel: Vec<(f64, f64)>,
+    /// The wheel profile's y \[m\], height z_w \[m\] and slope tan γ_w at strip k of the wheel's
+    /// strip grid (`strip_grid.rs`).
+    wheel: Vec<(f64, f64, f64)>,
 }
 
 impl StripTable {
     /// The exact spline point of every strip over the wheel profile's lateral extent.
     fn new(placed: &WheelOnRail) -> Self {
-        let (from, to) = placed.wheel.lateral_range();
-        let (first, last) = ((from / STRIP_WIDTH).ceil() as i64, (to / STRIP_WIDTH).floor() as i64);
-        let wheel = (first..=last)
-            .map_while(|k| placed.wheel.at_lateral(k as f64 * STRIP_WIDTH))
-            .map(|point| (point.vertical, point.slope_angle.tan()))
+        let grid = placed.strip_grid();
+        let wheel = (0..grid.len() as i64)
+            .map(|k| grid.lateral(k))
+            .map_while(|lateral| Some((lateral, placed.wheel.at_lateral(lateral)?)))
+            .map(|(lateral, point)| (lateral, point.vertical, point.slope_angle.tan()))
             .collect();
-        Self { first, wheel }
+        Self { wheel }
     }
 
-    /// Strip k's geometry at the pose of `frame` (right side, z_ws = 0); `None` off the profiles.
-    /// Inlined into the cut's loop (it was called there, its result passed through memory): one
-    /// criterion run against the call, non-Hertzian wheel steps 3–10 % faster repeated, 2–7 %
-    /// moving.
+    /// Strip k's wheel profile y and its geometry at the pose of `frame` (right side, z_ws = 0);
+    /// `None` off the profiles. Inlined into the cut's loop (it was called there, its result
+    /// passed through memory): one criterion run against the call, non-Hertzian wheel steps
+    /// 3–10 % faster repeated, 2–7 % moving.
     #[inline(always)]
-    pub(super) fn point(&self, placed: &WheelOnRail, frame: &LocusFrame, k: i64) -> Option<StripPoint> {
-        let &(height, slope) = self.wheel.get(usize::try_from(k - self.first).ok()?)?;
-        let (track_lateral, vertical, rolling_radius) =
-            frame.track_position(placed, k as f64 * STRIP_WIDTH, height, slope)?;
+    pub(super) fn strip(&self, placed: &WheelOnRail, frame: &LocusFrame, k: i64) -> (f64, Option<StripPoint>) {
+        match usize::try_from(k).ok().and_then(|i| self.wheel.get(i)) {
+            Some(&(lateral, height, slope)) => (lateral, Self::point(placed, frame, lateral, height, slope)),
+            None => (placed.strip_grid().lateral(k), None),
+        }
+    }
+
+    /// The geometry of the strip at wheel profile y `lateral` (height, slope tan γ_w there).
+    #[inline(always)]
+    fn point(placed: &WheelOnRail, frame: &LocusFrame, lateral: f64, height: f64, slope: f64) -> Option<StripPoint> {
+        let (track_lateral, vertical, rolling_radius) = frame.track_position(placed, lateral, height, slope)?;
         let rail_lateral = track_lateral - placed.rail_offset;
         let (rail_height, rail_slope) = placed.rail_samples.at(rail_lateral)?;
         let track_vertical = rail_height + placed.rail_lift;
@@ -80,7 +86,7 @@ impl StripTable {
     /// doc); the lowest of them is the pose's touch, which the strips' reach is measured from.
     pub(super) fn minima(placed: &WheelOnRail, right: &WheelsetPosition) -> Result<Vec<(i64, f64)>, ProfileError> {
         let minima = placed.gap_minima(right)?;
-        Ok(minima.into_iter().map(|(profile_y, gap)| ((profile_y / STRIP_WIDTH).round() as i64, gap)).collect())
+        Ok(minima.into_iter().map(|(profile_y, gap)| (placed.strip_grid().nearest(profile_y), gap)).collect())
     }
 }
 
@@ -89,7 +95,7 @@ impl WheelOnRail {
     /// every strip's centre, the rail's samples; module doc of `geometry/strip_table.rs`) instead
     /// of an exact spline point per strip and pose: the non-Hertzian normal problem
     /// ([`Self::non_hertzian_pose`]) of every pose costs a fraction, within 2 nm of the exact
-    /// gap. Built in 0.23 ms on S1002 (1296 strips); only worth it with the non-Hertzian contact.
+    /// gap. Built in under half a millisecond on S1002 (852 strips); only worth it with the non-Hertzian contact.
     ///
     /// ```
     /// use wheel_rail_contact::geometry::{WheelOnRail, WheelSide, WheelsetPosition};

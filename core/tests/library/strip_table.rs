@@ -90,7 +90,9 @@ fn the_strip_table_gives_the_exact_patches() {
 }
 
 /// The table is built at initialisation within the 1 s: one exact spline point per strip
-/// of the wheel profile (S1002: 1 296 strips over its 129.6 mm), measured 0.23 ms in release.
+/// of the wheel profile (S1002: 852 strips over its 129.6 mm, every 0.1 mm off the tread and 0.2 mm
+/// on it), measured with the strip grid 0.43 ms in release (on a machine 1.8 × slower than the one
+/// that measured 0.23 ms for 1 296 strips before).
 #[test]
 fn the_strip_table_is_built_within_a_second() {
     let (from, to) = SmoothProfile::new(&builtin_profile("MBench_S1002").unwrap()).unwrap().lateral_range();
@@ -98,7 +100,7 @@ fn the_strip_table_is_built_within_a_second() {
     let start = Instant::now();
     let tabled = placed.with_strip_table();
     let elapsed = start.elapsed();
-    println!("{:.0} strips in {elapsed:?}", (to - from) / 1e-4);
+    println!("strips over {:.1} mm of profile in {elapsed:?}", (to - from) * 1e3);
     assert!(elapsed.as_secs_f64() < 1.0, "{elapsed:?}");
     assert!(tabled.non_hertzian_patches_for_force(10e3, &WheelsetPosition::default()).is_ok());
 }
@@ -106,11 +108,18 @@ fn the_strip_table_is_built_within_a_second() {
 /// Whole wheel steps (`WheelRailContact::evaluate`, 10 kN prescribed and balanced with the creep
 /// forces) with the strip table against the exact strips: both wheels, Polach and `exact_table`,
 /// 100 poses each (y_ws −2…9 mm, roll ±0.002 rad, yaw ±0.015 rad, 5–100 kN, creepages from the
-/// motion). Measured: z_ws within 0.64 nm, contact points 0.51 nm, N 1.7e-6, each patch's creep
-/// forces 1.1e-6 μN; asserted at 10 nm, 10 nm, 1e-4 and 1e-4 μN.
+/// motion). Each path's answer is an answer of the other: the other's strips at its z_ws
+/// (prescribed) give its patches and forces, and carry the load. Where the balance has one root
+/// the two answers are the same (measured: z_ws within 0.64 nm, contact points 0.51 nm, N 1.7e-6,
+/// each patch's creep forces 1.1e-6 μN; asserted at 10 nm, 10 nm, 1e-4 and 1e-4 μN); where a
+/// region joins a patch within the balance's reach, G(z_ws) jumps and the balance has two roots
+/// (1 of the 400: the right wheel at y_ws 6.42 mm, 58.7 kN, where a tread region 14 mm from the
+/// flange root joins at 1.24 µm more approach, its patch b 2.1 → 7.4 mm), and the two paths,
+/// whose searches start from touches a sampling apart, may settle on either.
 #[test]
 fn wheel_steps_with_the_strip_table_are_the_exact_ones() {
     let (mut vertical, mut point, mut normal, mut creep) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut two_roots = 0;
     for model in [ModelChoice::Polach(Polach::default()), ModelChoice::ExactTable(ExactTable::new().unwrap())] {
         for side in [WheelSide::Right, WheelSide::Left] {
             let sign = if side == WheelSide::Right { 1.0 } else { -1.0 };
@@ -120,6 +129,7 @@ fn wheel_steps_with_the_strip_table_are_the_exact_ones() {
             let tabled = exact.clone().with_strip_table();
             for i in 0..100 {
                 let speed = 2.0 + 20.0 * spread(i, 0.2);
+                let load = 5e3 + 95e3 * spread(i, 0.9);
                 let input = WheelInput {
                     position: WheelsetPosition {
                         lateral: sign * (-2e-3 + 11e-3 * spread(i, 0.1)),
@@ -133,27 +143,46 @@ fn wheel_steps_with_the_strip_table_are_the_exact_ones() {
                         lateral_velocity: 0.01 * (spread(i, 0.6) - 0.5),
                         yaw_rate: 0.0,
                     },
-                    vertical: VerticalContact::PrescribedForce(5e3 + 95e3 * spread(i, 0.9)),
+                    vertical: VerticalContact::PrescribedForce(load),
                     friction_coefficient: 0.3,
                 };
-                let step = |contact: &WheelRailContact| {
+                let step = |contact: &WheelRailContact, input: &WheelInput| {
                     let mut cache = WheelCache::default();
-                    contact.evaluate(&input, &WheelState::default(), &mut cache, Evaluation::Initialise).unwrap().0
+                    contact.evaluate(input, &WheelState::default(), &mut cache, Evaluation::Initialise).unwrap().0
                 };
-                let (a, b) = (step(&exact), step(&tabled));
-                assert_eq!(a.patches.len(), b.patches.len(), "{side:?} {input:?}");
-                vertical = vertical.max((a.wheelset_vertical_position - b.wheelset_vertical_position).abs());
-                for (p, q) in a.patches.iter().zip(&b.patches) {
-                    let limit = 0.3 * p.patch.normal_force;
-                    point = point.max((p.patch.point.rail_lateral - q.patch.point.rail_lateral).abs());
-                    normal = normal.max((p.patch.normal_force / q.patch.normal_force - 1.0).abs());
-                    creep = creep.max((p.output.force_longitudinal - q.output.force_longitudinal).abs() / limit);
-                    creep = creep.max((p.output.force_lateral - q.output.force_lateral).abs() / limit);
+                let (a, b) = (step(&exact, &input), step(&tabled, &input));
+                let apart = (a.wheelset_vertical_position - b.wheelset_vertical_position).abs();
+                if apart > 1e-8 {
+                    two_roots += 1;
+                } else {
+                    vertical = vertical.max(apart);
+                }
+                for (answer, other) in [(&a, &tabled), (&b, &exact)] {
+                    let placed = WheelInput {
+                        position: WheelsetPosition { vertical: answer.wheelset_vertical_position, ..input.position },
+                        vertical: VerticalContact::PrescribedPosition,
+                        ..input
+                    };
+                    let there = step(other, &placed);
+                    let what = format!("{side:?} {input:?}");
+                    assert_eq!(there.patches.len(), answer.patches.len(), "{what}");
+                    // It carries the load as the balance did (1e-10 of it), but for the strips' difference.
+                    assert!((there.track_force[2] / -load - 1.0).abs() < 1e-5, "{what}: F_z {}", there.track_force[2]);
+                    for (p, q) in there.patches.iter().zip(&answer.patches) {
+                        let limit = 0.3 * p.patch.normal_force;
+                        point = point.max((p.patch.point.rail_lateral - q.patch.point.rail_lateral).abs());
+                        normal = normal.max((p.patch.normal_force / q.patch.normal_force - 1.0).abs());
+                        creep = creep.max((p.output.force_longitudinal - q.output.force_longitudinal).abs() / limit);
+                        creep = creep.max((p.output.force_lateral - q.output.force_lateral).abs() / limit);
+                    }
                 }
             }
         }
     }
-    println!("z_ws {vertical:e} m, point {point:e} m, N {normal:e}, creep forces {creep:e} μN");
+    println!("z_ws {vertical:e} m, point {point:e} m, N {normal:e}, creep forces {creep:e} μN; {two_roots} poses with two roots");
     assert!(vertical < 1e-8 && point < 1e-8, "z_ws {vertical:e} m, point {point:e} m");
     assert!(normal < 1e-4 && creep < 1e-4, "N {normal:e}, creep forces {creep:e} μN");
+    // Two roots only where a jump of G lies within a balance's rounds: rare. More would mean the
+    // paths' searches start further apart than their touches' sampling.
+    assert!(two_roots <= 4, "{two_roots} of 400 poses settled on different roots");
 }
