@@ -70,12 +70,22 @@
 //!    strips' mean: the slip is affine in the position); its normal force N such that N cos δ is the vertical force its
 //!    strips carry (Σ F_j cos γ_j: the vertical balance holds exactly; the strips' lateral sum
 //!    differs from N sin δ where the patch is curved, as CONTACT's planar patch does); an
-//!    equivalent ellipse for the creep-force models: b half the patch's width along the
-//!    surface (between the zero crossings of v beside its outer strips, so that it grows
-//!    continuously as strips enter), a from the same area (π a b = ∫ 2 L ds, with L² = 2 R v
-//!    linear between the strips' centres: the area grows smoothly as a strip enters, where
-//!    Σ 2 L ds grew like √v), the peak pressure its highest, the approach at its deepest
-//!    region's reference point.
+//!    equivalent ellipse for the creep-force models with the patch's area (π a b = ∫ 2 L ds,
+//!    with L² = 2 R v linear between the strips' centres: the area grows smoothly as a strip
+//!    enters, where Σ 2 L ds grew like √v) and the shape of its pressure: a/b = σ_x/σ_s, the
+//!    ratio of the pressure's spreads along x and across the surface (second moments: along a
+//!    strip ∫ x² p dx / ∫ p dx = L²/4 for the semi-elliptic p; across, the strips' forces about
+//!    their centroid, each strip's force spread evenly over its width). For Hertz's ellipse
+//!    both give σ² = a²/5 and b²/5, so a Hertzian patch keeps its own ellipse; where a patch
+//!    has a long, lightly loaded tail (a tread lobe running out towards the flange root, A-2.2
+//!    right case 2), the tail widens σ_s by its load, where the patch's extent took it at its
+//!    full length. Half the patch's width between its edges as b (before 2026-12-02) stretched
+//!    that patch's ellipse to a/b = 0.24 and its F_s came out 0.129 μN off CONTACT's full
+//!    solution (0.082 now); on 47 poses with friction of our own (S1002/UIC60, y_ws 0–8 mm,
+//!    10–100 kN, yaw 2 mrad, CONTACT's full solution: docs/geometry.md) the patches' creep
+//!    forces' largest error fell from 0.133 to 0.074 μN. Each strip's force enters in
+//!    proportion to v, so the ellipse is continuous as strips enter. The peak pressure is the
+//!    strips' highest, the approach that at its deepest region's reference point.
 //!
 //! Continuity: at a prescribed z_ws the patches are continuous in the pose and z_ws but where
 //! their structure changes (a region comes into contact, regions merge or part, a patch joins
@@ -718,14 +728,51 @@ impl Loaded<'_, '_> {
         let squared =
             |j: usize| (2.0 * self.strips[j].rolling_radius * self.virtual_penetration(j), self.half_length(j));
         let apart = |i: usize, j: usize| (self.strips[j].arc - self.strips[i].arc).abs();
-        let mut area: f64 = (first..end - 1).map(|j| segment_area(squared(j), squared(j + 1), apart(j, j + 1))).sum();
-        for (inside, outside) in [(first, first.checked_sub(1)), (end - 1, Some(end))] {
-            area += match outside.filter(|&j| self.strips.get(j).is_some_and(|s| s.gap.is_finite())) {
-                Some(j) => segment_area(squared(inside), squared(j), apart(inside, j)),
-                None => self.half_length(inside) * self.strips[inside].width,
+        self.stretches(first, end)
+            .map(|(inside, beyond)| match beyond {
+                Beyond::Strip(j) => segment_area(squared(inside), squared(j), apart(inside, j)),
+                Beyond::HalfWidth(_) => self.half_length(inside) * self.strips[inside].width,
+            })
+            .sum()
+    }
+
+    /// The stretches of the surface that the region [first, end) covers, each from a strip in
+    /// contact to what lies beyond it: the next strip (inside the region, or beside it where
+    /// its virtual penetration falls to 0 on the way), or, at the end of the cut or of a
+    /// profile, half the strip's own width outward. Along them [`Self::area`] and
+    /// [`Self::add_pressure_moments`] interpolate linearly between the strips' centres.
+    fn stretches(&self, first: usize, end: usize) -> impl Iterator<Item = (usize, Beyond)> + '_ {
+        let interior = (first..end - 1).map(|j| (j, Beyond::Strip(j + 1)));
+        let ends =
+            [(first, first.checked_sub(1), -1.0), (end - 1, Some(end), 1.0)].map(
+                |(inside, outside, sign)| match outside
+                    .filter(|&j| self.strips.get(j).is_some_and(|s| s.gap.is_finite()))
+                {
+                    Some(j) => (inside, Beyond::Strip(j)),
+                    None => (inside, Beyond::HalfWidth(sign)),
+                },
+            );
+        interior.chain(ends)
+    }
+
+    /// Adds the region's pressure to `moments` about the surface position `origin` (module doc,
+    /// 6): its line load f = k (π/2) L² = k π R v (module doc, 5) linear between the strips'
+    /// centres along [`Self::stretches`], where the strips' own forces at their centres would
+    /// make the spread across a narrow flange patch of a few strips jitter with the strips'
+    /// grid as the patch slides over it.
+    fn add_pressure_moments(&self, region: &Region, origin: f64, moments: &mut PressureMoments) {
+        let load = |j: usize| {
+            let strip = &self.strips[j];
+            (strip.arc - origin, region.scale * PI * strip.rolling_radius * self.virtual_penetration(j))
+        };
+        for (inside, beyond) in self.stretches(region.first, region.end) {
+            let (at, f) = load(inside);
+            let outer = match beyond {
+                Beyond::Strip(j) => load(j),
+                Beyond::HalfWidth(sign) => (at + sign * 0.5 * self.strips[inside].width, f),
             };
+            moments.add((at, f), outer, region.scale);
         }
-        area
     }
 
     /// The real interpenetration's extent along the surface around the region [first, end):
@@ -780,27 +827,6 @@ impl Loaded<'_, '_> {
         joins
     }
 
-    /// Where the virtual penetration falls to zero between strip `inside` (in contact) and its
-    /// neighbour on the `outward` side, along the surface: linear in v between their centres, so that the
-    /// patch's edge, and with it its equivalent ellipse, moves continuously as a strip enters
-    /// (a strip's whole width at once made b jump by 0.05 mm on a flange patch 0.5 mm wide, and
-    /// the vertical balance could not settle in the jump: 21 N of 80 kN off, worn flange). At
-    /// the end of the cut or of a profile, the outer side of the strip itself.
-    fn edge(&self, inside: usize, outward: Outward) -> f64 {
-        let strip = &self.strips[inside];
-        let (outside, sign) = match outward {
-            Outward::Up => (inside.checked_add(1), 1.0),
-            Outward::Down => (inside.checked_sub(1), -1.0),
-        };
-        match outside.and_then(|j| self.strips.get(j).map(|next| (j, next))) {
-            Some((j, next)) if next.gap.is_finite() => {
-                let (v_in, v_out) = (self.virtual_penetration(inside), self.virtual_penetration(j));
-                strip.arc + (next.arc - strip.arc) * v_in / (v_in - v_out)
-            }
-            _ => strip.arc + sign * 0.5 * strip.width,
-        }
-    }
-
     /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6); their
     /// strips listed if `with_strips`; and the regions with the joins that grouped them.
     fn patches(&self, with_strips: bool) -> Result<(Vec<NonHertzianPatch>, Regions), ProfileError> {
@@ -843,6 +869,10 @@ impl Loaded<'_, '_> {
         let side = self.wheel.side();
         let (mut normal, mut centroid, mut area, mut peak, mut total) = (0.0, 0.0, 0.0, 0.0f64, 0.0);
         let mut radius = 0.0;
+        // The pressure's moments (the equivalent ellipse's shape, below), about the first strip
+        // (no cancellation on a narrow flange patch far from the surface's origin).
+        let origin = self.strips[regions[0].first].arc;
+        let mut moments = PressureMoments::default();
         let mut strips = Vec::new();
         let mut deepest = regions[0];
         for region in regions {
@@ -850,6 +880,7 @@ impl Loaded<'_, '_> {
                 deepest = *region;
             }
             area += self.area(region.first, region.end);
+            self.add_pressure_moments(region, origin, &mut moments);
             for j in region.first..region.end {
                 let s = &self.strips[j];
                 let length = self.half_length(j);
@@ -899,11 +930,12 @@ impl Loaded<'_, '_> {
         point.track_vertical += mean_radius - point.rolling_radius;
         point.rolling_radius = mean_radius;
         let force = normal / point.contact_angle_sin_cos().1;
-        let (first, last) = (regions[0].first, regions[regions.len() - 1].end - 1);
-        let semi_axis_b = 0.5 * (self.edge(last, Outward::Up) - self.edge(first, Outward::Down));
+        // The equivalent ellipse (module doc, 6): the area's, shaped as the pressure is spread,
+        // a/b = σ_x/σ_s.
+        let aspect = moments.spread_ratio();
+        let semi_axis_b = (area / (PI * aspect)).sqrt();
         let approach = deepest.approach;
-        let ellipse =
-            HertzContact { semi_axis_a: area / (PI * semi_axis_b), semi_axis_b, max_pressure: peak, approach };
+        let ellipse = HertzContact { semi_axis_a: aspect * semi_axis_b, semi_axis_b, max_pressure: peak, approach };
         Ok(NonHertzianPatch {
             strips,
             patch: ContactPatch {
@@ -916,12 +948,49 @@ impl Loaded<'_, '_> {
     }
 }
 
-/// Which way along the strips an edge of a patch lies ([`Strips::edge`]): towards higher or lower
-/// strip indices.
+/// What lies beyond a strip in contact along the surface ([`Loaded::stretches`]).
 #[derive(Clone, Copy)]
-enum Outward {
-    Up,
-    Down,
+enum Beyond {
+    /// Strip j, the next one: in contact, or beside the region.
+    Strip(usize),
+    /// Nothing (the end of the cut or of a profile): half the strip's width, towards lower
+    /// (−1) or higher (+1) positions.
+    HalfWidth(f64),
+}
+
+/// A patch's line load f(s) (normal force per unit width of surface) in moments about an
+/// origin on the surface: ∫ f ds, ∫ f s ds, ∫ f s² ds, and ∫ f L²/4 ds, the pressure's second
+/// moment along x (∫ x² p dx = f L²/4 for the semi-elliptic p of a strip, with L² = 2f/(π k),
+/// module doc, 5).
+#[derive(Default)]
+struct PressureMoments {
+    force: f64,
+    first: f64,
+    second: f64,
+    along: f64,
+}
+
+impl PressureMoments {
+    /// Adds a stretch from `(at, f)` (f > 0) to `(to, f_to)` along which the line load runs
+    /// linearly, up to where it falls to 0; k the region's scale. Simpson's rule, exact for the
+    /// integrands (polynomials in s of degree ≤ 3).
+    fn add(&mut self, (at, f): (f64, f64), (to, f_to): (f64, f64), scale: f64) {
+        let (to, f_to) = if f_to < 0.0 { (at + (to - at) * f / (f - f_to), 0.0) } else { (to, f_to) };
+        let (middle, f_middle) = (0.5 * (at + to), 0.5 * (f + f_to));
+        let weight = (to - at).abs() / 6.0;
+        let simpson = |g: fn(f64, f64) -> f64| weight * (g(at, f) + 4.0 * g(middle, f_middle) + g(to, f_to));
+        self.force += simpson(|_, f| f);
+        self.first += simpson(|s, f| f * s);
+        self.second += simpson(|s, f| f * s * s);
+        self.along += simpson(|_, f| f * f) / (2.0 * PI * scale);
+    }
+
+    /// σ_x/σ_s, the ratio of the pressure's spreads along x and across the surface (module
+    /// doc, 6): a/b of the equivalent ellipse (σ² = a²/5 and b²/5 for Hertz's pressure).
+    fn spread_ratio(&self) -> f64 {
+        let mean = self.first / self.force;
+        (self.along / (self.second - mean * self.first)).sqrt()
+    }
 }
 
 /// ∫ 2 √max(q, 0) ds over a segment `length` long along which q (a strip's L²) runs linearly
