@@ -1,6 +1,8 @@
-"""Extracts contact_worn_right.csv from CONTACT's output of contact_worn_right.inp.
+"""Extracts contact_worn_right.csv from CONTACT's output of contact_worn_right.inp (and
+contact_nonhertzian_rolling_right.csv from contact_nonhertzian_rolling_right.inp, the same tables).
 
 Usage: python3 contact_worn_right.py contact_worn_right.out > contact_worn_right.csv
+       python3 contact_worn_right.py contact_nonhertzian_rolling_right.out > contact_nonhertzian_rolling_right.csv
 
 One row per contact patch: the case, the wheelset's y_ws and the prescribed FZ (from the deck's
 order, checked against the output), the solved z_ws, the number of patches, the total forces on
@@ -8,6 +10,7 @@ the rail in track coordinates, and per patch its contact reference (YCP(R), DELT
 creepages and its forces FN, FX, FS — CONTACT's units (mm, rad, N, 1/mm) and signs (creepages
 rail minus wheel, forces on the rail).
 """
+import os
 import re
 import sys
 
@@ -18,8 +21,10 @@ from mbench_a22_contact_ref_out import table_after
 def main(path):
     lines = open(path).read().splitlines()
     starts = [i for i, l in enumerate(lines) if re.match(r"^ Case +\d+", l)] + [len(lines)]
+    deck = os.path.basename(path).removesuffix(".out")
+    notes = {"contact_worn_right": "contact_worn.md"}.get(deck, "contact_nonhertzian.md")
     print("# CONTACT rev. 2707 (github eve70a/CONTACT, commit d431cdb), module 1, full solution of "
-          "core/tests/data/contact_worn_right.inp; see contact_worn.md")
+          f"core/tests/data/{deck}.inp; see {notes}")
     print("# units: mm, rad, N, 1/mm (CONTACT's); creepages rail minus wheel, forces on the rail; one row per patch")
     print("case,y_ws,z_ws,fz_tr,fx_tr,fy_tr,patches,patch,ycp_r,deltcp,cksi,ceta,cphi,fn,fx,fs")
     for number, (start, end) in enumerate(zip(starts, starts[1:]), 1):

@@ -34,4 +34,5 @@ mod scene_exact_warm_start;
 mod scene_sequences;
 mod strip_table;
 mod wheel_non_hertzian;
+mod wheel_rolling_sweep;
 mod wheel_worn;
