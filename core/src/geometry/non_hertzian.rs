@@ -595,9 +595,10 @@ impl Loaded<'_, '_> {
         self.half_length[i]
     }
 
-    /// The regions in contact at z_ws with their loads (module doc, 4–5), field side first;
-    /// a region whose scale the others' pressure would make negative is left out.
-    fn regions(&self) -> Vec<Region> {
+    /// The regions in contact at z_ws with their loads (module doc, 4–5), in the strips'
+    /// order, with their joins ([`Self::joins`]); a region whose scale the others' pressure
+    /// would make negative is left out.
+    fn regions(&self) -> Regions {
         let n = self.strips.len();
         let mut regions = Vec::new();
         let mut i = 0;
@@ -627,7 +628,8 @@ impl Loaded<'_, '_> {
         // far field.
         let count = regions.len();
         let modulus = self.wheel.contact_modulus();
-        let patch_of = self.patch_of_each(&regions);
+        let joins = self.joins(&regions);
+        let patch_of = patch_of_each(&joins);
         let mut influence = vec![0.0; count * count];
         for (a, region) in regions.iter().enumerate() {
             for (b, other) in regions.iter().enumerate() {
@@ -657,8 +659,12 @@ impl Loaded<'_, '_> {
                 }
             }
         }
+        let before = regions.len();
         regions.retain(|region| region.scale > 0.0);
-        regions
+        // The joins once a round (taken twice, they cost the centred wheel's moving step 3 500
+        // instructions of 237 000), again only where a region was lifted.
+        let joins = if regions.len() == before { joins } else { self.joins(&regions) };
+        Regions { regions, joins }
     }
 
     /// The reference point of the region [first, end) whose deepest strip is `deepest` (module
@@ -707,7 +713,7 @@ impl Loaded<'_, '_> {
     /// The vertical force the patches carry at z_ws, Σ N cos γ over the strips.
     fn carried(&self) -> f64 {
         let mut force = 0.0;
-        for region in self.regions() {
+        for region in self.regions().regions {
             for j in region.first..region.end {
                 force += self.strip_force(j, region.scale) * self.strips[j].sin_cos.1;
             }
@@ -715,64 +721,48 @@ impl Loaded<'_, '_> {
         force
     }
 
-    /// The contact area of the region [first, end) at z_ws, ∫ 2L ds along the surface with L²
-    /// = 2 R v interpolated linearly between the strips' centres, out to where it falls to 0
-    /// towards the strips beside the region (module doc, 6); at the end of the cut or of a
-    /// profile, to the outer side of the strip itself. Continuously differentiable in the
-    /// strips' v as a strip enters: Σ 2 L w with L = √(2 R v) grew like √v, and so did the
-    /// equivalent ellipse's a and with it the creep forces, so that the vertical force carried
-    /// with them could fall as z_ws rose, and the wheel's balance had two roots (a flange patch
-    /// at y_ws = 7.12 mm: F_y by 0.3 N of 26.7 kN, as either was found).
-    fn area(&self, first: usize, end: usize) -> f64 {
-        // L² = 2 R v (module doc, 3) with its root L where v > 0 ([`Strips::at`]).
-        let squared =
-            |j: usize| (2.0 * self.strips[j].rolling_radius * self.virtual_penetration(j), self.half_length(j));
-        let apart = |i: usize, j: usize| (self.strips[j].arc - self.strips[i].arc).abs();
-        self.stretches(first, end)
-            .map(|(inside, beyond)| match beyond {
-                Beyond::Strip(j) => segment_area(squared(inside), squared(j), apart(inside, j)),
-                Beyond::HalfWidth(_) => self.half_length(inside) * self.strips[inside].width,
-            })
-            .sum()
-    }
-
-    /// The stretches of the surface that the region [first, end) covers, each from a strip in
-    /// contact to what lies beyond it: the next strip (inside the region, or beside it where
-    /// its virtual penetration falls to 0 on the way), or, at the end of the cut or of a
-    /// profile, half the strip's own width outward. Along them [`Self::area`] and
-    /// [`Self::add_pressure_moments`] interpolate linearly between the strips' centres.
-    fn stretches(&self, first: usize, end: usize) -> impl Iterator<Item = (usize, Beyond)> + '_ {
-        let interior = (first..end - 1).map(|j| (j, Beyond::Strip(j + 1)));
-        let ends =
-            [(first, first.checked_sub(1), -1.0), (end - 1, Some(end), 1.0)].map(
-                |(inside, outside, sign)| match outside
-                    .filter(|&j| self.strips.get(j).is_some_and(|s| s.gap.is_finite()))
-                {
-                    Some(j) => (inside, Beyond::Strip(j)),
-                    None => (inside, Beyond::HalfWidth(sign)),
-                },
-            );
-        interior.chain(ends)
-    }
-
-    /// Adds the region's pressure to `moments` about the surface position `origin` (module doc,
-    /// 6): its line load f = k (π/2) L² = k π R v (module doc, 5) linear between the strips'
-    /// centres along [`Self::stretches`], where the strips' own forces at their centres would
-    /// make the spread across a narrow flange patch of a few strips jitter with the strips'
-    /// grid as the patch slides over it.
-    fn add_pressure_moments(&self, region: &Region, origin: f64, moments: &mut PressureMoments) {
-        let load = |j: usize| {
+    /// The contact area of `region` at z_ws, ∫ 2L ds along the surface with L² = 2 R v
+    /// interpolated linearly between the strips' centres, out to where it falls to 0 towards
+    /// the strips beside the region (module doc, 6); at the end of the cut or of a profile, to
+    /// the outer side of the strip itself. Continuously differentiable in the strips' v as a
+    /// strip enters: Σ 2 L w with L = √(2 R v) grew like √v, and so did the equivalent
+    /// ellipse's a and with it the creep forces, so that the vertical force carried with them
+    /// could fall as z_ws rose, and the wheel's balance had two roots (a flange patch at y_ws =
+    /// 7.12 mm: F_y by 0.3 N of 26.7 kN, as either was found).
+    ///
+    /// Along the same stretches, the region's pressure is added to `moments` about the surface
+    /// position `origin` (module doc, 6): its line load f = k (π/2) L² (module doc, 5), linear
+    /// between the strips' centres as L² is, where the strips' own forces at their centres
+    /// made the spread across a narrow flange patch of a few strips jitter with the strips'
+    /// grid as the patch slid over it (the flange's F_y rose by 9.6 N over 0.05 mm of y_ws at
+    /// 7 mm, `wheel_non_hertzian::forces_move_continuously_through_the_transition`).
+    fn area_and_moments(&self, region: &Region, origin: f64, moments: &mut PressureMoments) -> f64 {
+        // L² = 2 R v (module doc, 3) with its root L where v > 0 ([`Strips::at`]), and the
+        // strip's position.
+        let squared = |j: usize| {
             let strip = &self.strips[j];
-            (strip.arc - origin, region.scale * PI * strip.rolling_radius * self.virtual_penetration(j))
+            (strip.arc - origin, 2.0 * strip.rolling_radius * self.virtual_penetration(j), self.half_length(j))
         };
-        for (inside, beyond) in self.stretches(region.first, region.end) {
-            let (at, f) = load(inside);
-            let outer = match beyond {
-                Beyond::Strip(j) => load(j),
-                Beyond::HalfWidth(sign) => (at + sign * 0.5 * self.strips[inside].width, f),
-            };
-            moments.add((at, f), outer, region.scale);
+        let (mut area, mut of_squares) = (0.0, PressureMoments::default());
+        let mut stretch = |(at, inner, inner_root): (f64, f64, f64), (to, outer, outer_root): (f64, f64, f64)| {
+            area += segment_area((inner, inner_root), (outer, outer_root), (to - at).abs());
+            of_squares.add((at, inner), (to, outer));
+        };
+        for j in region.first..region.end - 1 {
+            stretch(squared(j), squared(j + 1));
         }
+        for (inside, outside, sign) in
+            [(region.first, region.first.checked_sub(1), -1.0), (region.end - 1, Some(region.end), 1.0)]
+        {
+            let end = squared(inside);
+            match outside.filter(|&j| self.strips.get(j).is_some_and(|s| s.gap.is_finite())) {
+                Some(j) => stretch(end, squared(j)),
+                // Half the strip's width at its own L: the area L w, as the strip's own.
+                None => stretch(end, (end.0 + sign * 0.5 * self.strips[inside].width, end.1, end.2)),
+            }
+        }
+        moments.add_scaled(&of_squares, region.scale);
+        area
     }
 
     /// The real interpenetration's extent along the surface around the region [first, end):
@@ -788,18 +778,6 @@ impl Loaded<'_, '_> {
             high += 1;
         }
         (strips[low].arc - 0.5 * strips[low].width, strips[high].arc + 0.5 * strips[high].width)
-    }
-
-    /// The patch of each of `regions` (in the strips' order) at z_ws, numbered from 0: regions
-    /// whose real interpenetrations lie within [`JOIN_DISTANCE`] of each other are one patch
-    /// (module doc, 6).
-    fn patch_of_each(&self, regions: &[Region]) -> Vec<usize> {
-        let mut patch = 0;
-        let joins = self.joins(regions).into_iter().map(|join| {
-            patch += usize::from(join > 0.0);
-            patch
-        });
-        regions.first().map(|_| 0).into_iter().chain(joins).collect()
     }
 
     /// The join function between each of `regions` but the first and the patch of the regions
@@ -830,8 +808,7 @@ impl Loaded<'_, '_> {
     /// The patches at z_ws, on the wheel's side: the regions grouped (module doc, 6); their
     /// strips listed if `with_strips`; and the regions with the joins that grouped them.
     fn patches(&self, with_strips: bool) -> Result<(Vec<NonHertzianPatch>, Regions), ProfileError> {
-        let regions = self.regions();
-        let joins = self.joins(&regions);
+        let Regions { regions, joins } = self.regions();
         // A patch is a run of neighbouring regions: a region whose join is > 0 starts the next.
         let mut patches = Vec::new();
         let mut first = 0;
@@ -879,8 +856,7 @@ impl Loaded<'_, '_> {
             if self.virtual_penetration(region.deepest) > self.virtual_penetration(deepest.deepest) {
                 deepest = *region;
             }
-            area += self.area(region.first, region.end);
-            self.add_pressure_moments(region, origin, &mut moments);
+            area += self.area_and_moments(region, origin, &mut moments);
             for j in region.first..region.end {
                 let s = &self.strips[j];
                 let length = self.half_length(j);
@@ -948,20 +924,10 @@ impl Loaded<'_, '_> {
     }
 }
 
-/// What lies beyond a strip in contact along the surface ([`Loaded::stretches`]).
-#[derive(Clone, Copy)]
-enum Beyond {
-    /// Strip j, the next one: in contact, or beside the region.
-    Strip(usize),
-    /// Nothing (the end of the cut or of a profile): half the strip's width, towards lower
-    /// (−1) or higher (+1) positions.
-    HalfWidth(f64),
-}
-
 /// A patch's line load f(s) (normal force per unit width of surface) in moments about an
 /// origin on the surface: ∫ f ds, ∫ f s ds, ∫ f s² ds, and ∫ f L²/4 ds, the pressure's second
-/// moment along x (∫ x² p dx = f L²/4 for the semi-elliptic p of a strip, with L² = 2f/(π k),
-/// module doc, 5).
+/// moment along x (∫ x² p dx = f L²/4 for the semi-elliptic p of a strip, module doc, 5).
+/// Per region they are those of q = L² scaled by its k: f = k (π/2) q, f L²/4 = k (π/8) q².
 #[derive(Default)]
 struct PressureMoments {
     force: f64,
@@ -971,18 +937,30 @@ struct PressureMoments {
 }
 
 impl PressureMoments {
-    /// Adds a stretch from `(at, f)` (f > 0) to `(to, f_to)` along which the line load runs
-    /// linearly, up to where it falls to 0; k the region's scale. Simpson's rule, exact for the
-    /// integrands (polynomials in s of degree ≤ 3).
-    fn add(&mut self, (at, f): (f64, f64), (to, f_to): (f64, f64), scale: f64) {
-        let (to, f_to) = if f_to < 0.0 { (at + (to - at) * f / (f - f_to), 0.0) } else { (to, f_to) };
-        let (middle, f_middle) = (0.5 * (at + to), 0.5 * (f + f_to));
-        let weight = (to - at).abs() / 6.0;
-        let simpson = |g: fn(f64, f64) -> f64| weight * (g(at, f) + 4.0 * g(middle, f_middle) + g(to, f_to));
-        self.force += simpson(|_, f| f);
-        self.first += simpson(|s, f| f * s);
-        self.second += simpson(|s, f| f * s * s);
-        self.along += simpson(|_, f| f * f) / (2.0 * PI * scale);
+    /// Adds the moments of q along a stretch from `(at, q)` (q > 0) to `(to, q_to)` along which
+    /// it runs linearly, up to where it falls to 0 (`along` holding ∫ q² ds). The integrals of a
+    /// linear q = q_a N_a + q_b N_b over [a, b] (h = |b − a|) with the hat functions' moments:
+    /// ∫ q = h (q_a + q_b)/2, ∫ q s = h (q_a (2a + b) + q_b (a + 2b))/6, ∫ q s² = h (q_a (3a² +
+    /// 2ab + b²) + q_b (a² + 2ab + 3b²))/12, ∫ q² = h (q_a² + q_a q_b + q_b²)/3.
+    fn add(&mut self, (at, q): (f64, f64), (to, q_to): (f64, f64)) {
+        let (to, q_to) = if q_to < 0.0 { (at + (to - at) * q / (q - q_to), 0.0) } else { (to, q_to) };
+        let length = (to - at).abs();
+        self.force += 0.5 * length * (q + q_to);
+        self.first += length / 6.0 * (q * (2.0 * at + to) + q_to * (at + 2.0 * to));
+        let (at_squared, cross, to_squared) = (at * at, 2.0 * at * to, to * to);
+        self.second += length / 12.0
+            * (q * (3.0 * at_squared + cross + to_squared) + q_to * (at_squared + cross + 3.0 * to_squared));
+        self.along += length / 3.0 * (q * q + q * q_to + q_to * q_to);
+    }
+
+    /// Adds a region's moments of q = L² (`of_squares`, [`Self::add`]) as its pressure's, k its
+    /// scale.
+    fn add_scaled(&mut self, of_squares: &PressureMoments, scale: f64) {
+        let line_load = 0.5 * PI * scale;
+        self.force += line_load * of_squares.force;
+        self.first += line_load * of_squares.first;
+        self.second += line_load * of_squares.second;
+        self.along += 0.125 * PI * scale * of_squares.along;
     }
 
     /// σ_x/σ_s, the ratio of the pressure's spreads along x and across the surface (module
@@ -991,6 +969,18 @@ impl PressureMoments {
         let mean = self.first / self.force;
         (self.along / (self.second - mean * self.first)).sqrt()
     }
+}
+
+/// The patch of each of the regions whose `joins` these are ([`Loaded::joins`], in the strips'
+/// order), numbered from 0: regions whose real interpenetrations lie within [`JOIN_DISTANCE`]
+/// of each other are one patch (module doc, 6).
+fn patch_of_each(joins: &[f64]) -> Vec<usize> {
+    let mut patch = 0;
+    let later = joins.iter().map(|&join| {
+        patch += usize::from(join > 0.0);
+        patch
+    });
+    std::iter::once(0).chain(later).collect()
 }
 
 /// ∫ 2 √max(q, 0) ds over a segment `length` long along which q (a strip's L²) runs linearly
@@ -1528,7 +1518,7 @@ mod tests {
             let vertical = placed.non_hertzian_patches_for_force(10e3, &position).unwrap().vertical;
             let mut pose = placed.non_hertzian_pose(&position).unwrap();
             let strips = pose.strips_at(vertical).unwrap().at(vertical);
-            let regions = strips.regions();
+            let regions = strips.regions().regions;
             assert_eq!(regions.len(), 1, "y_ws {lateral}");
             let region = regions[0];
             let v = strips.penetration.clone();
