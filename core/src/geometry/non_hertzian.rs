@@ -1343,8 +1343,9 @@ impl<'a> NonHertzianPose<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::{segment_area, NonHertzianPose, Root, MAX_PENETRATION, REFERENCE_BAND};
+    use super::{patch_of_each, segment_area, NonHertzianPose, PressureMoments, Root, MAX_PENETRATION, REFERENCE_BAND};
     use crate::geometry::{ProfileError, WheelOnRail, WheelSide, WheelsetPosition};
+    use std::f64::consts::PI;
 
     /// z_ws carrying `force` within 1e-10 (the wheel's balance tolerance) with its slope, started
     /// from `start`, and how many times the carried force was evaluated.
@@ -1501,6 +1502,88 @@ mod tests {
         let below = (at_zero - segment_area(end(4e-6), end(-1e-14), 1e-4)) / 1e-14;
         let above = (segment_area(end(4e-6), end(1e-14), 1e-4) - at_zero) / 1e-14;
         assert!((below / above - 1.0).abs() < 1e-3, "{below} against {above}");
+    }
+
+    /// A stretch's moments are the integrals of its linear q over the part where q > 0: against
+    /// the midpoint rule on 10⁶ parts, both ends in contact (either way along the surface),
+    /// one, and with a region's scale k: f = k (π/2) q, f L²/4 = k (π/8) q².
+    #[test]
+    fn a_stretchs_moments_are_its_integrals() {
+        let numeric = |(at, q): (f64, f64), (to, q_to): (f64, f64)| {
+            let n = 1_000_000;
+            let h = (to - at) / f64::from(n);
+            let mut sums = [0.0; 4];
+            for i in 0..n {
+                let t = (f64::from(i) + 0.5) / f64::from(n);
+                let (s, q) = (at + (to - at) * t, (q + (q_to - q) * t).max(0.0));
+                for (sum, value) in sums.iter_mut().zip([q, q * s, q * s * s, q * q]) {
+                    *sum += value * h.abs();
+                }
+            }
+            sums
+        };
+        for (from, to) in [
+            ((3e-4, 4e-6), (5e-4, 1e-6)),
+            ((-2e-4, 1e-6), (-4e-4, 9e-6)),
+            ((1e-3, 4e-6), (1.2e-3, -2e-6)),
+            ((1e-3, 4e-6), (0.8e-3, -6e-6)),
+        ] {
+            let mut moments = PressureMoments::default();
+            moments.add(from, to);
+            let exact = [moments.force, moments.first, moments.second, moments.along];
+            for (k, (value, reference)) in exact.iter().zip(numeric(from, to)).enumerate() {
+                assert!(
+                    (value - reference).abs() <= 1e-9 * reference.abs(),
+                    "{from:?} → {to:?}, moment {k}: {value} against {reference}"
+                );
+            }
+            let mut scaled = PressureMoments::default();
+            scaled.add_scaled(&moments, 3e9);
+            let line_load = 0.5 * PI * 3e9;
+            let scaled = [scaled.force, scaled.first, scaled.second, scaled.along];
+            let expected =
+                [line_load * exact[0], line_load * exact[1], line_load * exact[2], PI / 8.0 * 3e9 * exact[3]];
+            for (value, expected) in scaled.iter().zip(expected) {
+                assert!((value / expected - 1.0).abs() < 1e-15, "{value} against {expected}");
+            }
+        }
+        // Added twice, the moments double (they accumulate).
+        let mut twice = PressureMoments::default();
+        twice.add((0.0, 2e-6), (1e-4, 3e-6));
+        let once = twice.force;
+        twice.add((0.0, 2e-6), (1e-4, 3e-6));
+        assert_eq!(twice.force, 2.0 * once);
+    }
+
+    /// Hertz's pressure over an ellipse (a = 3 mm along x, b = 2 mm across, centred at s = 5 mm:
+    /// L² = a² (1 − ((s − 5 mm)/b)²), as KP's strips of a quadratic gap) in 400 stretches: the
+    /// spreads' ratio σ_x/σ_s is a/b (σ² = a²/5 and b²/5: ∫(1 − u²)² du / ∫(1 − u²) du = 4/5
+    /// along, ∫ u² (1 − u²) du / ∫(1 − u²) du = 1/5 across), within the stretches' linear q
+    /// (2e-5), whatever the region's scale.
+    #[test]
+    fn hertzs_pressure_spreads_as_its_ellipse() {
+        let (a, b, centre) = (3e-3, 2e-3, 5e-3);
+        let node = |i: i32| {
+            let s = centre - b + 2.0 * b * f64::from(i) / 400.0;
+            (s, a * a * (1.0 - ((s - centre) / b).powi(2)))
+        };
+        let mut of_squares = PressureMoments::default();
+        for i in 0..400 {
+            of_squares.add(node(i), node(i + 1));
+        }
+        for scale in [7e9, 3e11] {
+            let mut moments = PressureMoments::default();
+            moments.add_scaled(&of_squares, scale);
+            assert!((moments.spread_ratio() / (a / b) - 1.0).abs() < 2e-5, "{}", moments.spread_ratio());
+        }
+    }
+
+    /// Regions are numbered by patch from their joins: a join ≤ 0 keeps the next region in the
+    /// patch, one > 0 starts the next patch.
+    #[test]
+    fn regions_are_grouped_by_their_joins() {
+        assert_eq!(patch_of_each(&[]), vec![0]);
+        assert_eq!(patch_of_each(&[-1e-3, 2e-3, 0.0, 5e-3]), vec![0, 0, 1, 1, 2]);
     }
 
     /// The reference point (module doc, 4) on A-2.2's right wheel at 10 kN: on the tread's single

@@ -128,7 +128,13 @@ fn every_jump_of_the_hertz_patches_is_located_by_an_event_indicator() {
 /// of virtual penetration trade places (the centred wheelset, y_ws = 0.2143 mm, where the
 /// reference point jumped between them and F_x with it, by 130 N) and as strips enter on the
 /// flange (y_ws ≥ 6.9 mm, where the vertical balance had two roots after each strip entered
-/// and F_y stepped by up to 80 N between them).
+/// and F_y stepped by up to 80 N between them). Since the equivalent ellipse follows the
+/// pressure's spreads (2026-12-02) rather than the patch's extent, which jumped as a region
+/// joined or left it, most structure changes move the outputs by less than the watched steps:
+/// of the 7 jumps of the sweep before (y_ws −0.03, 0.05, 0.51, 0.53, 0.55, 4.95 and 5.18 mm) 2
+/// remain (0.05 and 0.51 mm, where two regions of the flat gap join and their two scales become
+/// one); the indicators still switch at the others, as harmless events (6 measured, bounded
+/// at 8: each costs a master one event iteration).
 #[test]
 fn every_jump_of_the_non_hertzian_patches_is_located_by_an_event_indicator() {
     let (jumps, quiet) = sweep(ContactMethod::NonHertzian);
@@ -137,7 +143,7 @@ fn every_jump_of_the_non_hertzian_patches_is_located_by_an_event_indicator() {
     assert!(!jumps.iter().any(|jump| jump.lateral > 6.9e-3 && !jump.patches_change), "{jumps:?}");
     let unlocated: Vec<&Jump> = jumps.iter().filter(|jump| !jump.located).collect();
     assert!(unlocated.is_empty(), "jumps without an event: {unlocated:?}");
-    assert!(jumps.len() >= 3 && quiet.len() <= jumps.len(), "{jumps:?}; {quiet:?}");
+    assert!(jumps.len() >= 2 && quiet.len() <= 8, "{jumps:?}; {quiet:?}");
 }
 
 /// In initialization mode the indicators are computed from the values set, as the states are:
