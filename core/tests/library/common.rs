@@ -145,3 +145,43 @@ pub fn read_measured_as(text: &str, name: &str) -> Result<MeasuredProfile, Profi
 pub fn read_measured(name: &str) -> MeasuredProfile {
     read_measured_as(&measured_text(name), name).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
+
+/// One contact patch of CONTACT's full solution as `core/tests/data/contact_worn_right.py`
+/// extracts it (the worn-profile and the rolling references), in our units and signs (forces on
+/// the wheel).
+pub struct ContactPatchRow {
+    pub case: u32,
+    /// y_ws \[m\].
+    pub lateral: f64,
+    /// The prescribed F_z \[N\] (NaN where CONTACT found no solution).
+    pub vertical_force: f64,
+    /// The patch's contact reference on the rail \[m\].
+    pub rail_lateral: f64,
+    pub contact_angle: f64,
+    pub normal_force: f64,
+    /// F_x, F_s on the wheel \[N\].
+    pub creep_forces: [f64; 2],
+    /// The totals on the wheel in track coordinates \[N\].
+    pub track_force: [f64; 3],
+}
+
+/// The rows of such a CSV file: case, y_ws, z_ws, fz_tr, fx_tr, fy_tr, patches, patch, ycp_r,
+/// deltcp, cksi, ceta, cphi, fn, fx, fs (CONTACT's mm, N; forces on the rail).
+pub fn contact_patch_rows(csv: &str) -> Vec<ContactPatchRow> {
+    csv.lines()
+        .filter(|line| !line.starts_with('#') && !line.starts_with("case"))
+        .map(|line| {
+            let f: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+            ContactPatchRow {
+                case: f[0] as u32,
+                lateral: f[1] * 1e-3,
+                vertical_force: f[3],
+                rail_lateral: f[8] * 1e-3,
+                contact_angle: f[9],
+                normal_force: f[13],
+                creep_forces: [-f[14], -f[15]],
+                track_force: [-f[4], -f[5], -f[3]],
+            }
+        })
+        .collect()
+}

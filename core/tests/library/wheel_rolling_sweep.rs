@@ -14,37 +14,15 @@ use wheel_rail_contact::wheel::{
 };
 use wheel_rail_contact::{ExactTable, ModelChoice};
 
-/// One case of CONTACT's (one patch each), in our units and signs (forces on the wheel).
-struct Row {
-    case: u32,
-    lateral: f64,
-    vertical_force: f64,
-    contact_angle: f64,
-    normal_force: f64,
-    creep_forces: [f64; 2],
-    track_force: [f64; 3],
-}
+use crate::common::{contact_patch_rows, ContactPatchRow};
 
-fn reference() -> Vec<Row> {
-    include_str!("../data/contact_nonhertzian_rolling_right.csv")
-        .lines()
-        .filter(|line| !line.starts_with('#') && !line.starts_with("case"))
-        .map(|line| {
-            // case, y_ws, z_ws, fz_tr, fx_tr, fy_tr, patches, patch, ycp_r, deltcp, cksi, ceta,
-            // cphi, fn, fx, fs (CONTACT's mm, N; forces on the rail).
-            let f: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
-            assert_eq!((f[6], f[7]), (1.0, 1.0), "one patch in every case of CONTACT's: {line}");
-            Row {
-                case: f[0] as u32,
-                lateral: f[1] * 1e-3,
-                vertical_force: f[3],
-                contact_angle: f[9],
-                normal_force: f[13],
-                creep_forces: [-f[14], -f[15]],
-                track_force: [-f[4], -f[5], -f[3]],
-            }
-        })
-        .collect()
+/// CONTACT's cases, one patch each.
+fn reference() -> Vec<ContactPatchRow> {
+    let csv = include_str!("../data/contact_nonhertzian_rolling_right.csv");
+    for line in csv.lines().filter(|line| !line.starts_with('#') && !line.starts_with("case")) {
+        assert!(line.split(',').nth(6) == Some("1"), "one patch in every case of CONTACT's: {line}");
+    }
+    contact_patch_rows(csv)
 }
 
 /// Where the patch's normal force and the wheel's totals miss CONTACT's by more than the

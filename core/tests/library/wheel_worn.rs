@@ -17,7 +17,7 @@ use wheel_rail_contact::wheel::{
 };
 use wheel_rail_contact::{ExactTable, ModelChoice};
 
-use crate::common::read_measured as read;
+use crate::common::{contact_patch_rows, read_measured as read, ContactPatchRow};
 
 /// The deck's wheel: its track (North American: gauge 1435.1 mm at 15.875 mm, flange backs
 /// 1352.2 mm apart at the wheel profile's y = 0, nominal radius 419.1 mm; CONTACT's test-bank
@@ -45,38 +45,8 @@ fn wheel(method: ContactMethod) -> WheelRailContact {
     WheelRailContact::new(geometry, scene).with_method(method)
 }
 
-/// One of CONTACT's patches, in our units and signs (forces on the wheel).
-struct ContactPatchRow {
-    case: u32,
-    lateral: f64,
-    vertical_force: f64,
-    rail_lateral: f64,
-    contact_angle: f64,
-    normal_force: f64,
-    creep_forces: [f64; 2],
-    track_force: [f64; 3],
-}
-
 fn reference() -> Vec<ContactPatchRow> {
-    include_str!("../data/contact_worn_right.csv")
-        .lines()
-        .filter(|line| !line.starts_with('#') && !line.starts_with("case"))
-        .map(|line| {
-            // case, y_ws, z_ws, fz_tr, fx_tr, fy_tr, patches, patch, ycp_r, deltcp, cksi, ceta,
-            // cphi, fn, fx, fs (CONTACT's mm, N; forces on the rail).
-            let f: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
-            ContactPatchRow {
-                case: f[0] as u32,
-                lateral: f[1] * 1e-3,
-                vertical_force: f[3],
-                rail_lateral: f[8] * 1e-3,
-                contact_angle: f[9],
-                normal_force: f[13],
-                creep_forces: [-f[14], -f[15]],
-                track_force: [-f[4], -f[5], -f[3]],
-            }
-        })
-        .collect()
+    contact_patch_rows(include_str!("../data/contact_worn_right.csv"))
 }
 
 /// The deck's motion: yaw 2 mrad, rolling at 2 m/s with Ω = V/r0, μ = 0.3, the load prescribed.
