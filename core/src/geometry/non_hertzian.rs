@@ -74,14 +74,14 @@
 //!    with L² = 2 R v linear between the strips' centres: the area grows smoothly as a strip
 //!    enters, where Σ 2 L ds grew like √v) and the shape of its pressure: a/b = σ_x/σ_s, the
 //!    ratio of the pressure's spreads along x and across the surface (second moments: along a
-//!    strip ∫ x² p dx / ∫ p dx = L²/4 for the semi-elliptic p; across, the strips' forces about
-//!    their centroid, each strip's force spread evenly over its width). For Hertz's ellipse
+//!    strip ∫ x² p dx / ∫ p dx = L²/4 for the semi-elliptic p; across, the line load about its
+//!    centroid, linear between the strips' centres as L² is). For Hertz's ellipse
 //!    both give σ² = a²/5 and b²/5, so a Hertzian patch keeps its own ellipse; where a patch
 //!    has a long, lightly loaded tail (a tread lobe running out towards the flange root, A-2.2
 //!    right case 2), the tail widens σ_s by its load, where the patch's extent took it at its
 //!    full length. Half the patch's width between its edges as b (before 2026-12-02) stretched
 //!    that patch's ellipse to a/b = 0.24 and its F_s came out 0.129 μN off CONTACT's full
-//!    solution (0.082 now); on 47 poses with friction of our own (S1002/UIC60, y_ws 0–8 mm,
+//!    solution (0.081 now); on 47 poses with friction of our own (S1002/UIC60, y_ws 0–8 mm,
 //!    10–100 kN, yaw 2 mrad, CONTACT's full solution: docs/geometry.md) the patches' creep
 //!    forces' largest error fell from 0.133 to 0.074 μN. Each strip's force enters in
 //!    proportion to v, so the ellipse is continuous as strips enter. The peak pressure is the
