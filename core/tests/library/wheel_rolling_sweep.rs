@@ -30,8 +30,10 @@ fn reference() -> Vec<ContactPatchRow> {
 /// transition (y_ws 6.6–7 mm, contact angles 0.7–1.2 rad), where the normal force along the
 /// patch's normal is F_z / cos δ and the lateral total grows with tan δ (1/cos² δ ≈ 5 at
 /// 1.1 rad): the contact angle within its tolerance of 0.05 rad there (0.013–0.049 rad off,
-/// gauge-side: KP's pressure sits a little up the flange) takes N 3–8 % and the lateral total up
-/// to 0.62 μF_z off. CONTACT's own KPEC (its `mbench_a22_kpec.inp` settings on this deck) is
+/// gauge-side) takes N 3–8 % and the lateral total up to 0.62 μF_z off. (On case 38 our pressure centroid
+/// lies where CONTACT's does; our wheel sinks 16–90 µm deeper, and CONTACT's angle is a mean over
+/// its interpenetration at its own depth: docs/geometry.md, "Where the steep transition's error
+/// comes from".) CONTACT's own KPEC (its `mbench_a22_kpec.inp` settings on this deck) is
 /// within 0.015 rad in angle there and misses the totals on four of these cases too (0.12–1.41
 /// μF_z). The patches' creep forces are within their tolerance on every case (below).
 /// (case, N relative, totals μF_z).
