@@ -28,7 +28,7 @@ use wheel_rail_contact::wheel::WheelState;
 /// First bytes of every serialized state of this FMU.
 pub const MAGIC: [u8; 8] = *b"WRCstate";
 /// The layout of the header and payload described in the module documentation.
-pub const FORMAT_VERSION: u16 = 6;
+pub const FORMAT_VERSION: u16 = 7;
 
 /// Everything an instance computes with beside its mode and times.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -168,7 +168,7 @@ mod tests {
         );
         let mut version = bytes.clone();
         version[8] = 2;
-        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 6");
+        assert_eq!(decode(&version).unwrap_err(), "format version 2; this FMU reads version 7");
         let mut layout = bytes.clone();
         layout[10] ^= 1;
         let error = decode(&layout).unwrap_err();

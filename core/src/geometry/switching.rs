@@ -65,6 +65,7 @@ pub const NO_SWITCH: f64 = 1.0;
 
 /// One wheel's switching functions \[m\] (module doc).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SwitchingFunctions([f64; SWITCHING_FUNCTIONS]);
 
 impl Default for SwitchingFunctions {

@@ -259,6 +259,7 @@ pub fn contact_modulus(shear_modulus: f64, poisson_ratio: f64) -> Result<f64, In
 /// assert_eq!(error.variable, "wheel_profile_radius");
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HertzContact {
     /// Semi-axis a along the rolling direction (the `rolling` curvature) \[m\].
     pub semi_axis_a: f64,

@@ -391,7 +391,7 @@ fn creep_relaxation_carries_over_per_patch() {
             rail_lateral: steady.patches[0].patch.point.rail_lateral,
             scene: SceneState::default(),
         }],
-        balance: None,
+        ..WheelState::default()
     };
     let (step, next) = contact.evaluate(&input, &at_rest, &mut WheelCache::default(), Evaluation::Step(1e-3)).unwrap();
     let expected = steady.patches[0].output.force_lateral * -(-2.0f64).exp_m1();
