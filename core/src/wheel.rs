@@ -1063,6 +1063,19 @@ mod tests {
         };
         let kept = left.interpolated.clone().unwrap();
         assert_eq!((kept.pose, kept.vertical_force), ([input.position.lateral, 0.0, 0.002], 50e3));
+        // What is kept is an answer no round solved: the patches solved at its z_ws are within
+        // about the balance's tolerance of it, not the same bits.
+        let placed = WheelInput {
+            position: WheelsetPosition { vertical: output.wheelset_vertical_position, ..input.position },
+            vertical: VerticalContact::PrescribedPosition,
+            ..input
+        };
+        let (solved, _) =
+            contact.evaluate(&placed, &state, &mut WheelCache::default(), Evaluation::Initialise).unwrap();
+        let (p, q) = (&solved.patches[0].patch, &output.patches[0].patch);
+        assert_ne!(p, q);
+        assert!((p.normal_force / q.normal_force - 1.0).abs() < 1e-9, "{p:?} against {q:?}");
+        assert!((p.ellipse.semi_axis_a / q.ellipse.semi_axis_a - 1.0).abs() < 1e-9, "{p:?} against {q:?}");
         let solves = cache.normal_solves;
         let (again, after) = contact.evaluate(&input, &left, &mut cache, Evaluation::Initialise).unwrap();
         assert_eq!(again, output);
