@@ -1085,6 +1085,13 @@ mod tests {
         let (other, _) = contact.evaluate(&heavier, &left, &mut cache, Evaluation::Initialise).unwrap();
         assert!(cache.normal_solves > solves);
         assert!((other.track_force[2] / -50.5e3 - 1.0).abs() <= super::BALANCE_TOLERANCE);
+        // At its pose and load but with less friction the kept patches' creep forces carry
+        // another share of the load: not given again, the search meets the load.
+        let solves = cache.normal_solves;
+        let slippery = WheelInput { friction_coefficient: 0.2, ..input };
+        let (other, _) = contact.evaluate(&slippery, &left, &mut cache, Evaluation::Initialise).unwrap();
+        assert!(cache.normal_solves > solves);
+        assert!((other.track_force[2] / -50e3 - 1.0).abs() <= super::BALANCE_TOLERANCE);
     }
 
     /// A wheelset moving 1 µm a step over 0.1 mm from `lateral` under `load`, each step from the
