@@ -82,14 +82,15 @@ def test_corrupted_truncated_and_foreign_blobs_give_fmi2error_and_change_nothing
     before = slave.getReal([vr[n] for n in master_scene.OUTPUTS])
     flipped = bytearray(blob)
     flipped[len(blob) // 2] ^= 0x01
+    own_version = int.from_bytes(blob[8:10], "little")
     cases = [
         (blob[:-1], "truncated"),
         (blob[:9], "truncated"),
         (bytes(flipped), "corrupted: the CRC-32 checksum does not match"),
         (b"PK\x03\x04" + blob[4:], "not a serialized state of this FMU"),
         (blob + b"\x00", "trailing bytes"),
-        (blob[:8] + b"\x07\x00" + blob[10:],
-         f"format version 7; this FMU reads version {int.from_bytes(blob[8:10], 'little')}"),
+        (blob[:8] + (own_version + 1).to_bytes(2, "little") + blob[10:],
+         f"format version {own_version + 1}; this FMU reads version {own_version}"),
         (blob[:10] + bytes([blob[10] ^ 1]) + blob[11:], "variable-layout tag 0x"),
     ]
     for bad, reason in cases:
