@@ -217,8 +217,8 @@ pub struct WheelState {
     pub interpolated: Option<Box<InterpolatedBalance>>,
 }
 
-/// A non-Hertzian balance's answer interpolated between its last two rounds
-/// ([`WheelRailContact::interpolated_round`]), kept so that an evaluation repeated at the same
+/// A non-Hertzian balance's answer interpolated between its last two rounds (the wheel's
+/// `interpolated_round`, module doc, "Contact method"), kept so that an evaluation repeated at the same
 /// pose and load gives it again, bit for bit: its patches with their creep forces computed
 /// again (a round solved at its z_ws meets the force too, within the balance's tolerance, but
 /// not at the same bits; reading an FMU's outputs at other inputs and back must give them as
