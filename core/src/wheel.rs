@@ -284,9 +284,8 @@ impl WheelState {
 /// the same bits, and a step rolled back to a saved state, or inputs read back after others were
 /// tried, must give the outputs they gave. At the same pose (the same touch) it starts at the
 /// z_ws itself, so that an evaluation repeated from the state it left gives its outputs again
-/// (bit for bit where the answer was a round's own; where it was interpolated between the last
-/// two rounds, `WheelRailContact::interpolated_round`, the repetition solves the patches at that
-/// z_ws, which they meet within the balance's tolerance).
+/// (bit for bit: a round's own answer by solving that round again, one interpolated between the
+/// last two rounds by the [`InterpolatedBalance`] the state keeps).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BalanceStart {
@@ -773,7 +772,7 @@ impl WheelRailContact {
         let no_hints = WheelState::default();
         let (forces, states) =
             self.patch_forces(input, &position, &answer.patches, state, &no_hints, cache, evaluation)?;
-        if (carried_by(&forces) - force).abs() > BALANCE_TOLERANCE * force {
+        if !meets(carried_by(&forces), force) {
             return Ok(None);
         }
         let state = WheelState { balance: Some(balance), interpolated: Some(answer.clone()), ..states };
@@ -822,8 +821,7 @@ impl WheelRailContact {
         let position = WheelsetPosition { vertical, ..input.position };
         let (forces, states) = self.patch_forces(input, &position, &patches, state, hints, cache, evaluation)?;
         let carried = carried_by(&forces);
-        let met = (carried - force).abs() <= BALANCE_TOLERANCE * force;
-        Ok(met.then_some(RoundAnswer { vertical, forces, states, carried }))
+        Ok(meets(carried, force).then_some(RoundAnswer { vertical, forces, states, carried }))
     }
 
     /// One round of the vertical balance at z_ws = `vertical` with these `patches`: their creep
@@ -847,7 +845,7 @@ impl WheelRailContact {
         let position = WheelsetPosition { vertical, ..input.position };
         let (forces, states) = self.patch_forces(input, &position, patches, state, hints, cache, evaluation)?;
         let carried = carried_by(&forces);
-        if forces.is_empty() || (carried - force).abs() <= BALANCE_TOLERANCE * force {
+        if forces.is_empty() || meets(carried, force) {
             return Ok(Round { forces, states, carried, next: None });
         }
         let share = |point: &ContactPoint| {
@@ -914,6 +912,11 @@ struct RoundAnswer {
     forces: Vec<PatchForces>,
     states: WheelState,
     carried: f64,
+}
+
+/// Whether the rail carries the prescribed `force` within [`BALANCE_TOLERANCE`].
+fn meets(carried: f64, force: f64) -> bool {
+    (carried - force).abs() <= BALANCE_TOLERANCE * force
 }
 
 /// The vertical force the rail carries through these patches \[N\].
@@ -1047,20 +1050,29 @@ mod tests {
     /// An interpolated answer is kept in the state ([`super::InterpolatedBalance`]) and given
     /// again, bit for bit and without a normal problem solved, by an evaluation from that state
     /// at its pose and load; at another load the search runs and meets that load.
+    /// The first step of a wheelset moving 1 µm a step from y_ws = 2 mm under 50 kN whose
+    /// balance is interpolated: its input, its state before, its output and the state it left.
+    fn first_interpolated_step(
+        contact: &WheelRailContact,
+        cache: &mut WheelCache,
+    ) -> (WheelInput, WheelState, super::WheelOutput, WheelState) {
+        let mut state = WheelState::default();
+        for k in 0..20 {
+            let input = rolling(2e-3 + 1e-6 * f64::from(k), 50e3);
+            let (output, next) = contact.evaluate(&input, &state, cache, Evaluation::Initialise).unwrap();
+            if next.interpolated.is_some() {
+                return (input, state, output, next);
+            }
+            state = next;
+        }
+        panic!("no interpolated balance in 20 steps");
+    }
+
     #[test]
     fn an_interpolated_balance_is_given_again_at_its_pose_and_load() {
         let contact = non_hertzian_wheel();
-        let (mut state, mut cache) = (WheelState::default(), WheelCache::default());
-        let mut k = 0;
-        let (input, output, left) = loop {
-            let input = rolling(2e-3 + 1e-6 * f64::from(k), 50e3);
-            let (output, next) = contact.evaluate(&input, &state, &mut cache, Evaluation::Initialise).unwrap();
-            if next.interpolated.is_some() {
-                break (input, output, next);
-            }
-            (state, k) = (next, k + 1);
-            assert!(k < 20, "no interpolated balance in 20 steps");
-        };
+        let mut cache = WheelCache::default();
+        let (input, state, output, left) = first_interpolated_step(&contact, &mut cache);
         let kept = left.interpolated.clone().unwrap();
         assert_eq!((kept.pose, kept.vertical_force), ([input.position.lateral, 0.0, 0.002], 50e3));
         // What is kept is an answer no round solved: the patches solved at its z_ws are within
@@ -1168,20 +1180,7 @@ mod tests {
     /// refused, its name given.
     #[test]
     fn a_state_with_an_unsound_interpolated_balance_is_refused() {
-        let contact = non_hertzian_wheel();
-        let mut state = WheelState::default();
-        let mut cache = WheelCache::default();
-        let mut k = 0;
-        let sound = loop {
-            let (_, next) = contact
-                .evaluate(&rolling(2e-3 + 1e-6 * f64::from(k), 50e3), &state, &mut cache, Evaluation::Initialise)
-                .unwrap();
-            if next.interpolated.is_some() {
-                break next;
-            }
-            (state, k) = (next, k + 1);
-            assert!(k < 20, "no interpolated balance in 20 steps");
-        };
+        let (.., sound) = first_interpolated_step(&non_hertzian_wheel(), &mut WheelCache::default());
         assert!(sound.validate().is_ok());
         let spoilt = |spoil: &dyn Fn(&mut super::InterpolatedBalance)| {
             let mut state = sound.clone();
