@@ -1343,9 +1343,104 @@ impl<'a> NonHertzianPose<'a> {
 
 #[cfg(test)]
 mod tests {
-    use super::{patch_of_each, segment_area, NonHertzianPose, PressureMoments, Root, MAX_PENETRATION, REFERENCE_BAND};
+    use super::{
+        patch_of_each, segment_area, NonHertzianPose, PressureMoments, Root, StripGeometry, Strips, MAX_PENETRATION,
+        REFERENCE_BAND, VIRTUAL_PENETRATION_SCALE,
+    };
     use crate::geometry::{ProfileError, WheelOnRail, WheelSide, WheelsetPosition};
     use std::f64::consts::PI;
+
+    /// The width of [`synthetic`]'s strips \[m\].
+    const WIDTH: f64 = 1e-4;
+
+    /// A cut made by hand (right side): strip j at wheel y and surface position j·[`WIDTH`],
+    /// [`WIDTH`] wide, rolling radius 0.46 m, the rail level (normal vertical), its undeformed gap
+    /// `gaps[j]` (+∞: off a profile), its reference depth the lowest gap of all (every strip lies
+    /// within [`super::REFERENCE_REACH`] of every other).
+    fn synthetic<'a>(wheel: &'a WheelOnRail, gaps: &[f64]) -> Strips<'a> {
+        let lowest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
+        let strips = gaps
+            .iter()
+            .enumerate()
+            .map(|(j, &gap)| {
+                let at = j as f64 * WIDTH;
+                StripGeometry {
+                    wheel_lateral: at,
+                    gap,
+                    reference_gap: lowest,
+                    arc: at,
+                    width: WIDTH,
+                    rolling_radius: 0.46,
+                    track_lateral: at,
+                    rail_lateral: at,
+                    sin_cos: (0.0, 1.0),
+                }
+            })
+            .collect();
+        Strips { wheel, right: WheelsetPosition::default(), strips, reach: 1.0 }
+    }
+
+    /// A region that reaches the end of the cut, or of a profile (the next strip off it), ends
+    /// half its last strip's width beyond that strip's centre, at the strip's own L (module doc,
+    /// 6): on a flat gap, where every strip's L is the same, the area is 2 L n w exactly and the
+    /// line load is even over n w, so a/b = σ_x/σ_s = (L/2)/(n w/√12). (No pose of the
+    /// profiles reaches this: the cut grows until the gap is out of reach.)
+    #[test]
+    fn a_region_at_the_end_of_the_cut_ends_half_a_strip_beyond_it() {
+        let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
+        let vertical = 20e-6;
+        let half_length = (2.0 * 0.46 * VIRTUAL_PENETRATION_SCALE * vertical).sqrt();
+        let count = 12;
+        let flat = vec![0.0; count];
+        let off_both_ends: Vec<f64> =
+            [f64::INFINITY].into_iter().chain(flat.iter().copied()).chain([f64::INFINITY]).collect();
+        for gaps in [flat, off_both_ends] {
+            let cut = synthetic(&placed, &gaps);
+            let loaded = cut.at(vertical);
+            let regions = loaded.regions().regions;
+            assert_eq!(regions.len(), 1, "{gaps:?}");
+            let region = regions[0];
+            assert_eq!(region.end - region.first, count, "{gaps:?}");
+            let mut moments = PressureMoments::default();
+            let area = loaded.area_and_moments(&region, 0.0, &mut moments);
+            let span = count as f64 * WIDTH;
+            assert!((area / (2.0 * half_length * span) - 1.0).abs() < 1e-12, "area {area}, {gaps:?}");
+            let expected = (half_length / 2.0) / (span / 12f64.sqrt());
+            let ratio = moments.spread_ratio();
+            assert!((ratio / expected - 1.0).abs() < 1e-12, "a/b {ratio} against {expected}, {gaps:?}");
+        }
+    }
+
+    /// A region of a patch that the others' pressure would lift (its scale solved ≤ 0) is left
+    /// out, and the rest are as if it were not there: a light region 0.2 mm beside a loaded
+    /// flat one (its real approach half the loaded one's, where the loaded one's pressure sinks
+    /// the surface further) is dropped, the loaded one keeps the scale it has alone, and no join
+    /// is left for the dropped one. (No pose of the profiles lifts a region since regions of
+    /// different patches stopped pressing on each other: this path is defensive.)
+    #[test]
+    fn a_region_the_others_lift_is_left_out() {
+        let placed = WheelOnRail::manchester_benchmark(WheelSide::Right);
+        let vertical = 20e-6;
+        let far = 1e-3;
+        let loaded_alone: Vec<f64> = [0.0; 20].into_iter().chain([far; 5]).collect();
+        let mut with_light = loaded_alone.clone();
+        with_light[22] = 0.5 * vertical;
+        with_light[23] = 0.5 * vertical;
+        let alone = synthetic(&placed, &loaded_alone);
+        let alone = alone.at(vertical).regions();
+        let both = synthetic(&placed, &with_light);
+        let both = both.at(vertical);
+        // Both regions are in contact and one patch: the light one's virtual penetration is > 0
+        // and their interpenetrations 0.2 mm apart.
+        assert!(both.virtual_penetration(22) > 0.0 && both.joins(&[]).is_empty());
+        let regions = both.regions();
+        assert_eq!(alone.regions.len(), 1);
+        assert_eq!(regions.regions.len(), 1, "the light region is lifted and left out");
+        let (kept, reference) = (regions.regions[0], alone.regions[0]);
+        assert_eq!((kept.first, kept.end), (0, 20));
+        assert_eq!(kept.scale, reference.scale, "the loaded region's scale as it is alone");
+        assert!(regions.joins.is_empty(), "no join for the region left out: {:?}", regions.joins);
+    }
 
     /// z_ws carrying `force` within 1e-10 (the wheel's balance tolerance) with its slope, started
     /// from `start`, and how many times the carried force was evaluated.
