@@ -1344,8 +1344,8 @@ impl<'a> NonHertzianPose<'a> {
 #[cfg(test)]
 mod tests {
     use super::{
-        patch_of_each, segment_area, NonHertzianPose, PressureMoments, Root, StripGeometry, Strips, MAX_PENETRATION,
-        REFERENCE_BAND, VIRTUAL_PENETRATION_SCALE,
+        patch_of_each, segment_area, NonHertzianPose, PressureMoments, Root, StripGeometry, Strips, JOIN_DISTANCE,
+        MAX_PENETRATION, REFERENCE_BAND, VIRTUAL_PENETRATION_SCALE,
     };
     use crate::geometry::{ProfileError, WheelOnRail, WheelSide, WheelsetPosition};
     use std::f64::consts::PI;
@@ -1431,8 +1431,10 @@ mod tests {
         let both = synthetic(&placed, &with_light);
         let both = both.at(vertical);
         // Both regions are in contact and one patch: the light one's virtual penetration is > 0
-        // and their interpenetrations 0.2 mm apart.
-        assert!(both.virtual_penetration(22) > 0.0 && both.joins(&[]).is_empty());
+        // and their interpenetrations 0.2 mm apart, within JOIN_DISTANCE.
+        assert!(both.virtual_penetration(22) > 0.0 && both.virtual_penetration(21) < 0.0);
+        let (loaded_end, light_start) = (both.interpenetration_extent(0, 20).1, both.interpenetration_extent(22, 24).0);
+        assert!((light_start - loaded_end - 2.0 * WIDTH).abs() < 1e-15 && 2.0 * WIDTH < JOIN_DISTANCE);
         let regions = both.regions();
         assert_eq!(alone.regions.len(), 1);
         assert_eq!(regions.regions.len(), 1, "the light region is lifted and left out");
