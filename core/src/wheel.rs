@@ -1047,9 +1047,6 @@ mod tests {
         }
     }
 
-    /// An interpolated answer is kept in the state ([`super::InterpolatedBalance`]) and given
-    /// again, bit for bit and without a normal problem solved, by an evaluation from that state
-    /// at its pose and load; at another load the search runs and meets that load.
     /// The first step of a wheelset moving 1 µm a step from y_ws = 2 mm under 50 kN whose
     /// balance is interpolated: its input, its state before, its output and the state it left.
     fn first_interpolated_step(
@@ -1068,6 +1065,10 @@ mod tests {
         panic!("no interpolated balance in 20 steps");
     }
 
+    /// An interpolated answer is kept in the state ([`super::InterpolatedBalance`]) and given
+    /// again, bit for bit and without a normal problem solved, by an evaluation from that state
+    /// at its pose and load; at another load, or with another friction (the creep forces' share
+    /// of the load changed), the search runs and meets the load.
     #[test]
     fn an_interpolated_balance_is_given_again_at_its_pose_and_load() {
         let contact = non_hertzian_wheel();
